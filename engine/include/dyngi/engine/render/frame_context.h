@@ -1,0 +1,54 @@
+#pragma once
+// What a pass (built-in or a plugged-in render feature) sees while recording one frame.
+#include <cstdint>
+#include <vector>
+
+#include "dyngi/engine/render/gpu_timer.h"
+#include "dyngi/engine/render/resources.h"
+#include "dyngi/engine/render/snapshot.h"
+
+namespace dyngi::render {
+
+// Screen-sized images of one frame. All are left in VK_IMAGE_LAYOUT_GENERAL after the pass that writes
+// them, so later passes can sample or load them without knowing who wrote them.
+struct RenderTargets {
+  uint32_t width = 0, height = 0;
+  Image position;   // RGBA32F: xyz world position, w = 1 where geometry was hit
+  Image normal;     // RGBA16F: xyz world normal (facing the camera), w roughness
+  Image albedo;     // RGBA8:   rgb linear base colour, a metallic
+  Image emissive;   // RGBA16F: rgb emitted radiance
+  Image depth;      // D32
+  Image direct;     // RGBA32F: emission + direct lighting
+  Image indirect;   // RGBA32F: written by GI features (E_indirect / pi); cleared to 0 otherwise
+  Image hdr;        // RGBA32F: direct + albedo * indirect, linear radiance before exposure
+  Image ldr;        // RGBA8:   tone-mapped, sRGB-encoded display image
+};
+
+// Geometry of one mesh on the GPU. Vertex layout: GpuVertex (position, normal, uv), 32 bytes.
+struct GpuVertex {
+  float position[3];
+  float normal[3];
+  float uv[2];
+};
+static_assert(sizeof(GpuVertex) == 32);
+
+struct GpuMesh {
+  Buffer vertices;
+  Buffer indices;
+  uint32_t indexCount = 0;
+  uint32_t version = 0;
+};
+
+struct FrameContext {
+  VulkanContext& ctx;
+  VkCommandBuffer cmd;
+  GpuTimer* timer;
+  const RenderSnapshot& snapshot;
+  RenderTargets& targets;
+  const Buffer& frameUniforms;            // gpu::FrameUniforms
+  const std::vector<GpuMesh*>& meshes;    // indexed like snapshot.draws
+  VkSampler linearSampler;
+  VkSampler nearestSampler;
+};
+
+}  // namespace dyngi::render

@@ -1,0 +1,87 @@
+#pragma once
+// Pipelines with one push-descriptor set (set 0) and optional push constants. Push descriptors keep
+// passes free of descriptor pools and let a pass bind per-draw textures without descriptor indexing
+// (which lavapipe lacks).
+#include <span>
+#include <vector>
+
+#include "dyngi/engine/render/context.h"
+
+namespace dyngi::render {
+
+struct Binding {
+  uint32_t binding;
+  VkDescriptorType type;
+  VkShaderStageFlags stages;
+};
+
+struct ShaderCode {
+  const uint32_t* words;
+  size_t bytes;
+};
+#define DYNGI_SHADER(array) ::dyngi::render::ShaderCode{array, sizeof(array)}
+
+class Pipeline {
+ public:
+  Pipeline() = default;
+  ~Pipeline() { reset(); }
+  Pipeline(Pipeline&& o) noexcept { *this = std::move(o); }
+  Pipeline& operator=(Pipeline&& o) noexcept;
+  Pipeline(const Pipeline&) = delete;
+  Pipeline& operator=(const Pipeline&) = delete;
+  void reset();
+
+  static Pipeline compute(VulkanContext& ctx, ShaderCode code, std::span<const Binding> bindings, uint32_t pushConstantBytes,
+                          const char* name);
+
+  struct GraphicsDesc {
+    ShaderCode vertex{};
+    ShaderCode fragment{};  // words == nullptr: depth-only
+    std::vector<VkVertexInputBindingDescription> vertexBindings;
+    std::vector<VkVertexInputAttributeDescription> vertexAttributes;
+    std::vector<VkFormat> colorFormats;
+    VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+    VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
+    bool depthBias = false;  // dynamic depth bias (shadow maps)
+    VkShaderStageFlags pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT;
+    uint32_t pushConstantBytes = 0;
+    std::vector<Binding> bindings;
+    const char* name = nullptr;
+  };
+  static Pipeline graphics(VulkanContext& ctx, const GraphicsDesc& desc);
+
+  VkPipeline handle() const { return pipeline_; }
+  VkPipelineLayout layout() const { return layout_; }
+  VkPipelineBindPoint bindPoint() const { return bindPoint_; }
+
+ private:
+  void createLayout(std::span<const Binding> bindings, VkShaderStageFlags pcStages, uint32_t pcBytes);
+
+  VulkanContext* ctx_ = nullptr;
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  VkPipelineBindPoint bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
+};
+
+// Builds push-descriptor writes without boilerplate; the infos live inside the builder.
+class DescriptorWrites {
+ public:
+  DescriptorWrites& storageImage(uint32_t binding, VkImageView view);
+  DescriptorWrites& sampledImage(uint32_t binding, VkImageView view, VkSampler sampler,
+                                 VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL);
+  DescriptorWrites& uniformBuffer(uint32_t binding, VkBuffer buffer, VkDeviceSize range = VK_WHOLE_SIZE);
+  DescriptorWrites& storageBuffer(uint32_t binding, VkBuffer buffer, VkDeviceSize range = VK_WHOLE_SIZE);
+  void push(const VulkanContext& ctx, VkCommandBuffer cmd, const Pipeline& pipeline);
+
+ private:
+  struct Entry {
+    uint32_t binding;
+    VkDescriptorType type;
+    VkDescriptorImageInfo image{};
+    VkDescriptorBufferInfo buffer{};
+  };
+  std::vector<Entry> entries_;
+};
+
+}  // namespace dyngi::render

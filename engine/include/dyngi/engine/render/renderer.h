@@ -1,0 +1,99 @@
+#pragma once
+// The deferred renderer: shadow -> gbuffer -> direct -> [render features] -> composite -> tonemap
+// -> present or read back. One frame in flight: the CPU waits for each frame's fence. On lavapipe the
+// "GPU" is the CPU, so overlap would buy nothing there; on a discrete GPU this is the first thing to
+// change (see docs/ARCHITECTURE.md).
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "dyngi/engine/render/frame_context.h"
+#include "dyngi/engine/render/render_feature.h"
+#include "dyngi/engine/render/swapchain.h"
+
+namespace dyngi::render {
+
+class ShadowPass;
+class GBufferPass;
+class DirectLightingPass;
+class CompositePass;
+class TonemapPass;
+
+struct RendererSettings {
+  uint32_t shadowMapSize = 1024;
+  uint32_t maxShadowLayers = 24;   // a spot or directional light takes 1 layer, a point light 6
+  float exposure = 1.0f;           // linear multiplier applied before tone mapping
+  int toneMapper = 0;              // 0 ACES fit, 1 clamp (for tests that compare linear values)
+  glm::vec3 background{0.0f};      // radiance where no geometry is hit
+  bool gpuTimestamps = true;
+};
+
+enum class TargetId { Position, Normal, Albedo, Emissive, Direct, Indirect, Hdr, Ldr };
+
+struct FrameStats {
+  std::vector<std::pair<std::string, double>> gpuMs;  // per pass, recording order
+  double cpuRecordMs = 0;   // building uploads and recording commands
+  double cpuWaitMs = 0;     // waiting for the frame's fence
+  bool presented = false;
+};
+
+class Renderer {
+ public:
+  Renderer(VulkanContext& ctx, const RendererSettings& settings = {});
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Creates the screen-sized targets. A 0x0 size is refused (keep the previous targets).
+  bool resize(uint32_t width, uint32_t height);
+  uint32_t width() const { return targets_.width; }
+  uint32_t height() const { return targets_.height; }
+
+  // Features record in the order added; the renderer does not own them.
+  void addFeature(RenderFeature* feature) { features_.push_back(feature); }
+
+  // Renders one frame; when `swapchain` is given (and valid) the result is presented to it.
+  const FrameStats& render(const RenderSnapshot& snapshot, Swapchain* swapchain = nullptr);
+  const FrameStats& lastStats() const { return stats_; }
+
+  // Reads a target of the last frame back as RGBA floats (8-bit targets come back in 0..1).
+  std::vector<glm::vec4> readback(TargetId target);
+  // The display image as RGBA8 bytes, row-major, top row first.
+  std::vector<uint8_t> readbackLdr();
+
+  RendererSettings& settings() { return settings_; }
+  VulkanContext& context() { return ctx_; }
+  RenderTargets& targets() { return targets_; }
+
+ private:
+  GpuMesh* meshFor(const scene::AssetStore& assets, scene::MeshId id);
+  VkImageView textureView(const scene::AssetStore& assets, scene::TextureId id);
+  Image& target(TargetId id);
+
+  VulkanContext& ctx_;
+  RendererSettings settings_;
+  RenderTargets targets_;
+  std::unordered_map<scene::MeshId, GpuMesh> meshes_;
+  const scene::AssetStore* meshesOf_ = nullptr;  // caches are per asset store
+  std::unordered_map<scene::TextureId, Image> textures_;
+  Image whiteTexture_;
+  Buffer frameUniforms_;
+  VkSampler linearSampler_ = VK_NULL_HANDLE;
+  VkSampler nearestSampler_ = VK_NULL_HANDLE;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  std::unique_ptr<GpuTimer> timer_;
+  std::unique_ptr<ShadowPass> shadow_;
+  std::unique_ptr<GBufferPass> gbuffer_;
+  std::unique_ptr<DirectLightingPass> direct_;
+  std::unique_ptr<CompositePass> composite_;
+  std::unique_ptr<TonemapPass> tonemap_;
+  std::vector<RenderFeature*> features_;
+  FrameStats stats_;
+};
+
+}  // namespace dyngi::render

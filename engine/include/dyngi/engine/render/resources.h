@@ -1,0 +1,100 @@
+#pragma once
+// RAII buffers and images with their own memory (dyngi allocates few, large resources), plus the
+// barrier helper every pass uses. Images remember their current layout so passes can transition
+// without knowing who touched them last.
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "dyngi/engine/render/context.h"
+
+namespace dyngi::render {
+
+enum class MemoryUsage {
+  GpuOnly,    // device-local; filled by the GPU or through upload()
+  Upload,     // host-visible, written every frame by the CPU (uniforms, per-frame data)
+  Readback,   // host-visible + cached when possible, read by the CPU
+};
+
+class Buffer {
+ public:
+  Buffer() = default;
+  Buffer(VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory, const char* name = nullptr);
+  ~Buffer() { reset(); }
+  Buffer(Buffer&& o) noexcept { *this = std::move(o); }
+  Buffer& operator=(Buffer&& o) noexcept;
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+
+  void reset();
+  VkBuffer handle() const { return buffer_; }
+  VkDeviceSize size() const { return size_; }
+  bool valid() const { return buffer_ != VK_NULL_HANDLE; }
+  void* mapped() const { return mapped_; }
+  // Writes `bytes` at `offset`: directly when the buffer is host-visible, else through a staging copy.
+  void upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
+  void invalidateForRead();  // make GPU writes visible to mapped() on non-coherent memory
+
+ private:
+  VulkanContext* ctx_ = nullptr;
+  VkBuffer buffer_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkDeviceSize size_ = 0;
+  void* mapped_ = nullptr;
+  bool coherent_ = true;
+};
+
+struct ImageDesc {
+  uint32_t width = 1, height = 1, layers = 1, mips = 1;
+  VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
+  VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+  VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D;
+  const char* name = nullptr;
+};
+
+class Image {
+ public:
+  Image() = default;
+  Image(VulkanContext& ctx, const ImageDesc& desc);
+  ~Image() { reset(); }
+  Image(Image&& o) noexcept { *this = std::move(o); }
+  Image& operator=(Image&& o) noexcept;
+  Image(const Image&) = delete;
+  Image& operator=(const Image&) = delete;
+
+  void reset();
+  bool valid() const { return image_ != VK_NULL_HANDLE; }
+  VkImage handle() const { return image_; }
+  VkImageView view() const { return view_; }
+  // A 2D view of one array layer (shadow map faces are rendered one layer at a time).
+  VkImageView layerView(uint32_t layer) const { return layerViews_.at(layer); }
+  const ImageDesc& desc() const { return desc_; }
+  VkExtent2D extent() const { return {desc_.width, desc_.height}; }
+  VkImageAspectFlags aspect() const;
+  VkImageLayout layout() const { return layout_; }
+
+  // Records a barrier into `newLayout`. src is derived from what the image was last used for.
+  void transition(VkCommandBuffer cmd, VkImageLayout newLayout, VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
+ private:
+  VulkanContext* ctx_ = nullptr;
+  VkImage image_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkImageView view_ = VK_NULL_HANDLE;
+  std::vector<VkImageView> layerViews_;
+  ImageDesc desc_;
+  VkImageLayout layout_ = VK_IMAGE_LAYOUT_UNDEFINED;
+  VkPipelineStageFlags2 lastStage_ = VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT;
+  VkAccessFlags2 lastAccess_ = 0;
+};
+
+// Fills a sampled RGBA8 image from CPU pixels (through a staging buffer) and leaves it shader-readable.
+Image createTexture(VulkanContext& ctx, uint32_t width, uint32_t height, const uint8_t* rgba8, bool srgb, const char* name);
+
+// Full memory barrier between two stages (buffers written by one pass and read by the next).
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
+size_t formatBytesPerPixel(VkFormat format);
+
+}  // namespace dyngi::render

@@ -1,0 +1,51 @@
+#pragma once
+// The read-only copy of what the renderer needs from the ECS this frame. Data flows one way:
+// ECS -> snapshot -> GPU; nothing in render/ writes back into the world.
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "dyngi/engine/ecs/world.h"
+#include "dyngi/engine/scene/assets.h"
+#include "dyngi/engine/scene/components.h"
+
+namespace dyngi::render {
+
+struct DrawItem {
+  scene::Entity entity;
+  scene::MeshId mesh = 0;
+  glm::mat4 model{1.0f};
+  scene::Material material;
+  bool castShadows = true;
+};
+
+struct LightItem {
+  scene::Entity entity;
+  scene::Light light;
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // world direction the light points along (unit)
+};
+
+struct CameraView {
+  glm::mat4 view{1.0f};
+  glm::vec3 position{0.0f};
+  float yfov = 0.8f, znear = 0.05f, zfar = 100.0f;
+  float aspect = 0.0f;  // 0: from the render target
+  glm::mat4 projection(float targetAspect) const;  // Vulkan clip space (y down, depth 0..1)
+};
+
+struct RenderSnapshot {
+  std::vector<DrawItem> draws;
+  std::vector<LightItem> lights;
+  CameraView camera;
+  scene::Aabb sceneBounds;  // of all draws, world space
+  const scene::AssetStore* assets = nullptr;
+  uint64_t frame = 0;
+};
+
+// A camera that frames `bounds` from the +Z side (used when the scene has none).
+CameraView frameBounds(const scene::Aabb& bounds, float yfov = 0.8f);
+
+RenderSnapshot extractSnapshot(const ecs::World& world, const scene::AssetStore& assets, uint64_t frame);
+
+}  // namespace dyngi::render

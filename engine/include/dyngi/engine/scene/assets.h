@@ -1,0 +1,75 @@
+#pragma once
+// CPU-side mesh and texture data shared by the rasterizer and (later) the BVH and voxelizer.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "dyngi/engine/scene/components.h"
+
+namespace dyngi::scene {
+
+struct Aabb {
+  glm::vec3 min{1e30f};
+  glm::vec3 max{-1e30f};
+  bool valid() const { return min.x <= max.x && min.y <= max.y && min.z <= max.z; }
+  void extend(const glm::vec3& p) {
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+  }
+  void extend(const Aabb& b) {
+    if (b.valid()) { extend(b.min); extend(b.max); }
+  }
+  glm::vec3 center() const { return 0.5f * (min + max); }
+  glm::vec3 extent() const { return max - min; }
+  Aabb transformed(const glm::mat4& m) const;
+};
+
+struct MeshData {
+  std::string name;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> uvs;  // empty when the mesh has none
+  std::vector<uint32_t> indices;
+  Aabb bounds;
+  uint32_t version = 0;  // bumped when the vertices change (deforming meshes)
+
+  size_t triangleCount() const { return indices.size() / 3; }
+  void computeBounds();
+  // Area-weighted vertex normals; used when the source has none.
+  void generateNormals();
+};
+
+struct TextureData {
+  std::string name;
+  uint32_t width = 0, height = 0;
+  std::vector<uint8_t> rgba8;  // width*height*4
+  bool srgb = true;
+};
+
+class AssetStore {
+ public:
+  MeshId addMesh(MeshData mesh);
+  TextureId addTexture(TextureData texture);
+  const MeshData& mesh(MeshId id) const { return meshes_.at(id); }
+  MeshData& meshForWrite(MeshId id) {
+    auto& m = meshes_.at(id);
+    ++m.version;
+    return m;
+  }
+  const TextureData& texture(TextureId id) const { return textures_.at(id); }
+  size_t meshCount() const { return meshes_.size(); }
+  size_t textureCount() const { return textures_.size(); }
+
+ private:
+  std::vector<MeshData> meshes_;
+  std::vector<TextureData> textures_;
+};
+
+// Helpers for building scenes in code.
+MeshData makeBox(const glm::vec3& halfExtent);                 // outward normals, 24 vertices
+MeshData makeQuad(const glm::vec3& corner, const glm::vec3& edgeU, const glm::vec3& edgeV);  // normal = U x V
+MeshData makeSphere(float radius, int segments, int rings);
+
+}  // namespace dyngi::scene

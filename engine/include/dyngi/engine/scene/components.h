@@ -1,0 +1,90 @@
+#pragma once
+// The engine's built-in components. Plain data: behaviour lives in systems.
+#include <cstdint>
+#include <string>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "dyngi/engine/ecs/entity.h"
+
+namespace dyngi::scene {
+
+using ecs::Entity;
+
+// Local transform relative to `parent` (null: relative to the world).
+struct Transform {
+  glm::vec3 translation{0.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+  glm::vec3 scale{1.0f};
+  Entity parent{};
+
+  glm::mat4 matrix() const;
+};
+
+// Written only by the transform propagation system. Its change tick tells GI what moved.
+struct WorldTransform {
+  glm::mat4 matrix{1.0f};
+};
+
+// Human-readable name (from glTF or the code that built the entity).
+struct Name {
+  std::string value;
+};
+
+// Static objects promise never to move or deform after the first frame; GI caches what they produce
+// (BVH at build quality, voxels once). Dynamic objects may move every frame.
+struct StaticTag {};
+struct DynamicTag {};
+
+// Reference into the AssetStore's meshes; one mesh = one triangle list with one material.
+using MeshId = uint32_t;
+using TextureId = uint32_t;
+inline constexpr uint32_t kNoTexture = 0xFFFFFFFFu;
+
+struct MeshInstance {
+  MeshId mesh = 0;
+  bool castShadows = true;
+};
+
+// pbrMetallicRoughness subset. emissive is outgoing radiance (factor x KHR_materials_emissive_strength).
+struct Material {
+  glm::vec4 baseColor{1.0f};
+  TextureId baseColorTexture = kNoTexture;
+  glm::vec3 emissive{0.0f};
+  TextureId emissiveTexture = kNoTexture;
+  float metallic = 0.0f;
+  float roughness = 1.0f;
+};
+
+enum class LightType : uint32_t { Directional = 0, Point = 1, Spot = 2 };
+
+// Light units follow glTF values used directly as linear radiometric quantities (no 683 lm/W):
+// - point/spot: `intensity` is radiant intensity per steradian: irradiance I cos(theta) / d^2;
+// - directional: `intensity` is irradiance on a surface facing the light;
+// - spot falloff: clamp((cos a - cos outer) / (cos inner - cos outer), 0, 1)^2;
+// - `range` > 0 multiplies by glTF's window clamp(1 - (d/range)^4, 0, 1)^2 / d^2 ... (inverse square
+//   kept); range == 0 means infinite (pure inverse square).
+// The light points down its local -Z axis, as in glTF.
+struct Light {
+  LightType type = LightType::Point;
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+  float range = 0.0f;
+  float innerConeAngle = 0.0f;
+  float outerConeAngle = 0.7853982f;
+  bool castShadows = true;
+  bool enabled = true;
+};
+
+struct Camera {
+  float yfov = 0.8f;     // radians
+  float znear = 0.05f;
+  float zfar = 100.0f;
+  float aspect = 0.0f;   // 0: use the render target's aspect
+};
+
+// Marks the camera the renderer looks through (first glTF camera, or the sample's fly camera).
+struct ActiveCamera {};
+
+}  // namespace dyngi::scene

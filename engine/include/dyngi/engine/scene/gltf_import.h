@@ -1,0 +1,37 @@
+#pragma once
+// glTF 2.0 (.gltf / .glb) import into the ECS world and the asset store.
+//
+// Supported: node hierarchy (TRS or matrix), indexed or non-indexed triangle primitives (normals
+// generated when absent), pbrMetallicRoughness base colour factor/texture, metallic/roughness factors,
+// emissive factor/texture with KHR_materials_emissive_strength, perspective cameras (the first one
+// becomes the active camera), KHR_lights_punctual point/spot/directional lights.
+//
+// Bad input never crashes and never half-populates the world: the file is read and validated in full
+// first, and any problem comes back as one line "<file>: <problem>".
+#include <string>
+
+#include "dyngi/engine/ecs/world.h"
+#include "dyngi/engine/scene/assets.h"
+
+namespace dyngi::scene {
+
+struct ImportReport {
+  size_t nodes = 0;
+  size_t meshInstances = 0;
+  size_t triangles = 0;
+  size_t lights = 0;
+  size_t cameras = 0;
+  size_t textures = 0;
+  Entity activeCamera{};   // null when the file has no camera
+  Aabb worldBounds;        // of all mesh instances at import time
+};
+
+struct ImportOptions {
+  bool markStatic = true;  // tag imported mesh entities StaticTag (DynamicTag otherwise)
+};
+
+// Returns an empty string on success, else "<path>: <problem>".
+std::string importGltf(const std::string& path, ecs::World& world, AssetStore& assets,
+                       ImportReport* report = nullptr, const ImportOptions& options = {});
+
+}  // namespace dyngi::scene

@@ -1,0 +1,94 @@
+#include "shared/gpu_types.h"
+#include "passes.h"
+#include "spirv/gbuffer.frag.spv.h"
+#include "spirv/gbuffer.vert.spv.h"
+
+namespace dyngi::render {
+
+GBufferPass::GBufferPass(VulkanContext& ctx) : ctx_(ctx) {
+  Pipeline::GraphicsDesc d;
+  d.vertex = DYNGI_SHADER(spv_gbuffer_vert);
+  d.fragment = DYNGI_SHADER(spv_gbuffer_frag);
+  d.vertexBindings = {{0, sizeof(GpuVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+  d.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, position)},
+                        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, normal)},
+                        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv)}};
+  d.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8G8B8A8_UNORM,
+                    VK_FORMAT_R16G16B16A16_SFLOAT};
+  d.depthFormat = VK_FORMAT_D32_SFLOAT;
+  d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  d.pushConstantBytes = sizeof(gpu::GBufferPush);
+  d.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
+                {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  d.name = "gbuffer";
+  pipeline_ = Pipeline::graphics(ctx, d);
+}
+
+void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
+  ScopedPass scope(ctx_, frame.timer, frame.cmd, kName);
+  VkCommandBuffer cmd = frame.cmd;
+  RenderTargets& t = frame.targets;
+  Image* colors[] = {&t.position, &t.normal, &t.albedo, &t.emissive};
+  VkRenderingAttachmentInfo att[4];
+  for (int i = 0; i < 4; ++i) {
+    colors[i]->transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                          VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    att[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    att[i].imageView = colors[i]->view();
+    att[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    att[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    att[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    att[i].clearValue.color = {{0, 0, 0, 0}};
+  }
+  t.depth.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                     VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depth.imageView = t.depth.view();
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  depth.clearValue.depthStencil = {1.0f, 0};
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, {t.width, t.height}};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 4;
+  ri.pColorAttachments = att;
+  ri.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &ri);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.handle());
+  VkViewport vp{0, 0, float(t.width), float(t.height), 0, 1};
+  VkRect2D sc{{0, 0}, {t.width, t.height}};
+  vkCmdSetViewport(cmd, 0, 1, &vp);
+  vkCmdSetScissor(cmd, 0, 1, &sc);
+  for (size_t i = 0; i < frame.snapshot.draws.size(); ++i) {
+    const DrawItem& d = frame.snapshot.draws[i];
+    const GpuMesh* mesh = frame.meshes[i];
+    if (!mesh || mesh->indexCount == 0) continue;
+    const scene::Material& m = d.material;
+    gpu::GBufferPush pc;
+    pc.model = d.model;
+    pc.baseColor = m.baseColor;
+    pc.emissive = glm::vec4(m.emissive, 0.0f);
+    pc.params = glm::vec4(m.metallic, m.roughness, m.baseColorTexture != scene::kNoTexture ? 1.0f : 0.0f,
+                          m.emissiveTexture != scene::kNoTexture ? 1.0f : 0.0f);
+    DescriptorWrites()
+        .uniformBuffer(0, frame.frameUniforms.handle())
+        .sampledImage(1, textures(m.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+        .sampledImage(2, textures(m.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+        .push(ctx_, cmd, pipeline_);
+    vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+    VkDeviceSize off = 0;
+    VkBuffer vb = mesh->vertices.handle();
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &off);
+    vkCmdBindIndexBuffer(cmd, mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, mesh->indexCount, 1, 0, 0, 0);
+  }
+  vkCmdEndRendering(cmd);
+  for (Image* c : colors)
+    c->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+}  // namespace dyngi::render

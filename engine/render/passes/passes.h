@@ -1,0 +1,96 @@
+#pragma once
+// The engine's built-in passes, one class each. Every pass has a name (its timestamp, debug label and
+// key in stats), a Settings struct with defaults, and execute(FrameContext&).
+#include <functional>
+#include <vector>
+
+#include "dyngi/engine/render/frame_context.h"
+#include "dyngi/engine/render/pipeline.h"
+
+namespace dyngi::render {
+
+// Builds the light list and renders one depth layer per spot/directional light and six per point
+// light into a 2D-array shadow map.
+class ShadowPass {
+ public:
+  static constexpr const char* kName = "shadow";
+  struct Settings {
+    uint32_t mapSize = 1024;
+    uint32_t maxLayers = 24;
+    float depthBiasConstant = 1.25f;
+    float depthBiasSlope = 1.75f;
+    float normalOffsetTexels = 1.5f;
+  };
+  ShadowPass(VulkanContext& ctx, const Settings& settings);
+  // CPU side: fills the light and matrix buffers for this snapshot.
+  void prepare(const RenderSnapshot& snapshot);
+  void execute(FrameContext& frame);
+
+  const Buffer& lights() const { return lights_; }
+  const Buffer& matrices() const { return matrices_; }
+  Image& shadowMap() { return shadowMap_; }
+  uint32_t lightCount() const { return lightCount_; }
+  VkSampler compareSampler() const { return compareSampler_; }
+  ~ShadowPass();
+
+ private:
+  VulkanContext& ctx_;
+  Settings settings_;
+  Pipeline pipeline_;
+  Image shadowMap_;
+  Buffer lights_;
+  Buffer matrices_;
+  VkSampler compareSampler_ = VK_NULL_HANDLE;
+  uint32_t lightCount_ = 0;
+  std::vector<glm::mat4> layerMatrices_;
+  bool warnedCapacity_ = false;
+};
+
+class GBufferPass {
+ public:
+  static constexpr const char* kName = "gbuffer";
+  using TextureLookup = std::function<VkImageView(scene::TextureId)>;
+  explicit GBufferPass(VulkanContext& ctx);
+  void execute(FrameContext& frame, const TextureLookup& textures);
+
+ private:
+  VulkanContext& ctx_;
+  Pipeline pipeline_;
+};
+
+class DirectLightingPass {
+ public:
+  static constexpr const char* kName = "direct";
+  explicit DirectLightingPass(VulkanContext& ctx);
+  void execute(FrameContext& frame, ShadowPass& shadows);
+
+ private:
+  VulkanContext& ctx_;
+  Pipeline pipeline_;
+};
+
+class CompositePass {
+ public:
+  static constexpr const char* kName = "composite";
+  explicit CompositePass(VulkanContext& ctx);
+  void execute(FrameContext& frame);
+
+ private:
+  VulkanContext& ctx_;
+  Pipeline pipeline_;
+};
+
+class TonemapPass {
+ public:
+  static constexpr const char* kName = "tonemap";
+  explicit TonemapPass(VulkanContext& ctx);
+  void execute(FrameContext& frame);
+
+ private:
+  VulkanContext& ctx_;
+  Pipeline pipeline_;
+};
+
+inline uint32_t groupsFor(uint32_t n, uint32_t local) { return (n + local - 1) / local; }
+
+}  // namespace dyngi::render

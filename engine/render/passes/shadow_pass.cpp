@@ -1,0 +1,154 @@
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "shared/gpu_types.h"
+#include "passes.h"
+#include "spirv/shadow.vert.spv.h"
+
+namespace dyngi::render {
+namespace {
+glm::mat4 perspectiveZO(float fov, float nearZ, float farZ) { return glm::perspectiveRH_ZO(fov, 1.0f, nearZ, farZ); }
+
+// Distance from p to the farthest corner of b (the far plane that still sees the whole scene).
+float farthestCorner(const scene::Aabb& b, const glm::vec3& p) {
+  float d = 0.0f;
+  for (int i = 0; i < 8; ++i) {
+    glm::vec3 c((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z);
+    d = std::max(d, glm::length(c - p));
+  }
+  return d;
+}
+glm::vec3 anyUp(const glm::vec3& dir) { return std::abs(dir.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0); }
+}  // namespace
+
+ShadowPass::ShadowPass(VulkanContext& ctx, const Settings& settings) : ctx_(ctx), settings_(settings) {
+  Pipeline::GraphicsDesc d;
+  d.vertex = DYNGI_SHADER(spv_shadow_vert);
+  d.vertexBindings = {{0, sizeof(GpuVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+  d.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0}};
+  d.depthFormat = VK_FORMAT_D32_SFLOAT;
+  d.depthBias = true;
+  d.pushConstantBytes = sizeof(glm::mat4);
+  d.name = "shadow";
+  pipeline_ = Pipeline::graphics(ctx, d);
+
+  lights_ = Buffer(ctx, sizeof(gpu::GpuLight) * DYNGI_MAX_LIGHTS, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "lights");
+  matrices_ = Buffer(ctx, sizeof(glm::mat4) * settings.maxLayers, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "shadow matrices");
+  ImageDesc id;
+  id.width = id.height = settings.mapSize;
+  id.layers = settings.maxLayers;
+  id.format = VK_FORMAT_D32_SFLOAT;
+  id.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+  id.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+  id.name = "shadow map array";
+  shadowMap_ = Image(ctx, id);
+
+  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sci.magFilter = VK_FILTER_LINEAR;
+  sci.minFilter = VK_FILTER_LINEAR;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  sci.compareEnable = VK_TRUE;
+  sci.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
+  sci.maxLod = 0.0f;
+  DYNGI_VK(vkCreateSampler(ctx.device(), &sci, nullptr, &compareSampler_));
+}
+
+ShadowPass::~ShadowPass() { vkDestroySampler(ctx_.device(), compareSampler_, nullptr); }
+
+void ShadowPass::prepare(const RenderSnapshot& snapshot) {
+  std::vector<gpu::GpuLight> lights;
+  layerMatrices_.clear();
+  const scene::Aabb& bounds = snapshot.sceneBounds;
+  float texelAngle = 2.0f / float(settings_.mapSize);  // 2 tan(fov/2) / res for a 90 degree frustum
+  for (const LightItem& item : snapshot.lights) {
+    if (lights.size() >= DYNGI_MAX_LIGHTS) break;
+    const scene::Light& l = item.light;
+    gpu::GpuLight g{};
+    g.positionType = glm::vec4(item.position, float(uint32_t(l.type)));
+    g.directionRange = glm::vec4(item.direction, l.range);
+    g.radiance = glm::vec4(l.color * l.intensity, l.enabled ? 1.0f : 0.0f);
+    float outer = std::clamp(l.outerConeAngle, 1e-3f, 1.5707f);
+    float inner = std::clamp(l.innerConeAngle, 0.0f, outer);
+    g.cone = glm::vec4(std::cos(outer), std::cos(inner), -1.0f, 0.0f);
+    uint32_t needed = l.type == scene::LightType::Point ? 6u : 1u;
+    bool shadowed = l.castShadows && l.enabled && bounds.valid();
+    if (shadowed && layerMatrices_.size() + needed > settings_.maxLayers) {
+      if (!warnedCapacity_) std::fprintf(stderr, "dyngi: warning: shadow map layers exhausted; further lights are unshadowed\n");
+      warnedCapacity_ = true;
+      shadowed = false;
+    }
+    if (shadowed) {
+      g.cone.z = float(layerMatrices_.size());
+      float farZ = l.range > 0.0f ? l.range : farthestCorner(bounds, item.position) * 1.01f + 0.01f;
+      float nearZ = std::max(farZ * 1e-3f, 0.02f);
+      if (l.type == scene::LightType::Spot) {
+        float fov = std::min(2.0f * outer + 0.05f, 3.0f);
+        layerMatrices_.push_back(perspectiveZO(fov, nearZ, farZ) *
+                                 glm::lookAtRH(item.position, item.position + item.direction, anyUp(item.direction)));
+        g.cone.w = settings_.normalOffsetTexels * 2.0f * std::tan(0.5f * fov) / float(settings_.mapSize);
+      } else if (l.type == scene::LightType::Point) {
+        const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+        for (const auto& d : dirs)
+          layerMatrices_.push_back(perspectiveZO(glm::radians(90.0f), nearZ, farZ) * glm::lookAtRH(item.position, item.position + d, anyUp(d)));
+        g.cone.w = settings_.normalOffsetTexels * texelAngle;
+      } else {
+        glm::vec3 c = bounds.center();
+        float r = 0.5f * glm::length(bounds.extent()) + 1e-3f;
+        glm::mat4 view = glm::lookAtRH(c - item.direction * (2.0f * r), c, anyUp(item.direction));
+        layerMatrices_.push_back(glm::orthoRH_ZO(-r, r, -r, r, 0.0f, 4.0f * r) * view);
+        g.cone.w = settings_.normalOffsetTexels * 2.0f * r / float(settings_.mapSize);
+      }
+    }
+    lights.push_back(g);
+  }
+  lightCount_ = uint32_t(lights.size());
+  if (!lights.empty()) lights_.upload(lights.data(), lights.size() * sizeof(gpu::GpuLight));
+  if (!layerMatrices_.empty()) matrices_.upload(layerMatrices_.data(), layerMatrices_.size() * sizeof(glm::mat4));
+}
+
+void ShadowPass::execute(FrameContext& frame) {
+  ScopedPass scope(ctx_, frame.timer, frame.cmd, kName);
+  VkCommandBuffer cmd = frame.cmd;
+  shadowMap_.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                        VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+  uint32_t size = settings_.mapSize;
+  for (uint32_t layer = 0; layer < layerMatrices_.size(); ++layer) {
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = shadowMap_.layerView(layer);
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depth.clearValue.depthStencil = {1.0f, 0};
+    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    ri.renderArea = {{0, 0}, {size, size}};
+    ri.layerCount = 1;
+    ri.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &ri);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.handle());
+    VkViewport vp{0, 0, float(size), float(size), 0, 1};
+    VkRect2D sc{{0, 0}, {size, size}};
+    vkCmdSetViewport(cmd, 0, 1, &vp);
+    vkCmdSetScissor(cmd, 0, 1, &sc);
+    vkCmdSetDepthBias(cmd, settings_.depthBiasConstant, 0.0f, settings_.depthBiasSlope);
+    for (size_t i = 0; i < frame.snapshot.draws.size(); ++i) {
+      const DrawItem& d = frame.snapshot.draws[i];
+      const GpuMesh* mesh = frame.meshes[i];
+      if (!d.castShadows || !mesh || mesh->indexCount == 0) continue;
+      glm::mat4 m = layerMatrices_[layer] * d.model;
+      vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(m), &m);
+      VkDeviceSize off = 0;
+      VkBuffer vb = mesh->vertices.handle();
+      vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &off);
+      vkCmdBindIndexBuffer(cmd, mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+      vkCmdDrawIndexed(cmd, mesh->indexCount, 1, 0, 0, 0);
+    }
+    vkCmdEndRendering(cmd);
+  }
+  shadowMap_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+}
+
+}  // namespace dyngi::render

@@ -1,0 +1,312 @@
+#include "dyngi/engine/render/renderer.h"
+
+#include <chrono>
+#include <cstring>
+#include <glm/gtc/packing.hpp>
+
+#include "shared/gpu_types.h"
+#include "passes/passes.h"
+
+namespace dyngi::render {
+namespace {
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+Image makeTarget(VulkanContext& ctx, uint32_t w, uint32_t h, VkFormat f, VkImageUsageFlags usage, const char* name) {
+  ImageDesc d;
+  d.width = w;
+  d.height = h;
+  d.format = f;
+  d.usage = usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  d.name = name;
+  return Image(ctx, d);
+}
+}  // namespace
+
+Renderer::Renderer(VulkanContext& ctx, const RendererSettings& settings) : ctx_(ctx), settings_(settings) {
+  frameUniforms_ = Buffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUsage::Upload, "frame uniforms");
+  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  sci.maxLod = VK_LOD_CLAMP_NONE;
+  DYNGI_VK(vkCreateSampler(ctx.device(), &sci, nullptr, &linearSampler_));
+  sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  DYNGI_VK(vkCreateSampler(ctx.device(), &sci, nullptr, &nearestSampler_));
+
+  VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pci.queueFamilyIndex = ctx.queueFamily();
+  DYNGI_VK(vkCreateCommandPool(ctx.device(), &pci, nullptr, &pool_));
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = pool_;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  DYNGI_VK(vkAllocateCommandBuffers(ctx.device(), &ai, &cmd_));
+  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  DYNGI_VK(vkCreateFence(ctx.device(), &fci, nullptr, &fence_));
+
+  const uint8_t white[4] = {255, 255, 255, 255};
+  whiteTexture_ = createTexture(ctx, 1, 1, white, false, "white");
+  if (settings.gpuTimestamps) timer_ = std::make_unique<GpuTimer>(ctx);
+  shadow_ = std::make_unique<ShadowPass>(ctx, ShadowPass::Settings{.mapSize = settings.shadowMapSize, .maxLayers = settings.maxShadowLayers});
+  gbuffer_ = std::make_unique<GBufferPass>(ctx);
+  direct_ = std::make_unique<DirectLightingPass>(ctx);
+  composite_ = std::make_unique<CompositePass>(ctx);
+  tonemap_ = std::make_unique<TonemapPass>(ctx);
+}
+
+Renderer::~Renderer() {
+  vkDeviceWaitIdle(ctx_.device());
+  vkDestroyFence(ctx_.device(), fence_, nullptr);
+  vkDestroyCommandPool(ctx_.device(), pool_, nullptr);
+  vkDestroySampler(ctx_.device(), linearSampler_, nullptr);
+  vkDestroySampler(ctx_.device(), nearestSampler_, nullptr);
+}
+
+bool Renderer::resize(uint32_t width, uint32_t height) {
+  if (width == 0 || height == 0) return false;
+  if (width == targets_.width && height == targets_.height) return true;
+  if (width > 16384 || height > 16384) throw VulkanError("render size too large: " + std::to_string(width) + "x" + std::to_string(height));
+  vkDeviceWaitIdle(ctx_.device());
+  constexpr VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
+  constexpr VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  RenderTargets& t = targets_;
+  t.width = width;
+  t.height = height;
+  t.position = makeTarget(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, color, "gbuffer position");
+  t.normal = makeTarget(ctx_, width, height, VK_FORMAT_R16G16B16A16_SFLOAT, color, "gbuffer normal");
+  t.albedo = makeTarget(ctx_, width, height, VK_FORMAT_R8G8B8A8_UNORM, color, "gbuffer albedo");
+  t.emissive = makeTarget(ctx_, width, height, VK_FORMAT_R16G16B16A16_SFLOAT, color, "gbuffer emissive");
+  t.depth = makeTarget(ctx_, width, height, VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "depth");
+  t.direct = makeTarget(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "direct");
+  t.indirect = makeTarget(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "indirect");
+  t.hdr = makeTarget(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "hdr");
+  t.ldr = makeTarget(ctx_, width, height, VK_FORMAT_R8G8B8A8_UNORM, storage, "ldr");
+  for (RenderFeature* f : features_) f->resize(ctx_, width, height);
+  return true;
+}
+
+GpuMesh* Renderer::meshFor(const scene::AssetStore& assets, scene::MeshId id) {
+  if (meshesOf_ != &assets) {  // a new scene: drop the old scene's GPU meshes and textures
+    vkDeviceWaitIdle(ctx_.device());
+    meshes_.clear();
+    textures_.clear();
+    meshesOf_ = &assets;
+  }
+  const scene::MeshData& m = assets.mesh(id);
+  GpuMesh& g = meshes_[id];
+  if (g.vertices.valid() && g.version == m.version) return &g;
+  std::vector<GpuVertex> verts(m.positions.size());
+  for (size_t i = 0; i < verts.size(); ++i) {
+    std::memcpy(verts[i].position, &m.positions[i], 12);
+    glm::vec3 n = i < m.normals.size() ? m.normals[i] : glm::vec3(0, 1, 0);
+    std::memcpy(verts[i].normal, &n, 12);
+    glm::vec2 uv = i < m.uvs.size() ? m.uvs[i] : glm::vec2(0.0f);
+    std::memcpy(verts[i].uv, &uv, 8);
+  }
+  VkDeviceSize vbytes = verts.size() * sizeof(GpuVertex), ibytes = m.indices.size() * sizeof(uint32_t);
+  if (!g.vertices.valid() || g.vertices.size() < vbytes)
+    g.vertices = Buffer(ctx_, vbytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "mesh vertices");
+  if (!g.indices.valid() || g.indices.size() < ibytes)
+    g.indices = Buffer(ctx_, ibytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "mesh indices");
+  g.vertices.upload(verts.data(), vbytes);
+  g.indices.upload(m.indices.data(), ibytes);
+  g.indexCount = uint32_t(m.indices.size());
+  g.version = m.version;
+  return &g;
+}
+
+VkImageView Renderer::textureView(const scene::AssetStore& assets, scene::TextureId id) {
+  if (id == scene::kNoTexture || id >= assets.textureCount()) return whiteTexture_.view();
+  auto it = textures_.find(id);
+  if (it == textures_.end()) {
+    const scene::TextureData& t = assets.texture(id);
+    if (t.width == 0 || t.height == 0 || t.rgba8.size() < size_t(t.width) * t.height * 4) return whiteTexture_.view();
+    it = textures_.emplace(id, createTexture(ctx_, t.width, t.height, t.rgba8.data(), t.srgb, t.name.c_str())).first;
+  }
+  return it->second.view();
+}
+
+const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* swapchain) {
+  stats_ = {};
+  if (targets_.width == 0) throw VulkanError("Renderer::render called before resize()");
+  auto t0 = Clock::now();
+
+  // Uploads first (they submit their own one-off work), then record the frame.
+  std::vector<GpuMesh*> meshes(snapshot.draws.size(), nullptr);
+  if (snapshot.assets)
+    for (size_t i = 0; i < snapshot.draws.size(); ++i) meshes[i] = meshFor(*snapshot.assets, snapshot.draws[i].mesh);
+  auto textures = [&](scene::TextureId id) { return snapshot.assets ? textureView(*snapshot.assets, id) : whiteTexture_.view(); };
+  for (const DrawItem& d : snapshot.draws) {  // create textures before recording starts
+    textures(d.material.baseColorTexture);
+    textures(d.material.emissiveTexture);
+  }
+  for (RenderFeature* f : features_) f->prepare(ctx_, snapshot);
+  shadow_->prepare(snapshot);
+
+  gpu::FrameUniforms fu{};
+  float aspect = float(targets_.width) / float(targets_.height);
+  fu.view = snapshot.camera.view;
+  fu.proj = snapshot.camera.projection(aspect);
+  fu.viewProj = fu.proj * fu.view;
+  fu.invViewProj = glm::inverse(fu.viewProj);
+  fu.cameraPos = glm::vec4(snapshot.camera.position, 1.0f);
+  fu.sizeAndCount = glm::uvec4(targets_.width, targets_.height, shadow_->lightCount(), uint32_t(snapshot.frame));
+  fu.exposure = glm::vec4(settings_.exposure, float(settings_.toneMapper), 0, 0);
+  fu.background = glm::vec4(settings_.background, 0.0f);
+  frameUniforms_.upload(&fu, sizeof(fu));
+
+  uint32_t imageIndex = UINT32_MAX;
+  if (swapchain && swapchain->valid()) imageIndex = swapchain->acquire();
+
+  DYNGI_VK(vkResetCommandBuffer(cmd_, 0));
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  DYNGI_VK(vkBeginCommandBuffer(cmd_, &bi));
+  if (timer_) timer_->beginFrame(cmd_);
+  FrameContext frame{ctx_, cmd_, timer_.get(), snapshot, targets_, frameUniforms_, meshes, linearSampler_, nearestSampler_};
+
+  shadow_->execute(frame);
+  gbuffer_->execute(frame, textures);
+  direct_->execute(frame, *shadow_);
+  bool indirectWritten = false;
+  for (RenderFeature* f : features_) indirectWritten |= f->record(frame);
+  if (!indirectWritten) {
+    targets_.indirect.transition(cmd_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    VkClearColorValue zero{};
+    VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd_, targets_.indirect.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+  }
+  composite_->execute(frame);
+  tonemap_->execute(frame);
+
+  if (imageIndex != UINT32_MAX) {
+    ScopedPass scope(ctx_, timer_.get(), cmd_, "present_blit");
+    targets_.ldr.transition(cmd_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkImage sw = swapchain->image(imageIndex);
+    auto swBarrier = [&](VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcS, VkAccessFlags2 srcA,
+                         VkPipelineStageFlags2 dstS, VkAccessFlags2 dstA) {
+      VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+      b.srcStageMask = srcS;
+      b.srcAccessMask = srcA;
+      b.dstStageMask = dstS;
+      b.dstAccessMask = dstA;
+      b.oldLayout = from;
+      b.newLayout = to;
+      b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      b.image = sw;
+      b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+      dep.imageMemoryBarrierCount = 1;
+      dep.pImageMemoryBarriers = &b;
+      vkCmdPipelineBarrier2(cmd_, &dep);
+    };
+    swBarrier(VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
+              VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    VkExtent2D ext = swapchain->extent();
+    VkImageBlit blit{};
+    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.srcOffsets[1] = {int32_t(targets_.width), int32_t(targets_.height), 1};
+    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.dstOffsets[1] = {int32_t(ext.width), int32_t(ext.height), 1};
+    vkCmdBlitImage(cmd_, targets_.ldr.handle(), VK_IMAGE_LAYOUT_GENERAL, sw, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+    swBarrier(VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_BLIT_BIT,
+              VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);
+  }
+  DYNGI_VK(vkEndCommandBuffer(cmd_));
+
+  VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cbi.commandBuffer = cmd_;
+  VkSemaphoreSubmitInfo waitInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  VkSemaphoreSubmitInfo signalInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  si.commandBufferInfoCount = 1;
+  si.pCommandBufferInfos = &cbi;
+  if (imageIndex != UINT32_MAX) {
+    waitInfo.semaphore = swapchain->acquiredSemaphore();
+    waitInfo.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    signalInfo.semaphore = swapchain->renderedSemaphore();
+    signalInfo.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    si.waitSemaphoreInfoCount = 1;
+    si.pWaitSemaphoreInfos = &waitInfo;
+    si.signalSemaphoreInfoCount = 1;
+    si.pSignalSemaphoreInfos = &signalInfo;
+  }
+  DYNGI_VK(vkResetFences(ctx_.device(), 1, &fence_));
+  DYNGI_VK(vkQueueSubmit2(ctx_.queue(), 1, &si, fence_));
+  stats_.cpuRecordMs = msSince(t0);
+  auto t1 = Clock::now();
+  DYNGI_VK(vkWaitForFences(ctx_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
+  stats_.cpuWaitMs = msSince(t1);
+  if (imageIndex != UINT32_MAX) stats_.presented = swapchain->present(imageIndex);
+  if (timer_) {
+    timer_->resolve();
+    stats_.gpuMs = timer_->results();
+  }
+  for (RenderFeature* f : features_) f->frameFinished(ctx_);
+  return stats_;
+}
+
+Image& Renderer::target(TargetId id) {
+  switch (id) {
+    case TargetId::Position: return targets_.position;
+    case TargetId::Normal: return targets_.normal;
+    case TargetId::Albedo: return targets_.albedo;
+    case TargetId::Emissive: return targets_.emissive;
+    case TargetId::Direct: return targets_.direct;
+    case TargetId::Indirect: return targets_.indirect;
+    case TargetId::Hdr: return targets_.hdr;
+    case TargetId::Ldr: return targets_.ldr;
+  }
+  return targets_.hdr;
+}
+
+namespace {
+Buffer copyToHost(VulkanContext& ctx, Image& img) {
+  size_t bpp = formatBytesPerPixel(img.desc().format);
+  VkDeviceSize bytes = VkDeviceSize(img.desc().width) * img.desc().height * bpp;
+  Buffer out(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "readback");
+  ctx.immediate([&](VkCommandBuffer cmd) {
+    img.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {img.desc().width, img.desc().height, 1};
+    vkCmdCopyImageToBuffer(cmd, img.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, out.handle(), 1, &region);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+  });
+  out.invalidateForRead();
+  return out;
+}
+}  // namespace
+
+std::vector<glm::vec4> Renderer::readback(TargetId id) {
+  Image& img = target(id);
+  Buffer buf = copyToHost(ctx_, img);
+  size_t n = size_t(img.desc().width) * img.desc().height;
+  std::vector<glm::vec4> out(n);
+  const uint8_t* src = static_cast<const uint8_t*>(buf.mapped());
+  switch (img.desc().format) {
+    case VK_FORMAT_R32G32B32A32_SFLOAT: std::memcpy(out.data(), src, n * 16); break;
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+      for (size_t i = 0; i < n; ++i) {
+        uint16_t h[4];
+        std::memcpy(h, src + i * 8, 8);
+        out[i] = glm::vec4(glm::unpackHalf1x16(h[0]), glm::unpackHalf1x16(h[1]), glm::unpackHalf1x16(h[2]), glm::unpackHalf1x16(h[3]));
+      }
+      break;
+    case VK_FORMAT_R8G8B8A8_UNORM:
+      for (size_t i = 0; i < n; ++i) out[i] = glm::vec4(src[i * 4], src[i * 4 + 1], src[i * 4 + 2], src[i * 4 + 3]) / 255.0f;
+      break;
+    default: throw VulkanError("readback: unsupported format");
+  }
+  return out;
+}
+
+std::vector<uint8_t> Renderer::readbackLdr() {
+  Buffer buf = copyToHost(ctx_, targets_.ldr);
+  const uint8_t* src = static_cast<const uint8_t*>(buf.mapped());
+  return std::vector<uint8_t>(src, src + size_t(targets_.width) * targets_.height * 4);
+}
+
+}  // namespace dyngi::render

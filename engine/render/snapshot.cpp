@@ -1,0 +1,77 @@
+#include "dyngi/engine/render/snapshot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace dyngi::render {
+
+glm::mat4 CameraView::projection(float targetAspect) const {
+  float a = aspect > 0.0f ? aspect : targetAspect;
+  glm::mat4 p = glm::perspectiveRH_ZO(yfov, a, znear, zfar);
+  p[1][1] *= -1.0f;  // Vulkan's y points down
+  return p;
+}
+
+CameraView frameBounds(const scene::Aabb& bounds, float yfov) {
+  CameraView c;
+  glm::vec3 center = bounds.valid() ? bounds.center() : glm::vec3(0.0f);
+  float radius = bounds.valid() ? 0.5f * glm::length(bounds.extent()) : 1.0f;
+  radius = std::max(radius, 1e-3f);
+  float dist = radius / std::sin(0.5f * yfov) * 1.05f;
+  c.position = center + glm::vec3(0.0f, 0.25f * radius, dist);
+  c.view = glm::lookAtRH(c.position, center, glm::vec3(0, 1, 0));
+  c.yfov = yfov;
+  c.znear = std::max(dist - radius * 1.5f, dist * 1e-3f);
+  c.zfar = dist + radius * 2.0f;
+  return c;
+}
+
+RenderSnapshot extractSnapshot(const ecs::World& world, const scene::AssetStore& assets, uint64_t frame) {
+  using namespace scene;
+  RenderSnapshot s;
+  s.assets = &assets;
+  s.frame = frame;
+  world.each<MeshInstance, WorldTransform>([&](Entity e, const MeshInstance& mi, const WorldTransform& wt) {
+    if (mi.mesh >= assets.meshCount()) return;
+    DrawItem d;
+    d.entity = e;
+    d.mesh = mi.mesh;
+    d.model = wt.matrix;
+    d.castShadows = mi.castShadows;
+    if (const Material* m = world.tryGet<Material>(e)) d.material = *m;
+    s.sceneBounds.extend(assets.mesh(mi.mesh).bounds.transformed(wt.matrix));
+    s.draws.push_back(d);
+  });
+  world.each<Light, WorldTransform>([&](Entity e, const Light& l, const WorldTransform& wt) {
+    LightItem li;
+    li.entity = e;
+    li.light = l;
+    li.position = glm::vec3(wt.matrix[3]);
+    glm::vec3 dir = -glm::vec3(wt.matrix[2]);
+    float len = glm::length(dir);
+    li.direction = len > 0.0f ? dir / len : glm::vec3(0, 0, -1);
+    s.lights.push_back(li);
+  });
+  bool haveCamera = false;
+  world.each<ActiveCamera, Camera, WorldTransform>([&](Entity, const ActiveCamera&, const Camera& c, const WorldTransform& wt) {
+    if (haveCamera) return;
+    haveCamera = true;
+    // Cameras look down local -Z; strip scale from the world matrix before inverting.
+    glm::mat4 m = wt.matrix;
+    for (int i = 0; i < 3; ++i) {
+      float len = glm::length(glm::vec3(m[i]));
+      if (len > 0.0f) m[i] /= len;
+    }
+    s.camera.view = glm::inverse(m);
+    s.camera.position = glm::vec3(wt.matrix[3]);
+    s.camera.yfov = c.yfov;
+    s.camera.znear = c.znear;
+    s.camera.zfar = c.zfar;
+    s.camera.aspect = c.aspect;
+  });
+  if (!haveCamera) s.camera = frameBounds(s.sceneBounds);
+  return s;
+}
+
+}  // namespace dyngi::render

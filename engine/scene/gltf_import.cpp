@@ -1,0 +1,439 @@
+#include "dyngi/engine/scene/gltf_import.h"
+
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <glm/gtc/type_ptr.hpp>
+#include <stdexcept>
+
+namespace dyngi::scene {
+namespace {
+
+// Thrown inside the importer; caught at the top and turned into "<path>: <message>".
+struct ImportError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+[[noreturn]] void fail(const std::string& msg) { throw ImportError(msg); }
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Reads accessor `index` as `comps` floats per element (or integers for indices), checking every
+// offset against the buffer so a malformed file cannot make us read out of bounds.
+class AccessorReader {
+ public:
+  AccessorReader(const tinygltf::Model& model, int index, const char* what) : model_(model), what_(what) {
+    if (index < 0 || size_t(index) >= model.accessors.size())
+      fail(std::string(what) + " accessor " + std::to_string(index) + " does not exist");
+    acc_ = &model.accessors[size_t(index)];
+    if (acc_->sparse.isSparse) fail(std::string(what) + " accessor uses sparse storage (unsupported)");
+    if (acc_->bufferView < 0 || size_t(acc_->bufferView) >= model.bufferViews.size())
+      fail(std::string(what) + " accessor " + std::to_string(index) + " has no valid bufferView");
+    const auto& view = model.bufferViews[size_t(acc_->bufferView)];
+    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
+      fail(std::string(what) + " bufferView points at a missing buffer");
+    const auto& buf = model.buffers[size_t(view.buffer)].data;
+    comps_ = size_t(tinygltf::GetNumComponentsInType(uint32_t(acc_->type)));
+    compSize_ = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(acc_->componentType)));
+    if (comps_ == 0 || compSize_ == 0 || comps_ > 16) fail(std::string(what) + " accessor has an invalid type");
+    size_t elemSize = comps_ * compSize_;
+    stride_ = view.byteStride ? view.byteStride : elemSize;
+    size_t begin = view.byteOffset + acc_->byteOffset;
+    size_t needed = acc_->count == 0 ? 0 : begin + stride_ * (acc_->count - 1) + elemSize;
+    if (view.byteOffset + view.byteLength > buf.size() || needed > view.byteOffset + view.byteLength)
+      fail(std::string(what) + " accessor " + std::to_string(index) + " reads past the end of its buffer");
+    data_ = buf.data() + begin;
+  }
+  size_t count() const { return acc_->count; }
+  size_t components() const { return comps_; }
+
+  float readFloat(size_t i, size_t c) const {
+    const uint8_t* p = data_ + i * stride_ + c * compSize_;
+    switch (acc_->componentType) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return acc_->normalized ? float(*p) / 255.0f : float(*p);
+      case TINYGLTF_COMPONENT_TYPE_BYTE: { int8_t v; std::memcpy(&v, p, 1); return acc_->normalized ? std::max(float(v) / 127.0f, -1.0f) : float(v); }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return acc_->normalized ? float(v) / 65535.0f : float(v); }
+      case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t v; std::memcpy(&v, p, 2); return acc_->normalized ? std::max(float(v) / 32767.0f, -1.0f) : float(v); }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return float(v); }
+      default: fail(std::string(what_) + " accessor has an unsupported component type");
+    }
+  }
+  uint32_t readIndex(size_t i) const {
+    const uint8_t* p = data_ + i * stride_;
+    switch (acc_->componentType) {
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return v; }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return v; }
+      default: fail("index accessor must be unsigned byte, short or int");
+    }
+  }
+  template <int N>
+  std::vector<glm::vec<N, float>> readVec(size_t minComps = N) const {
+    if (comps_ < minComps) fail(std::string(what_) + " accessor has too few components");
+    std::vector<glm::vec<N, float>> out(count());
+    for (size_t i = 0; i < count(); ++i)
+      for (int c = 0; c < N && size_t(c) < comps_; ++c) out[i][c] = readFloat(i, size_t(c));
+    return out;
+  }
+
+ private:
+  const tinygltf::Model& model_;
+  const char* what_;
+  const tinygltf::Accessor* acc_ = nullptr;
+  const uint8_t* data_ = nullptr;
+  size_t comps_ = 0, compSize_ = 0, stride_ = 0;
+};
+
+struct PendingPrimitive {
+  MeshData mesh;
+  int material = -1;
+};
+
+double numberOr(const tinygltf::Value& obj, const char* key, double fallback) {
+  if (!obj.IsObject() || !obj.Has(key)) return fallback;
+  const auto& v = obj.Get(key);
+  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
+class Importer {
+ public:
+  Importer(const tinygltf::Model& model, ecs::World& world, AssetStore& assets, const ImportOptions& opts)
+      : model_(model), world_(world), assets_(assets), opts_(opts) {}
+
+  ImportReport run() {
+    // Phase 1: read and validate everything without touching the world.
+    meshes_.resize(model_.meshes.size());
+    for (size_t m = 0; m < model_.meshes.size(); ++m) meshes_[m] = readMesh(int(m));
+    validateNodes();
+    std::vector<int> roots = sceneRoots();
+    size_t meshNodes = 0;
+    std::function<void(int, int)> count = [&](int n, int depth) {
+      if (depth > 256) fail("node hierarchy deeper than 256 levels (cycle?)");
+      const auto& node = model_.nodes[size_t(n)];
+      if (node.mesh >= 0) meshNodes += meshes_[size_t(node.mesh)].size();
+      for (int c : node.children) count(c, depth + 1);
+    };
+    for (int r : roots) count(r, 0);
+    if (meshNodes == 0) fail("the scene has no triangle meshes (empty scene)");
+    checkMaterials();
+
+    // Phase 2: commit. Primitive meshes move into the asset store; keep their material indices.
+    materialsByMesh_.resize(meshes_.size());
+    for (size_t m = 0; m < meshes_.size(); ++m)
+      for (auto& p : meshes_[m]) materialsByMesh_[m].push_back(p.material);
+    for (size_t t = 0; t < model_.textures.size(); ++t) textureIds_.push_back(commitTexture(t));
+    for (auto& prims : meshes_) {
+      std::vector<MeshId> ids;
+      for (auto& p : prims) ids.push_back(assets_.addMesh(std::move(p.mesh)));
+      meshIds_.push_back(std::move(ids));
+    }
+    for (int r : roots) commitNode(r, ecs::kNullEntity, glm::mat4(1.0f));
+    report_.textures = model_.textures.size();
+    return report_;
+  }
+
+ private:
+  std::vector<PendingPrimitive> readMesh(int meshIndex) {
+    const auto& mesh = model_.meshes[size_t(meshIndex)];
+    std::vector<PendingPrimitive> out;
+    for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
+      const auto& prim = mesh.primitives[pi];
+      std::string where = "mesh '" + mesh.name + "' primitive " + std::to_string(pi);
+      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
+        fail(where + " has mode " + std::to_string(prim.mode) + "; only triangles (mode 4) are supported");
+      auto pos = prim.attributes.find("POSITION");
+      if (pos == prim.attributes.end()) fail(where + " has no POSITION attribute");
+      PendingPrimitive p;
+      p.material = prim.material;
+      p.mesh.name = mesh.name;
+      p.mesh.positions = AccessorReader(model_, pos->second, "POSITION").readVec<3>();
+      for (auto& v : p.mesh.positions)
+        if (!finite(v)) fail(where + " has a non-finite vertex position");
+      size_t n = p.mesh.positions.size();
+      if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
+        p.mesh.normals = AccessorReader(model_, it->second, "NORMAL").readVec<3>();
+        if (p.mesh.normals.size() != n) fail(where + " NORMAL count differs from POSITION count");
+      }
+      if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
+        p.mesh.uvs = AccessorReader(model_, it->second, "TEXCOORD_0").readVec<2>();
+        if (p.mesh.uvs.size() != n) fail(where + " TEXCOORD_0 count differs from POSITION count");
+      }
+      if (prim.indices >= 0) {
+        AccessorReader idx(model_, prim.indices, "indices");
+        p.mesh.indices.resize(idx.count());
+        for (size_t i = 0; i < idx.count(); ++i) {
+          p.mesh.indices[i] = idx.readIndex(i);
+          if (p.mesh.indices[i] >= n) fail(where + " has an index out of range of its vertices");
+        }
+      } else {
+        p.mesh.indices.resize(n);
+        for (size_t i = 0; i < n; ++i) p.mesh.indices[i] = uint32_t(i);
+      }
+      if (p.mesh.indices.size() % 3 != 0) fail(where + " index count is not a multiple of 3");
+      dropDegenerateTriangles(p.mesh);
+      bool badNormals = p.mesh.normals.empty();
+      for (auto& nrm : p.mesh.normals)
+        if (!finite(nrm) || glm::dot(nrm, nrm) < 1e-12f) badNormals = true;
+      if (badNormals) p.mesh.generateNormals();
+      else for (auto& nrm : p.mesh.normals) nrm = glm::normalize(nrm);
+      p.mesh.computeBounds();
+      if (p.mesh.indices.empty()) continue;  // only degenerate triangles: nothing to draw
+      out.push_back(std::move(p));
+    }
+    return out;
+  }
+
+  static void dropDegenerateTriangles(MeshData& m) {
+    std::vector<uint32_t> kept;
+    kept.reserve(m.indices.size());
+    for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+      const glm::vec3& a = m.positions[m.indices[t]];
+      const glm::vec3& b = m.positions[m.indices[t + 1]];
+      const glm::vec3& c = m.positions[m.indices[t + 2]];
+      if (glm::length(glm::cross(b - a, c - a)) > 1e-12f)
+        kept.insert(kept.end(), m.indices.begin() + long(t), m.indices.begin() + long(t) + 3);
+    }
+    m.indices = std::move(kept);
+  }
+
+  void validateNodes() {
+    for (size_t i = 0; i < model_.lights.size(); ++i) {
+      const auto& t = model_.lights[i].type;
+      if (t != "directional" && t != "spot" && t != "point")
+        fail("light " + std::to_string(i) + " has unknown type '" + t + "'");
+      if (!std::isfinite(model_.lights[i].intensity) || model_.lights[i].intensity < 0)
+        fail("light " + std::to_string(i) + " has an invalid intensity");
+    }
+    for (size_t i = 0; i < model_.nodes.size(); ++i) {
+      const auto& node = model_.nodes[i];
+      std::string where = "node " + std::to_string(i) + (node.name.empty() ? "" : " '" + node.name + "'");
+      if (node.mesh >= int(model_.meshes.size())) fail(where + " references a missing mesh");
+      if (node.camera >= int(model_.cameras.size())) fail(where + " references a missing camera");
+      for (int c : node.children)
+        if (c < 0 || size_t(c) >= model_.nodes.size()) fail(where + " has a missing child node");
+      for (double v : node.matrix) if (!std::isfinite(v)) fail(where + " has a non-finite matrix");
+      for (double v : node.translation) if (!std::isfinite(v)) fail(where + " has a non-finite translation");
+      for (double v : node.rotation) if (!std::isfinite(v)) fail(where + " has a non-finite rotation");
+      for (double v : node.scale) if (!std::isfinite(v)) fail(where + " has a non-finite scale");
+      if (lightIndex(node) >= int(model_.lights.size())) fail(where + " references a missing light");
+    }
+  }
+
+  void checkMaterials() {
+    auto checkTex = [&](int t, const std::string& where) {
+      if (t < 0) return;
+      if (size_t(t) >= model_.textures.size()) fail(where + " references a missing texture");
+      int src = model_.textures[size_t(t)].source;
+      if (src < 0 || size_t(src) >= model_.images.size()) fail(where + " texture has no valid image");
+      const auto& img = model_.images[size_t(src)];
+      if (img.image.empty() || img.width <= 0 || img.height <= 0) fail(where + " texture image could not be decoded");
+      if (img.image.size() < size_t(img.width) * size_t(img.height) * size_t(std::max(img.component, 1)) * (img.bits == 16 ? 2u : 1u))
+        fail(where + " texture image data is truncated");
+    };
+    for (size_t i = 0; i < model_.materials.size(); ++i) {
+      const auto& m = model_.materials[i];
+      std::string where = "material " + std::to_string(i);
+      checkTex(m.pbrMetallicRoughness.baseColorTexture.index, where);
+      checkTex(m.emissiveTexture.index, where);
+    }
+    for (auto& prims : meshes_)
+      for (auto& p : prims)
+        if (p.material >= int(model_.materials.size())) fail("a primitive references a missing material");
+  }
+
+  std::vector<int> sceneRoots() const {
+    std::vector<int> roots;
+    if (!model_.scenes.empty()) {
+      int s = model_.defaultScene >= 0 && size_t(model_.defaultScene) < model_.scenes.size() ? model_.defaultScene : 0;
+      roots = model_.scenes[size_t(s)].nodes;
+    } else {
+      std::vector<bool> isChild(model_.nodes.size(), false);
+      for (auto& n : model_.nodes) for (int c : n.children) isChild[size_t(c)] = true;
+      for (size_t i = 0; i < model_.nodes.size(); ++i) if (!isChild[i]) roots.push_back(int(i));
+    }
+    for (int r : roots) if (r < 0 || size_t(r) >= model_.nodes.size()) fail("scene references a missing node");
+    return roots;
+  }
+
+  static int lightIndex(const tinygltf::Node& node) {
+    auto it = node.extensions.find("KHR_lights_punctual");
+    if (it == node.extensions.end()) return -1;
+    return int(numberOr(it->second, "light", -1));
+  }
+
+  TextureId commitTexture(size_t t) {
+    const auto& img = model_.images[size_t(model_.textures[t].source)];
+    TextureData tex;
+    tex.name = img.name;
+    tex.width = uint32_t(img.width);
+    tex.height = uint32_t(img.height);
+    tex.rgba8.resize(size_t(tex.width) * tex.height * 4);
+    size_t comps = size_t(img.component), bytes = img.bits == 16 ? 2 : 1;
+    size_t texels = size_t(tex.width) * tex.height;
+    if (img.image.size() < texels * comps * bytes) fail("texture image data is truncated");
+    for (size_t i = 0; i < texels; ++i)
+      for (size_t c = 0; c < 4; ++c) {
+        uint8_t v = 255;
+        if (c < comps) {
+          size_t src = (i * comps + c) * bytes;
+          v = bytes == 2 ? img.image[src + 1] : img.image[src];  // 16-bit little endian: take the high byte
+        } else if (c < 3 && comps >= 1) {
+          v = img.image[(i * comps) * bytes];  // grey -> replicate
+        }
+        tex.rgba8[i * 4 + c] = v;
+      }
+    return assets_.addTexture(std::move(tex));
+  }
+
+  Material materialFor(int index) const {
+    Material mat;
+    if (index < 0) return mat;
+    const auto& m = model_.materials[size_t(index)];
+    const auto& pbr = m.pbrMetallicRoughness;
+    for (int i = 0; i < 4 && size_t(i) < pbr.baseColorFactor.size(); ++i) mat.baseColor[i] = float(pbr.baseColorFactor[size_t(i)]);
+    if (pbr.baseColorTexture.index >= 0) mat.baseColorTexture = textureIds_[size_t(pbr.baseColorTexture.index)];
+    mat.metallic = float(pbr.metallicFactor);
+    mat.roughness = float(pbr.roughnessFactor);
+    float strength = 1.0f;
+    if (auto it = m.extensions.find("KHR_materials_emissive_strength"); it != m.extensions.end())
+      strength = float(numberOr(it->second, "emissiveStrength", 1.0));
+    for (int i = 0; i < 3 && size_t(i) < m.emissiveFactor.size(); ++i) mat.emissive[i] = float(m.emissiveFactor[size_t(i)]) * strength;
+    if (m.emissiveTexture.index >= 0) mat.emissiveTexture = textureIds_[size_t(m.emissiveTexture.index)];
+    return mat;
+  }
+
+  static Transform localTransform(const tinygltf::Node& node) {
+    Transform t;
+    if (node.matrix.size() == 16) {
+      glm::mat4 m(1.0f);
+      for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = float(node.matrix[size_t(i)]);
+      t.translation = glm::vec3(m[3]);
+      glm::vec3 sx(m[0]), sy(m[1]), sz(m[2]);
+      t.scale = {glm::length(sx), glm::length(sy), glm::length(sz)};
+      if (glm::determinant(glm::mat3(m)) < 0) t.scale.x = -t.scale.x;
+      glm::mat3 r{sx / t.scale.x, sy / t.scale.y, sz / t.scale.z};
+      t.rotation = glm::quat_cast(r);
+    } else {
+      if (node.translation.size() == 3) t.translation = {float(node.translation[0]), float(node.translation[1]), float(node.translation[2])};
+      if (node.rotation.size() == 4) t.rotation = glm::normalize(glm::quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2])));
+      if (node.scale.size() == 3) t.scale = {float(node.scale[0]), float(node.scale[1]), float(node.scale[2])};
+    }
+    return t;
+  }
+
+  void commitNode(int n, Entity parent, const glm::mat4& parentWorld) {
+    const auto& node = model_.nodes[size_t(n)];
+    Entity e = world_.create();
+    ++report_.nodes;
+    Transform local = localTransform(node);
+    local.parent = parent;
+    glm::mat4 worldM = parentWorld * local.matrix();
+    world_.add(e, local);
+    world_.add(e, WorldTransform{worldM});
+    if (!node.name.empty()) world_.add(e, Name{node.name});
+
+    if (node.mesh >= 0) {
+      const auto& ids = meshIds_[size_t(node.mesh)];
+      // One entity per primitive: the node's entity carries the first, children carry the rest.
+      for (size_t p = 0; p < ids.size(); ++p) {
+        Entity target = e;
+        if (p > 0) {
+          target = world_.create();
+          world_.add(target, Transform{.parent = e});
+          world_.add(target, WorldTransform{worldM});
+        }
+        world_.add(target, MeshInstance{ids[p], true});
+        world_.add(target, materialFor(primMaterial(node.mesh, p)));
+        if (opts_.markStatic) world_.add(target, StaticTag{});
+        else world_.add(target, DynamicTag{});
+        ++report_.meshInstances;
+        report_.triangles += assets_.mesh(ids[p]).triangleCount();
+        report_.worldBounds.extend(assets_.mesh(ids[p]).bounds.transformed(worldM));
+      }
+    }
+    if (node.camera >= 0) {
+      const auto& cam = model_.cameras[size_t(node.camera)];
+      Camera c;
+      if (cam.type == "perspective") {
+        c.yfov = float(cam.perspective.yfov);
+        c.znear = float(cam.perspective.znear);
+        c.zfar = cam.perspective.zfar > 0 ? float(cam.perspective.zfar) : 1000.0f;
+        c.aspect = float(cam.perspective.aspectRatio);
+      }
+      world_.add(e, c);
+      if (report_.activeCamera.isNull()) {
+        world_.add(e, ActiveCamera{});
+        report_.activeCamera = e;
+      }
+      ++report_.cameras;
+    }
+    if (int li = lightIndex(node); li >= 0) {
+      const auto& l = model_.lights[size_t(li)];
+      Light light;
+      if (l.type == "directional") light.type = LightType::Directional;
+      else if (l.type == "spot") light.type = LightType::Spot;
+      else if (l.type == "point") light.type = LightType::Point;
+      else fail("light " + std::to_string(li) + " has unknown type '" + l.type + "'");
+      if (l.color.size() == 3) light.color = {float(l.color[0]), float(l.color[1]), float(l.color[2])};
+      light.intensity = float(l.intensity);
+      light.range = float(l.range);
+      light.innerConeAngle = float(l.spot.innerConeAngle);
+      light.outerConeAngle = float(l.spot.outerConeAngle);
+      world_.add(e, light);
+      ++report_.lights;
+    }
+    for (int c : node.children) commitNode(c, e, worldM);
+  }
+
+  int primMaterial(int mesh, size_t committedIndex) const { return materialsByMesh_[size_t(mesh)][committedIndex]; }
+
+ private:
+  const tinygltf::Model& model_;
+  ecs::World& world_;
+  AssetStore& assets_;
+  ImportOptions opts_;
+  ImportReport report_;
+  std::vector<std::vector<PendingPrimitive>> meshes_;
+  std::vector<std::vector<int>> materialsByMesh_;
+  std::vector<std::vector<MeshId>> meshIds_;
+  std::vector<TextureId> textureIds_;
+};
+
+}  // namespace
+
+std::string importGltf(const std::string& path, ecs::World& world, AssetStore& assets, ImportReport* report,
+                       const ImportOptions& options) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return path + ": file not found";
+  if (fs::is_directory(path, ec)) return path + ": is a directory, not a glTF file";
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string err, warn;
+  std::string ext = fs::path(path).extension().string();
+  for (auto& ch : ext) ch = char(std::tolower(ch));
+  bool ok = false;
+  try {
+    ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                       : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  } catch (const std::exception& ex) {
+    err = ex.what();
+  }
+  if (!ok) {
+    std::string first = err.substr(0, err.find('\n'));
+    return path + ": not a valid glTF file (" + (first.empty() ? "parse failed" : first) + ")";
+  }
+  try {
+    ImportReport r = Importer(model, world, assets, options).run();
+    if (report) *report = r;
+  } catch (const ImportError& ex) {
+    return path + ": " + ex.what();
+  }
+  return {};
+}
+
+}  // namespace dyngi::scene

@@ -1,0 +1,73 @@
+#version 460
+// Deferred direct lighting: emission + Lambert diffuse from every light, shadowed through the
+// shadow-map array (3x3 PCF). Output is linear radiance.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gpu_types.h"
+#include "shared/lighting.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D gPosition;
+layout(set = 0, binding = 2) uniform sampler2D gNormal;
+layout(set = 0, binding = 3) uniform sampler2D gAlbedo;
+layout(set = 0, binding = 4) uniform sampler2D gEmissive;
+layout(set = 0, binding = 5) readonly buffer Lights { GpuLight lights[]; };
+layout(set = 0, binding = 6) readonly buffer ShadowMatrices { mat4 shadowViewProj[]; };
+layout(set = 0, binding = 7) uniform sampler2DArrayShadow shadowMaps;
+layout(set = 0, binding = 8, rgba32f) uniform writeonly image2D outDirect;
+
+const float PI = 3.14159265358979;
+
+// Point lights use six layers (+X,-X,+Y,-Y,+Z,-Z); pick the face the direction falls in.
+uint cubeFace(vec3 d) {
+  vec3 a = abs(d);
+  if (a.x >= a.y && a.x >= a.z) return d.x > 0.0 ? 0u : 1u;
+  if (a.y >= a.z) return d.y > 0.0 ? 2u : 3u;
+  return d.z > 0.0 ? 4u : 5u;
+}
+
+float shadowFactor(GpuLight L, vec3 p, vec3 n, float dist) {
+  if (L.cone.z < 0.0) return 1.0;
+  uint layer = uint(L.cone.z);
+  int type = int(L.positionType.w);
+  // Normal offset grows with the texel footprint (distance for perspective maps).
+  float offset = L.cone.w * (type == DYNGI_LIGHT_DIRECTIONAL ? 1.0 : dist);
+  vec3 ps = p + n * offset;
+  if (type == DYNGI_LIGHT_POINT) layer += cubeFace(ps - L.positionType.xyz);
+  vec4 clip = shadowViewProj[layer] * vec4(ps, 1.0);
+  if (clip.w <= 0.0) return 1.0;
+  vec3 ndc = clip.xyz / clip.w;
+  vec2 uv = ndc.xy * 0.5 + 0.5;
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z > 1.0) return 1.0;
+  vec2 texel = 1.0 / vec2(textureSize(shadowMaps, 0).xy);
+  float sum = 0.0;
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) sum += texture(shadowMaps, vec4(uv + vec2(x, y) * texel, float(layer), ndc.z));
+  return sum / 9.0;
+}
+
+void main() {
+  ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+  if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return;
+  vec4 pos = texelFetch(gPosition, px, 0);
+  if (pos.w == 0.0) {
+    imageStore(outDirect, px, vec4(frame.background.rgb, 1.0));
+    return;
+  }
+  vec3 n = normalize(texelFetch(gNormal, px, 0).xyz);
+  vec4 albedoMetal = texelFetch(gAlbedo, px, 0);
+  vec3 diffuse = albedoMetal.rgb * (1.0 - albedoMetal.a) / PI;
+  vec3 radiance = texelFetch(gEmissive, px, 0).rgb;
+  uint count = frame.sizeAndCount.z;
+  for (uint i = 0u; i < count; ++i) {
+    GpuLight L = lights[i];
+    if (L.radiance.w == 0.0) continue;
+    vec3 l;
+    float dist;
+    vec3 e = lightIrradiance(L, pos.xyz, n, l, dist);
+    if (max(e.r, max(e.g, e.b)) <= 0.0) continue;
+    radiance += diffuse * e * shadowFactor(L, pos.xyz, n, dist);
+  }
+  imageStore(outDirect, px, vec4(radiance, 1.0));
+}

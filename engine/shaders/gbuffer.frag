@@ -1,0 +1,31 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gpu_types.h"
+
+layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D baseColorTex;
+layout(set = 0, binding = 2) uniform sampler2D emissiveTex;
+layout(push_constant) uniform Push { GBufferPush pc; };
+
+layout(location = 0) in vec3 inWorldPos;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUv;
+
+layout(location = 0) out vec4 outPosition;  // xyz world, w 1 = geometry
+layout(location = 1) out vec4 outNormal;    // xyz world normal facing the camera, w roughness
+layout(location = 2) out vec4 outAlbedo;    // rgb linear base colour, a metallic
+layout(location = 3) out vec4 outEmissive;  // rgb emitted radiance
+
+void main() {
+  vec4 base = pc.baseColor;
+  if (pc.params.z > 0.5) base *= texture(baseColorTex, inUv);
+  vec3 emissive = pc.emissive.rgb;
+  if (pc.params.w > 0.5) emissive *= texture(emissiveTex, inUv).rgb;
+  vec3 n = normalize(inNormal);
+  // Surfaces are lit on the side the camera sees (glTF double-sided / thin walls).
+  if (dot(n, frame.cameraPos.xyz - inWorldPos) < 0.0) n = -n;
+  outPosition = vec4(inWorldPos, 1.0);
+  outNormal = vec4(n, pc.params.y);
+  outAlbedo = vec4(base.rgb, pc.params.x);
+  outEmissive = vec4(emissive, 1.0);
+}

@@ -1,0 +1,60 @@
+// Struct layouts shared by C++ and GLSL: the one place they are defined.
+// C++ sees glm types inside namespace dyngi::gpu; GLSL sees its own vec4/mat4.
+// Every struct is made of 16-byte members so std140 and std430 agree with C++.
+#ifndef DYNGI_GPU_TYPES_H
+#define DYNGI_GPU_TYPES_H
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+namespace dyngi::gpu {
+using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
+using ivec4 = glm::ivec4;
+using mat4 = glm::mat4;
+#define DYNGI_GPU_STRUCT(name) struct alignas(16) name
+#else
+#define DYNGI_GPU_STRUCT(name) struct name
+#endif
+
+#define DYNGI_LIGHT_DIRECTIONAL 0
+#define DYNGI_LIGHT_POINT 1
+#define DYNGI_LIGHT_SPOT 2
+#define DYNGI_MAX_LIGHTS 64
+#define DYNGI_NO_SHADOW 0xFFFFFFFFu
+
+// Per-frame camera and settings (uniform buffer, binding 0 of most passes).
+DYNGI_GPU_STRUCT(FrameUniforms) {
+  mat4 view;
+  mat4 proj;
+  mat4 viewProj;
+  mat4 invViewProj;
+  vec4 cameraPos;       // xyz world position
+  uvec4 sizeAndCount;   // x width, y height, z light count, w frame index
+  vec4 exposure;        // x linear exposure multiplier, y tone-map operator (0 ACES fit, 1 none/clamp)
+  vec4 background;      // rgb radiance where no geometry is hit
+};
+
+// One light (storage buffer). Directions are unit vectors the light points along.
+DYNGI_GPU_STRUCT(GpuLight) {
+  vec4 positionType;    // xyz world position, w type (DYNGI_LIGHT_*)
+  vec4 directionRange;  // xyz direction, w range (0: infinite)
+  vec4 radiance;        // rgb color * intensity, w enabled (0/1)
+  vec4 cone;            // x cos(outer), y cos(inner), z first shadow layer (as float; <0: none), w normal-offset scale
+};
+
+// Push constants of the G-buffer pass (<= 128 bytes, the guaranteed minimum).
+DYNGI_GPU_STRUCT(GBufferPush) {
+  mat4 model;
+  vec4 baseColor;       // linear RGBA factor
+  vec4 emissive;        // rgb outgoing radiance factor, w unused
+  vec4 params;          // x metallic, y roughness, z has base texture, w has emissive texture
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(FrameUniforms) == 4 * 64 + 4 * 16);
+static_assert(sizeof(GpuLight) == 64);
+static_assert(sizeof(GBufferPush) == 112);
+}  // namespace dyngi::gpu
+#endif
+
+#endif

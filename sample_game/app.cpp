@@ -1,0 +1,209 @@
+#include "app.h"
+
+#include <GLFW/glfw3.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <glm/gtc/quaternion.hpp>
+#include <memory>
+
+#include "dyngi/engine/ecs/scheduler.h"
+#include "dyngi/engine/platform/window.h"
+#include "dyngi/engine/render/image_io.h"
+#include "dyngi/engine/render/renderer.h"
+#include "dyngi/engine/scene/gltf_import.h"
+#include "dyngi/engine/scene/scripted_motion.h"
+#include "dyngi/engine/scene/transform_system.h"
+#include "scenes/builtin_scenes.h"
+#include "stats.h"
+
+namespace dyngi::sample {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr int kWarmupFrames = 2;  // Mesa compiles pipelines on first use: keep them out of the medians
+
+// WASD + right-mouse look on the active camera's Transform.
+class FlyCameraSystem final : public ecs::System {
+ public:
+  explicit FlyCameraSystem(platform::Window& w) : window_(w) {}
+  const char* name() const override { return "fly_camera"; }
+  void run(ecs::World& world, const ecs::SystemContext& ctx) override {
+    if (window_.keyDown(GLFW_KEY_ESCAPE)) window_.requestClose();
+    ecs::Entity cam{};
+    world.each<scene::ActiveCamera, scene::Transform>([&](ecs::Entity e, const scene::ActiveCamera&, const scene::Transform&) { cam = e; });
+    if (cam.isNull()) return;
+    const scene::Transform& t = world.get<scene::Transform>(cam);
+    if (!initialised_) {
+      glm::vec3 fwd = t.rotation * glm::vec3(0, 0, -1);
+      yaw_ = std::atan2(-fwd.x, -fwd.z);
+      pitch_ = std::asin(glm::clamp(fwd.y, -1.0f, 1.0f));
+      initialised_ = true;
+    }
+    double dx, dy;
+    window_.mouseDelta(dx, dy);
+    bool look = window_.mouseButtonDown(GLFW_MOUSE_BUTTON_RIGHT);
+    if (look) {
+      yaw_ -= float(dx) * 0.003f;
+      pitch_ = glm::clamp(pitch_ - float(dy) * 0.003f, -1.5f, 1.5f);
+    }
+    glm::quat rot = glm::angleAxis(yaw_, glm::vec3(0, 1, 0)) * glm::angleAxis(pitch_, glm::vec3(1, 0, 0));
+    glm::vec3 move(0.0f);
+    if (window_.keyDown(GLFW_KEY_W)) move.z -= 1;
+    if (window_.keyDown(GLFW_KEY_S)) move.z += 1;
+    if (window_.keyDown(GLFW_KEY_A)) move.x -= 1;
+    if (window_.keyDown(GLFW_KEY_D)) move.x += 1;
+    if (window_.keyDown(GLFW_KEY_Q)) move.y -= 1;
+    if (window_.keyDown(GLFW_KEY_E)) move.y += 1;
+    if (move == glm::vec3(0.0f) && !look) return;  // untouched: no write, no change tick
+    float speed = window_.keyDown(GLFW_KEY_LEFT_SHIFT) ? 4.0f : 1.5f;
+    scene::Transform& w = world.write<scene::Transform>(cam);
+    w.rotation = rot;
+    if (move != glm::vec3(0.0f)) w.translation += rot * glm::normalize(move) * speed * float(ctx.time.dt);
+  }
+
+ private:
+  platform::Window& window_;
+  float yaw_ = 0, pitch_ = 0;
+  bool initialised_ = false;
+};
+
+bool writeText(const std::string& path, const std::string& text) {
+  std::ofstream f(path);
+  if (!f) return false;
+  f << text;
+  return bool(f);
+}
+
+}  // namespace
+
+int runApp(const Options& o) {
+  ecs::World world;
+  scene::AssetStore assets;
+  if (isBuiltinScene(o.scene)) {
+    buildBuiltinScene(o.scene, world, assets);
+  } else {
+    scene::ImportReport report;
+    std::string err = scene::importGltf(o.scene, world, assets, &report);
+    if (!err.empty()) {
+      std::fprintf(stderr, "dyngi_sample: %s\n", err.c_str());
+      return 2;
+    }
+    if (report.lights == 0)
+      std::fprintf(stderr, "dyngi_sample: note: %s has no punctual lights; direct light comes from emissive surfaces only\n",
+                   o.scene.c_str());
+  }
+
+  std::unique_ptr<platform::Window> window;
+  if (!o.headless) {
+    std::string why;
+    window = platform::Window::create(o.width, o.height, "dyngi — " + o.scene, &why);
+    if (!window) std::fprintf(stderr, "dyngi_sample: no window (%s); running headless\n", why.c_str());
+  }
+  const bool headless = !window;
+  const int frames = o.frames > 0 ? o.frames : (headless ? 60 : -1);
+
+  render::ContextOptions co;
+  co.validation = o.validation;
+  co.requireSwapchain = !headless;
+  if (!headless) co.instanceExtensions = platform::Window::requiredInstanceExtensions();
+  render::VulkanContext ctx(co);
+  render::RendererSettings rs;
+  rs.exposure = o.exposure;
+  render::Renderer renderer(ctx, rs);
+  std::unique_ptr<render::Swapchain> swapchain;
+  uint32_t width = o.width, height = o.height;
+  if (!headless) {
+    swapchain = std::make_unique<render::Swapchain>(ctx, window->createSurface(ctx.instance()));
+    window->framebufferSize(width, height);
+    if (width == 0 || height == 0) width = o.width, height = o.height;
+    swapchain->recreate(width, height);
+  }
+  renderer.resize(width, height);
+
+  ecs::Scheduler scheduler;
+  if (window) scheduler.add(ecs::Phase::Update, std::make_unique<FlyCameraSystem>(*window));
+  scheduler.add(ecs::Phase::Update, std::make_unique<scene::ScriptedMotionSystem>());
+  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
+
+  RunStats stats;
+  stats.scene = o.scene;
+  stats.gi = o.gi;
+  stats.device = ctx.deviceName();
+  stats.warmupFrames = kWarmupFrames;
+  ecs::FrameTime time;
+  auto start = Clock::now(), last = start;
+  int rendered = 0;
+  for (uint64_t frame = 0; frames < 0 || rendered < frames; ++frame) {
+    auto t0 = Clock::now();
+    if (window) {
+      window->pollEvents();
+      if (window->shouldClose()) break;
+      uint32_t fw, fh;
+      window->framebufferSize(fw, fh);
+      if (fw == 0 || fh == 0) {  // minimised: nothing to draw into
+        window->waitEvents();
+        last = Clock::now();
+        continue;
+      }
+      if (fw != swapchain->extent().width || fh != swapchain->extent().height || !swapchain->valid()) {
+        if (!swapchain->recreate(fw, fh)) continue;
+        renderer.resize(fw, fh);
+      }
+      time.dt = std::chrono::duration<double>(t0 - last).count();
+      time.time = std::chrono::duration<double>(t0 - start).count();
+    } else {
+      time.dt = 1.0 / 60.0;  // fixed step: frame N is the same on every machine
+      time.time = double(frame) * time.dt;
+    }
+    last = t0;
+    time.frame = frame;
+    scheduler.runFrame(world, time);
+    auto tExtract = Clock::now();
+    render::RenderSnapshot snapshot = render::extractSnapshot(world, assets, frame);
+    double extractMs = std::chrono::duration<double, std::milli>(Clock::now() - tExtract).count();
+    const render::FrameStats& fs = renderer.render(snapshot, swapchain.get());
+    if (swapchain && !fs.presented) swapchain->recreate(renderer.width(), renderer.height());
+    double frameMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    ++rendered;
+    if (rendered > kWarmupFrames) {
+      stats.frameMs.push_back(frameMs);
+      for (auto& [name, ms] : fs.gpuMs) stats.gpuStageMs[name].push_back(ms);
+      for (auto& t : scheduler.lastTimings()) stats.cpuStageMs[t.name].push_back(t.cpuMs);
+      stats.cpuStageMs["extract"].push_back(extractMs);
+      stats.cpuStageMs["render_record"].push_back(fs.cpuRecordMs);
+      stats.cpuStageMs["render_wait"].push_back(fs.cpuWaitMs);
+    }
+  }
+  stats.frames = rendered;
+  stats.width = renderer.width();
+  stats.height = renderer.height();
+  stats.scalars["draws"] = double(render::extractSnapshot(world, assets, 0).draws.size());
+  stats.scalars["validation_errors"] = ctx.validationErrorCount();
+
+  int status = 0;
+  if (rendered > 0 && !o.out.empty()) {
+    std::string err = render::writePng(o.out, renderer.width(), renderer.height(), renderer.readbackLdr());
+    if (!err.empty()) std::fprintf(stderr, "dyngi_sample: %s\n", err.c_str()), status = 1;
+    else std::printf("wrote %s\n", o.out.c_str());
+  }
+  if (rendered > 0 && !o.hdrOut.empty()) {
+    std::string err = render::writeExr(o.hdrOut, renderer.width(), renderer.height(), renderer.readback(render::TargetId::Hdr));
+    if (!err.empty()) std::fprintf(stderr, "dyngi_sample: %s\n", err.c_str()), status = 1;
+    else std::printf("wrote %s\n", o.hdrOut.c_str());
+  }
+  if (!o.stats.empty()) {
+    if (!writeText(o.stats, stats.toJson())) std::fprintf(stderr, "dyngi_sample: %s: could not write stats\n", o.stats.c_str()), status = 1;
+    else std::printf("wrote %s\n", o.stats.c_str());
+  }
+  std::printf("%s", stats.table().c_str());
+  if (ctx.validationErrorCount() > 0) {
+    std::fprintf(stderr, "dyngi_sample: %u Vulkan validation error(s)\n", ctx.validationErrorCount());
+    status = 1;
+  }
+  return status;
+}
+
+}  // namespace dyngi::sample

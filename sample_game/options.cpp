@@ -1,0 +1,96 @@
+#include "options.h"
+
+#include <charconv>
+#include <cmath>
+#include <vector>
+
+namespace dyngi::sample {
+
+const char* const kGiModes[] = {"off"};
+
+std::string usage() {
+  return "usage: dyngi_sample [options]\n"
+         "  --scene PATH|cornell|cornell-dynamic   scene to render (default cornell-dynamic)\n"
+         "  --headless                             render offscreen, no window\n"
+         "  --size WxH                             render size (default 768x768)\n"
+         "  --frames N                             frames to render (default: 60 headless, until closed windowed)\n"
+         "  --gi MODE                              global illumination: off\n"
+         "  --out FILE.png                         write the last frame (tone-mapped, sRGB)\n"
+         "  --hdr-out FILE.exr                     write the last frame's linear radiance before exposure\n"
+         "  --stats FILE.json                      write timings (medians over frames after warm-up)\n"
+         "  --exposure X                           linear exposure multiplier (default 1)\n"
+         "  --validation                           enable Vulkan validation layers\n"
+         "  --help                                 this text\n"
+         "Windowed: WASD move, hold the right mouse button to look, Q/E down/up, Esc quits.\n";
+}
+
+namespace {
+bool parseUint(const std::string& s, uint32_t& out) {
+  auto r = std::from_chars(s.data(), s.data() + s.size(), out);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+}  // namespace
+
+std::optional<Options> parseOptions(int argc, const char* const* argv, std::string& error) {
+  Options o;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&](std::string& v) {
+      if (i + 1 >= args.size()) {
+        error = a + " needs a value";
+        return false;
+      }
+      v = args[++i];
+      return true;
+    };
+    std::string v;
+    if (a == "--help" || a == "-h") o.help = true;
+    else if (a == "--headless") o.headless = true;
+    else if (a == "--validation") o.validation = true;
+    else if (a == "--scene") { if (!value(o.scene)) return std::nullopt; }
+    else if (a == "--out") { if (!value(o.out)) return std::nullopt; }
+    else if (a == "--hdr-out") { if (!value(o.hdrOut)) return std::nullopt; }
+    else if (a == "--stats") { if (!value(o.stats)) return std::nullopt; }
+    else if (a == "--size") {
+      if (!value(v)) return std::nullopt;
+      auto x = v.find('x');
+      if (x == std::string::npos || !parseUint(v.substr(0, x), o.width) || !parseUint(v.substr(x + 1), o.height) ||
+          o.width == 0 || o.height == 0 || o.width > 8192 || o.height > 8192) {
+        error = "--size wants WxH with 1..8192 each, got '" + v + "'";
+        return std::nullopt;
+      }
+    } else if (a == "--frames") {
+      uint32_t n;
+      if (!value(v)) return std::nullopt;
+      if (!parseUint(v, n) || n == 0 || n > 1000000) {
+        error = "--frames wants a positive integer, got '" + v + "'";
+        return std::nullopt;
+      }
+      o.frames = int(n);
+    } else if (a == "--exposure") {
+      if (!value(v)) return std::nullopt;
+      float f = 0;
+      auto r = std::from_chars(v.data(), v.data() + v.size(), f);
+      if (r.ec != std::errc() || r.ptr != v.data() + v.size() || !std::isfinite(f) || f <= 0) {
+        error = "--exposure wants a positive number, got '" + v + "'";
+        return std::nullopt;
+      }
+      o.exposure = f;
+    } else if (a == "--gi") {
+      if (!value(o.gi)) return std::nullopt;
+      bool known = false;
+      for (const char* m : kGiModes) known |= o.gi == m;
+      if (!known) {
+        error = "unknown --gi mode '" + o.gi + "' (available: off)";
+        return std::nullopt;
+      }
+    } else {
+      error = "unknown option '" + a + "' (see --help)";
+      return std::nullopt;
+    }
+  }
+  return o;
+}
+
+}  // namespace dyngi::sample

@@ -1,0 +1,27 @@
+#pragma once
+// The sample's command line. parseOptions never exits: it returns an error line for main to print.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace dyngi::sample {
+
+struct Options {
+  std::string scene = "cornell-dynamic";   // built-in name or a .gltf/.glb path
+  bool headless = false;
+  uint32_t width = 768, height = 768;
+  int frames = -1;                          // -1: headless 60, windowed until closed
+  std::string gi = "off";
+  std::string out;                          // PNG of the last frame
+  std::string hdrOut;                       // EXR, linear radiance before exposure
+  std::string stats;                        // JSON
+  float exposure = 1.0f;
+  bool validation = false;
+  bool help = false;
+};
+
+std::string usage();
+// Returns the options, or an error message in `error`.
+std::optional<Options> parseOptions(int argc, const char* const* argv, std::string& error);
+
+}  // namespace dyngi::sample

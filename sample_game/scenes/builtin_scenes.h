@@ -1,0 +1,25 @@
+#pragma once
+// Scenes the project builds in code, so the default run needs no files.
+#include <string>
+
+#include "dyngi/engine/ecs/world.h"
+#include "dyngi/engine/scene/assets.h"
+
+namespace dyngi::sample {
+
+// Room x in [-1,1], y in [0,2], z in [-1,1], open towards +z where the camera stands.
+// Red wall at x = -1, green at x = +1, white floor, ceiling and back wall, a short and a tall box,
+// a spot light near the ceiling pointing down.
+struct CornellLayout {
+  static constexpr float kSpotIntensity = 6.0f;  // W/sr (glTF units used directly)
+  static constexpr float kSpotHeight = 1.9f;
+  static constexpr float kSpotOuterDeg = 50.0f;
+  static constexpr float kSpotInnerDeg = 35.0f;
+  static constexpr float kWhite = 0.75f;
+};
+
+bool isBuiltinScene(const std::string& name);
+// Builds `name` ("cornell" or "cornell-dynamic") into the world; adds a camera.
+void buildBuiltinScene(const std::string& name, ecs::World& world, scene::AssetStore& assets);
+
+}  // namespace dyngi::sample

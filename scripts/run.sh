@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# The main job: set up (if needed), build Release into build/, run the sample.
+# With no display it renders the default scene headless to out/frame.png + out/stats.json and prints
+# the per-stage table; with a display it opens the window. Extra arguments go to dyngi_sample.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDYNGI_BUILD_TESTS=OFF >/dev/null
+cmake --build build -j"$(nproc)" --target dyngi_sample
+mkdir -p out
+if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then
+  exec build/bin/dyngi_sample "$@"
+else
+  exec build/bin/dyngi_sample --headless --out out/frame.png --hdr-out out/frame.exr --stats out/stats.json "$@"
+fi
