@@ -45,12 +45,13 @@ void Scheduler::runFrame(World& world, const FrameTime& time) {
   Tick oldest = std::numeric_limits<Tick>::max();
   for (auto& phase : phases_) {
     for (auto& entry : phase) {
-      world.advanceTick();
       auto t0 = std::chrono::steady_clock::now();
       entry.system->run(world, SystemContext{entry.lastRun, time});
       world.flushCommands();
       auto t1 = std::chrono::steady_clock::now();
       entry.lastRun = world.tick();
+      // Whatever is written next (the next system, or the host between frames) gets a newer tick.
+      world.advanceTick();
       oldest = std::min(oldest, entry.lastRun);
       timings_.push_back({entry.system->name(), std::chrono::duration<double, std::milli>(t1 - t0).count()});
     }

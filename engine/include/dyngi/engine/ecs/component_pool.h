@@ -23,6 +23,7 @@ namespace dyngi::ecs {
 struct ChangeRecord {
   Entity entity;
   Tick tick;
+  uint64_t seq = 0;  // unique per record: the component's latest record is the one whose seq it holds
 };
 
 class ComponentPoolBase {
@@ -61,6 +62,7 @@ class ComponentPool final : public ComponentPoolBase {
     dense_.push_back(std::move(value));
     entities_.push_back(e);
     changedTick_.push_back(0);
+    lastSeq_.push_back(0);
     stamp(uint32_t(dense_.size() - 1), tick);
     return dense_.back();
   }
@@ -80,13 +82,15 @@ class ComponentPool final : public ComponentPoolBase {
       dense_[d] = std::move(dense_[last]);
       entities_[d] = entities_[last];
       changedTick_[d] = changedTick_[last];
+      lastSeq_[d] = lastSeq_[last];
       sparse_[entities_[d].index] = d;
     }
     dense_.pop_back();
     entities_.pop_back();
     changedTick_.pop_back();
+    lastSeq_.pop_back();
     sparse_[e.index] = kAbsent;
-    removedLog_.push_back({e, tick});
+    removedLog_.push_back({e, tick, ++seq_});
     return true;
   }
 
@@ -105,9 +109,9 @@ class ComponentPool final : public ComponentPoolBase {
     auto first = std::upper_bound(changeLog_.begin(), changeLog_.end(), since,
                                   [](Tick t, const ChangeRecord& r) { return t < r.tick; });
     for (auto it = first; it != changeLog_.end(); ++it) {
-      // Only the record of the latest write survives: an older record of a rewritten component, or of
-      // a removed one, no longer matches.
-      if (contains(it->entity) && changedTick_[sparse_[it->entity.index]] == it->tick) fn(it->entity);
+      // Only the record of the latest write counts: an older record of a rewritten component, or of a
+      // removed (and maybe re-added) one, no longer matches, so each entity is reported once.
+      if (contains(it->entity) && lastSeq_[sparse_[it->entity.index]] == it->seq) fn(it->entity);
     }
   }
 
@@ -137,7 +141,8 @@ class ComponentPool final : public ComponentPoolBase {
   void stamp(uint32_t d, Tick tick) {
     if (changedTick_[d] == tick) return;  // already logged during this tick
     changedTick_[d] = tick;
-    changeLog_.push_back({entities_[d], tick});
+    lastSeq_[d] = ++seq_;
+    changeLog_.push_back({entities_[d], tick, seq_});
   }
   uint32_t denseIndexOrThrow(Entity e) const {
     if (!contains(e))
@@ -149,7 +154,9 @@ class ComponentPool final : public ComponentPoolBase {
   std::vector<T> dense_;
   std::vector<Entity> entities_;
   std::vector<Tick> changedTick_;
+  std::vector<uint64_t> lastSeq_;
   std::vector<ChangeRecord> changeLog_;
+  uint64_t seq_ = 0;
   std::vector<ChangeRecord> removedLog_;
   Tick logFloor_ = 0;  // the logs hold every record newer than this
 };

@@ -1,7 +1,8 @@
 #pragma once
 // Systems run in fixed phases, in registration order within a phase. Each system remembers the tick
-// of its last run, so it can ask the world what changed since then; the scheduler advances the world
-// tick before each system, flushes deferred commands after it, and times it on the CPU.
+// of its last run and asks the world what changed after it. The scheduler advances the world tick
+// after every system (so the next writer, or the host between frames, writes at a newer tick),
+// flushes deferred commands after each system, and times each on the CPU.
 #include <array>
 #include <functional>
 #include <memory>

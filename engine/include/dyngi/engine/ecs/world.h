@@ -61,7 +61,7 @@ class World {
   template <typename T>
   bool remove(Entity e) {
     requireStructuralChangeAllowed();
-    auto* p = findPool<T>();
+    auto* p = const_cast<ComponentPool<T>*>(findPool<T>());  // our own pool; const only for lookup
     return p && p->removeIfPresent(e, tick_);
   }
   template <typename T>

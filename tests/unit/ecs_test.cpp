@@ -1,0 +1,166 @@
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "dyngi/engine/ecs/world.h"
+
+using namespace dyngi::ecs;
+
+namespace {
+struct Position { float x = 0; };
+struct Velocity { float v = 0; };
+struct Tag {};
+}  // namespace
+
+TEST(Entity, StaleHandleIsDetectedAndNeverAliased) {
+  World w;
+  Entity a = w.create();
+  w.add(a, Position{1});
+  w.destroy(a);
+  Entity b = w.create();  // reuses a's slot
+  EXPECT_EQ(a.index, b.index);
+  EXPECT_NE(a.generation, b.generation);
+  EXPECT_FALSE(w.alive(a));
+  EXPECT_TRUE(w.alive(b));
+  EXPECT_EQ(w.tryGet<Position>(a), nullptr);
+  w.add(b, Position{2});
+  EXPECT_EQ(w.tryGet<Position>(a), nullptr) << "stale handle must not see the new entity's component";
+  EXPECT_THROW(w.write<Position>(a), std::out_of_range);
+  EXPECT_THROW(w.add(a, Velocity{}), std::out_of_range);
+  EXPECT_THROW(w.destroy(a), std::out_of_range);
+  EXPECT_THROW((void)w.get<Position>(kNullEntity), std::out_of_range);
+}
+
+TEST(Entity, DestroyRemovesAllComponents) {
+  World w;
+  Entity e = w.create();
+  w.add(e, Position{1});
+  w.add(e, Velocity{2});
+  w.add(e, Tag{});
+  w.destroy(e);
+  EXPECT_EQ(w.count<Position>(), 0u);
+  EXPECT_EQ(w.count<Velocity>(), 0u);
+  EXPECT_EQ(w.count<Tag>(), 0u);
+  EXPECT_EQ(w.aliveCount(), 0u);
+}
+
+TEST(View, VisitsExactlyEntitiesWithAllComponents) {
+  World w;
+  std::set<uint32_t> both;
+  for (int i = 0; i < 100; ++i) {
+    Entity e = w.create();
+    if (i % 2 == 0) w.add(e, Position{float(i)});
+    if (i % 3 == 0) w.add(e, Velocity{float(i)});
+    if (i % 6 == 0) both.insert(e.index);
+  }
+  std::set<uint32_t> seen;
+  w.each<Position, Velocity>([&](Entity e, const Position& p, const Velocity& v) {
+    EXPECT_EQ(p.x, v.v);
+    seen.insert(e.index);
+  });
+  EXPECT_EQ(seen, both);
+  int none = 0;
+  w.each<Position, Tag>([&](Entity, const Position&, const Tag&) { ++none; });
+  EXPECT_EQ(none, 0);
+}
+
+TEST(View, StructuralChangeDuringIterationThrowsAndCommandsDefer) {
+  World w;
+  std::vector<Entity> es;
+  for (int i = 0; i < 10; ++i) {
+    es.push_back(w.create());
+    w.add(es.back(), Position{float(i)});
+  }
+  EXPECT_THROW(w.each<Position>([&](Entity e, const Position&) { w.destroy(e); }), std::logic_error);
+  EXPECT_FALSE(w.iterating()) << "the guard must unwind on exceptions";
+  int visited = 0;
+  w.each<Position>([&](Entity e, const Position& p) {
+    ++visited;
+    if (int(p.x) % 2 == 0) w.commands().destroy(e);
+    else w.commands().add(e, Velocity{p.x});
+    Entity spawned = w.create();  // creation is allowed during iteration
+    w.commands().add(spawned, Tag{});
+  });
+  EXPECT_EQ(visited, 10);
+  EXPECT_EQ(w.count<Position>(), 10u) << "nothing applied before flush";
+  w.flushCommands();
+  EXPECT_EQ(w.count<Position>(), 5u);
+  EXPECT_EQ(w.count<Velocity>(), 5u);
+  EXPECT_EQ(w.count<Tag>(), 10u);
+}
+
+TEST(ChangeDetection, ReportsWritesAfterTickOnceEach) {
+  World w;
+  std::vector<Entity> es;
+  for (int i = 0; i < 50; ++i) {
+    es.push_back(w.create());
+    w.add(es.back(), Position{0});
+  }
+  Tick t0 = w.tick();
+  w.advanceTick();
+  w.write<Position>(es[3]).x = 1;
+  w.write<Position>(es[3]).x = 2;  // same tick: reported once
+  w.set(es[7], Position{5});
+  auto changed = w.changedSince<Position>(t0);
+  ASSERT_EQ(changed.size(), 2u);
+  EXPECT_EQ(changed[0], es[3]);
+  EXPECT_EQ(changed[1], es[7]);
+  // Reading is not writing.
+  Tick t1 = w.tick();
+  w.advanceTick();
+  (void)w.get<Position>(es[9]);
+  w.each<Position>([](Entity, const Position&) {});
+  EXPECT_TRUE(w.changedSince<Position>(t1).empty());
+  // A rewrite in a later tick moves the entity to the later tick only.
+  w.write<Position>(es[3]).x = 3;
+  auto later = w.changedSince<Position>(t1);
+  ASSERT_EQ(later.size(), 1u);
+  EXPECT_EQ(later[0], es[3]);
+}
+
+TEST(ChangeDetection, RemovedAndDestroyedAreReportedAndNotAsChanged) {
+  World w;
+  Entity a = w.create(), b = w.create();
+  w.add(a, Position{});
+  w.add(b, Position{});
+  Tick t = w.tick();
+  w.advanceTick();
+  w.write<Position>(a);
+  w.destroy(a);
+  w.remove<Position>(b);
+  EXPECT_TRUE(w.changedSince<Position>(t).empty());
+  auto removed = w.removedSince<Position>(t);
+  EXPECT_EQ(removed.size(), 2u);
+}
+
+TEST(ChangeDetection, CostIsProportionalToChangesNotWorld) {
+  World w;
+  std::vector<Entity> es;
+  for (int i = 0; i < 20000; ++i) {
+    es.push_back(w.create());
+    w.add(es.back(), Position{});
+  }
+  for (int frame = 0; frame < 10; ++frame) {
+    Tick before = w.tick();
+    w.advanceTick();
+    for (int k = 0; k < 5; ++k) w.write<Position>(es[size_t(frame * 100 + k)]);
+    w.trimChangeLogs(before);  // what the scheduler does: keep only what readers still need
+    EXPECT_EQ(w.changedSince<Position>(before).size(), 5u);
+    EXPECT_LE(w.poolIfAny<Position>()->changeLogSize(), 5u) << "the log holds only records newer than the trim point";
+  }
+}
+
+TEST(ChangeDetection, QueryOlderThanTrimFallsBackToFullScan) {
+  World w;
+  Entity a = w.create(), b = w.create();
+  w.add(a, Position{});
+  w.add(b, Position{});
+  w.advanceTick();
+  w.write<Position>(a);
+  Tick mid = w.tick();
+  w.advanceTick();
+  w.write<Position>(b);
+  w.trimChangeLogs(mid);
+  EXPECT_EQ(w.changedSince<Position>(0).size(), 2u);  // both, via scan
+  EXPECT_EQ(w.changedSince<Position>(mid).size(), 1u);
+}

@@ -1,0 +1,230 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "dyngi/engine/scene/gltf_import.h"
+#include "support/gltf_writer.h"
+#include "support/temp_dir.h"
+
+using namespace dyngi;
+using namespace dyngi::scene;
+using dyngi::test::GltfSpec;
+using dyngi::test::TempDir;
+
+namespace {
+GltfSpec oneQuad() {
+  GltfSpec s;
+  s.meshes = {{test::quadPrimitive(1.0f)}};
+  s.nodes = {{.name = "floor", .mesh = 0}};
+  return s;
+}
+
+struct Loaded {
+  ecs::World world;
+  AssetStore assets;
+  ImportReport report;
+  std::string error;
+};
+
+std::unique_ptr<Loaded> load(const std::string& path) {
+  auto l = std::make_unique<Loaded>();
+  l->error = importGltf(path, l->world, l->assets, &l->report);
+  return l;
+}
+
+std::unique_ptr<Loaded> loadSpec(const TempDir& dir, const GltfSpec& spec) { return load(dir.write("scene.gltf", test::writeGltf(spec))); }
+
+void expectCleanFailure(const Loaded& l, const std::string& path, const std::string& mentions) {
+  EXPECT_FALSE(l.error.empty());
+  EXPECT_EQ(l.error.find('\n'), std::string::npos) << "one line: " << l.error;
+  EXPECT_EQ(l.error.rfind(path, 0), 0u) << "names the file: " << l.error;
+  EXPECT_NE(l.error.find(mentions), std::string::npos) << "says what is wrong: " << l.error;
+  EXPECT_EQ(l.world.aliveCount(), 0u) << "a failed import leaves the world untouched";
+  EXPECT_EQ(l.assets.meshCount(), 0u);
+}
+}  // namespace
+
+TEST(GltfImport, LoadsHierarchyMaterialsLightsAndCamera) {
+  TempDir dir;
+  GltfSpec s;
+  auto prim = test::quadPrimitive(1.0f);
+  prim.material = 0;
+  auto noNormals = test::quadPrimitive(0.5f);
+  noNormals.normals.clear();
+  s.meshes = {{prim, noNormals}};
+  s.materialsJson = {R"({"pbrMetallicRoughness":{"baseColorFactor":[0.5,0.25,0.125,1],"metallicFactor":0.2,"roughnessFactor":0.7},
+                         "emissiveFactor":[1,0.5,0],"extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":4}}})"};
+  s.lightsJson = {R"({"type":"spot","color":[1,0.9,0.8],"intensity":12,"spot":{"innerConeAngle":0.2,"outerConeAngle":0.5}})",
+                  R"({"type":"directional","intensity":3})", R"({"type":"point","intensity":7,"range":5})"};
+  s.camerasJson = {R"({"type":"perspective","perspective":{"yfov":0.9,"znear":0.1,"zfar":50,"aspectRatio":1.5}})"};
+  s.nodes = {{.name = "root", .children = {1, 2, 3, 4, 5}, .transformJson = R"("translation":[0,1,0])"},
+             {.name = "mesh", .mesh = 0, .transformJson = R"("scale":[2,2,2])"},
+             {.name = "spot", .light = 0},
+             {.name = "sun", .light = 1},
+             {.name = "bulb", .light = 2},
+             {.name = "cam", .camera = 0, .transformJson = R"("matrix":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,5,1])"}};
+  auto l = loadSpec(dir, s);
+  ASSERT_EQ(l->error, "");
+  EXPECT_EQ(l->report.meshInstances, 2u);
+  EXPECT_EQ(l->report.triangles, 4u);
+  EXPECT_EQ(l->report.lights, 3u);
+  EXPECT_EQ(l->report.cameras, 1u);
+  ASSERT_FALSE(l->report.activeCamera.isNull());
+  EXPECT_TRUE(l->world.has<ActiveCamera>(l->report.activeCamera));
+  EXPECT_NEAR(l->world.get<WorldTransform>(l->report.activeCamera).matrix[3].z, 5.0f, 1e-6f);
+  EXPECT_NEAR(l->world.get<WorldTransform>(l->report.activeCamera).matrix[3].y, 1.0f, 1e-6f) << "parent translation applies";
+  EXPECT_NEAR(l->world.get<Camera>(l->report.activeCamera).yfov, 0.9f, 1e-6f);
+
+  // Bounds: quad of half size 1, scaled 2, lifted 1.
+  EXPECT_NEAR(l->report.worldBounds.min.x, -2.0f, 1e-5f);
+  EXPECT_NEAR(l->report.worldBounds.max.y, 1.0f, 1e-5f);
+
+  int withMaterial = 0;
+  l->world.each<MeshInstance, Material>([&](Entity, const MeshInstance& mi, const Material& m) {
+    EXPECT_TRUE(l->world.has<StaticTag>(l->world.poolIfAny<MeshInstance>()->entities()[0]));
+    const MeshData& mesh = l->assets.mesh(mi.mesh);
+    ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
+    for (auto& n : mesh.normals) EXPECT_NEAR(n.y, 1.0f, 1e-5f) << "generated normals face +Y for a CCW quad";
+    if (m.baseColor.r == 0.5f) {
+      ++withMaterial;
+      EXPECT_FLOAT_EQ(m.baseColor.g, 0.25f);
+      EXPECT_FLOAT_EQ(m.metallic, 0.2f);
+      EXPECT_FLOAT_EQ(m.roughness, 0.7f);
+      EXPECT_FLOAT_EQ(m.emissive.r, 4.0f) << "emissive factor x KHR_materials_emissive_strength";
+      EXPECT_FLOAT_EQ(m.emissive.g, 2.0f);
+    }
+  });
+  EXPECT_EQ(withMaterial, 1);
+
+  int spots = 0, dirs = 0, points = 0;
+  l->world.each<Light>([&](Entity, const Light& light) {
+    if (light.type == LightType::Spot) {
+      ++spots;
+      EXPECT_FLOAT_EQ(light.intensity, 12.0f);
+      EXPECT_FLOAT_EQ(light.outerConeAngle, 0.5f);
+      EXPECT_FLOAT_EQ(light.innerConeAngle, 0.2f);
+      EXPECT_FLOAT_EQ(light.color.b, 0.8f);
+    } else if (light.type == LightType::Directional) {
+      ++dirs;
+      EXPECT_FLOAT_EQ(light.intensity, 3.0f);
+    } else {
+      ++points;
+      EXPECT_FLOAT_EQ(light.range, 5.0f);
+    }
+  });
+  EXPECT_EQ(spots + dirs + points, 3);
+}
+
+TEST(GltfImport, MissingFile) {
+  auto l = load("/nonexistent/dir/scene.gltf");
+  expectCleanFailure(*l, "/nonexistent/dir/scene.gltf", "not found");
+}
+
+TEST(GltfImport, MalformedJson) {
+  TempDir dir;
+  std::string p = dir.write("bad.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [ {");
+  expectCleanFailure(*load(p), p, "not a valid glTF");
+}
+
+TEST(GltfImport, GarbageGlb) {
+  TempDir dir;
+  std::string p = dir.write("bad.glb", std::string("glTF\x02\x00\x00\x00garbage-that-is-not-a-glb", 32));
+  expectCleanFailure(*load(p), p, "not a valid glTF");
+}
+
+TEST(GltfImport, AccessorReadingPastBufferIsRejected) {
+  TempDir dir;
+  GltfSpec s = oneQuad();
+  s.meshes[0][0].positionCountOverride = 1000;
+  auto l = loadSpec(dir, s);
+  // tinygltf may catch this itself; either way the message is one line naming the file.
+  EXPECT_FALSE(l->error.empty());
+  EXPECT_EQ(l->error.find('\n'), std::string::npos);
+  EXPECT_EQ(l->world.aliveCount(), 0u);
+}
+
+TEST(GltfImport, IndexOutOfRangeIsRejected) {
+  TempDir dir;
+  GltfSpec s = oneQuad();
+  s.meshes[0][0].indices = {0, 1, 2, 0, 2, 99};
+  std::string p = dir.file("scene.gltf");
+  auto l = loadSpec(dir, s);
+  expectCleanFailure(*l, p, "index out of range");
+}
+
+TEST(GltfImport, NonTrianglePrimitiveIsRejected) {
+  TempDir dir;
+  GltfSpec s = oneQuad();
+  s.meshes[0][0].mode = 1;  // lines
+  std::string p = dir.file("scene.gltf");
+  expectCleanFailure(*loadSpec(dir, s), p, "only triangles");
+}
+
+TEST(GltfImport, EmptySceneIsRejected) {
+  TempDir dir;
+  GltfSpec s;
+  s.lightsJson = {R"({"type":"point","intensity":1})"};
+  s.nodes = {{.name = "lonely light", .light = 0}};
+  std::string p = dir.file("scene.gltf");
+  expectCleanFailure(*loadSpec(dir, s), p, "empty scene");
+}
+
+TEST(GltfImport, NonFiniteTransformIsRejected) {
+  TempDir dir;
+  GltfSpec s = oneQuad();
+  // JSON has no NaN literal; an overflowing number parses to infinity, which is as bad.
+  s.nodes[0].transformJson = R"("translation":[0,1e999,0])";
+  std::string p = dir.file("scene.gltf");
+  auto l = loadSpec(dir, s);
+  EXPECT_FALSE(l->error.empty());
+  EXPECT_EQ(l->world.aliveCount(), 0u);
+  if (!l->error.empty()) {
+    EXPECT_EQ(l->error.rfind(p, 0), 0u);
+  }
+}
+
+TEST(GltfImport, MissingChildNodeIsRejected) {
+  TempDir dir;
+  GltfSpec s = oneQuad();
+  s.nodes[0].children = {42};
+  s.sceneNodes = {0};
+  std::string p = dir.file("scene.gltf");
+  auto l = loadSpec(dir, s);
+  EXPECT_FALSE(l->error.empty());
+  EXPECT_EQ(l->world.aliveCount(), 0u);
+}
+
+TEST(GltfImport, DegenerateTrianglesAreDropped) {
+  TempDir dir;
+  GltfSpec s = oneQuad();
+  auto& p = s.meshes[0][0];
+  p.positions.push_back({5, 0, 5});
+  p.normals.push_back({0, 1, 0});
+  p.indices.insert(p.indices.end(), {4, 4, 4, 0, 1, 1});  // zero-area triangles
+  auto l = loadSpec(dir, s);
+  ASSERT_EQ(l->error, "");
+  EXPECT_EQ(l->report.triangles, 2u);
+}
+
+TEST(GltfImport, UnknownLightTypeIsRejected) {
+  TempDir dir;
+  GltfSpec s = oneQuad();
+  s.lightsJson = {R"({"type":"area","intensity":1})"};
+  s.nodes.push_back({.name = "l", .light = 0});
+  std::string p = dir.file("scene.gltf");
+  auto l = loadSpec(dir, s);
+  EXPECT_FALSE(l->error.empty());
+  EXPECT_EQ(l->world.aliveCount(), 0u);
+}
+
+TEST(GltfImport, SharedScenesLoadWhenPresent) {
+  std::string dirPath = DYNGI_SHARED_SCENES;
+  if (!std::filesystem::exists(dirPath)) GTEST_SKIP() << "no shared scenes at " << dirPath;
+  for (const char* name : {"CornellBox.glb", "Fox.glb", "IrradianceVolumeExample.glb"}) {
+    auto l = load(dirPath + "/" + name);
+    EXPECT_EQ(l->error, "") << name;
+    EXPECT_GT(l->report.triangles, 0u) << name;
+    EXPECT_TRUE(l->report.worldBounds.valid()) << name;
+  }
+}
