@@ -91,7 +91,10 @@ int runApp(const Options& o) {
       std::fprintf(stderr, "dyngi_sample: %s\n", err.c_str());
       return 2;
     }
-    if (report.lights == 0)
+    if (addDefaultLightIfUnlit(world))
+      std::fprintf(stderr, "dyngi_sample: note: %s has no lights and no emissive surfaces; added a default directional light\n",
+                   o.scene.c_str());
+    else if (report.lights == 0)
       std::fprintf(stderr, "dyngi_sample: note: %s has no punctual lights; direct light comes from emissive surfaces only\n",
                    o.scene.c_str());
   }

@@ -13,13 +13,17 @@ namespace dyngi::sample {
 struct CornellLayout {
   static constexpr float kSpotIntensity = 6.0f;  // W/sr (glTF units used directly)
   static constexpr float kSpotHeight = 1.9f;
-  static constexpr float kSpotOuterDeg = 50.0f;
-  static constexpr float kSpotInnerDeg = 35.0f;
+  static constexpr float kSpotOuterDeg = 40.0f;
+  static constexpr float kSpotInnerDeg = 25.0f;
   static constexpr float kWhite = 0.75f;
 };
 
 bool isBuiltinScene(const std::string& name);
 // Builds `name` ("cornell" or "cornell-dynamic") into the world; adds a camera.
 void buildBuiltinScene(const std::string& name, ecs::World& world, scene::AssetStore& assets);
+
+// When a loaded scene has neither punctual lights nor emissive surfaces it would render black; add a
+// directional "default sun" instead (and say so). Returns true when a light was added.
+bool addDefaultLightIfUnlit(ecs::World& world);
 
 }  // namespace dyngi::sample

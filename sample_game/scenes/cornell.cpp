@@ -66,8 +66,9 @@ void buildBuiltinScene(const std::string& name, ecs::World& w, AssetStore& asset
     ScriptedMotion lightPath;
     lightPath.origin = st.translation;
     lightPath.baseRotation = st.rotation;
-    lightPath.orbitRadius = 0.45f;
+    lightPath.orbitRadius = 0.35f;
     lightPath.orbitSpeed = 0.9f;
+    lightPath.phase = 3.14159265f / 0.9f;  // start on the camera side of the room (z > 0)
     w.add(spot, lightPath);
     ScriptedMotion slide;
     slide.origin = shortBox.translation;
@@ -90,6 +91,25 @@ void buildBuiltinScene(const std::string& name, ecs::World& w, AssetStore& asset
   w.add(cam, Camera{.yfov = glm::radians(40.0f), .znear = 0.05f, .zfar = 50.0f});
   w.add(cam, ActiveCamera{});
   w.add(cam, Name{"camera"});
+}
+
+bool addDefaultLightIfUnlit(ecs::World& w) {
+  if (w.count<Light>() > 0) return false;
+  bool emissive = false;
+  w.each<Material>([&](Entity, const Material& m) { emissive |= glm::dot(m.emissive, m.emissive) > 0.0f; });
+  if (emissive) return false;
+  Entity sun = w.create();
+  Transform t;
+  // Light travels along local -Z: tilt it to come down from above, front-left.
+  t.rotation = glm::quatLookAtRH(glm::normalize(glm::vec3(0.35f, -1.0f, -0.45f)), glm::vec3(0, 1, 0));
+  w.add(sun, t);
+  w.add(sun, WorldTransform{t.matrix()});
+  Light l;
+  l.type = LightType::Directional;
+  l.intensity = 3.0f;
+  w.add(sun, l);
+  w.add(sun, Name{"default_sun"});
+  return true;
 }
 
 }  // namespace dyngi::sample

@@ -1,1 +1,66 @@
+#include "render/render_fixture.h"
 
+#include <algorithm>
+
+#include "dyngi/engine/ecs/scheduler.h"
+#include "dyngi/engine/scene/transform_system.h"
+
+namespace dyngi::test {
+
+render::VulkanContext& RenderTest::context() {
+  static std::unique_ptr<render::VulkanContext> ctx = [] {
+    render::ContextOptions o;
+    o.validation = true;
+    o.quiet = true;
+    return std::make_unique<render::VulkanContext>(o);
+  }();
+  return *ctx;
+}
+
+void RenderTest::TearDown() {
+  EXPECT_EQ(context().validationErrorCount(), 0u) << "Vulkan validation reported errors (see stderr)";
+}
+
+Frame RenderTest::render(ecs::World& world, scene::AssetStore& assets, uint32_t width, uint32_t height,
+                         const render::RendererSettings& settings, int frames) {
+  render::Renderer renderer(context(), settings);
+  EXPECT_TRUE(renderer.resize(width, height));
+  ecs::Scheduler scheduler;
+  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
+  Frame f;
+  for (int i = 0; i < frames; ++i) {
+    scheduler.runFrame(world, ecs::FrameTime{1.0 / 60.0, double(i) / 60.0, uint64_t(i)});
+    f.snapshot = render::extractSnapshot(world, assets, uint64_t(i));
+    renderer.render(f.snapshot);
+  }
+  f.width = width;
+  f.height = height;
+  f.hdr = renderer.readback(render::TargetId::Hdr);
+  f.position = renderer.readback(render::TargetId::Position);
+  f.normal = renderer.readback(render::TargetId::Normal);
+  f.albedo = renderer.readback(render::TargetId::Albedo);
+  f.ldr = renderer.readbackLdr();
+  return f;
+}
+
+bool segmentHitsBox(const glm::vec3& a, const glm::vec3& b, const Obb& box, float margin) {
+  // Slab test in the box's local frame (the model has no scale in our scenes' boxes).
+  glm::mat4 inv = glm::inverse(box.model);
+  glm::vec3 la = glm::vec3(inv * glm::vec4(a, 1.0f)), lb = glm::vec3(inv * glm::vec4(b, 1.0f));
+  glm::vec3 d = lb - la, h = box.halfExtent + glm::vec3(margin);
+  float t0 = 1e-4f, t1 = 1.0f - 1e-4f;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(d[i]) < 1e-12f) {
+      if (la[i] < -h[i] || la[i] > h[i]) return false;
+      continue;
+    }
+    float ta = (-h[i] - la[i]) / d[i], tb = (h[i] - la[i]) / d[i];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+}  // namespace dyngi::test
