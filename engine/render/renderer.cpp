@@ -183,7 +183,7 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
 
   if (imageIndex != UINT32_MAX) {
     ScopedPass scope(ctx_, timer_.get(), cmd_, "present_blit");
-    targets_.ldr.transition(cmd_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    targets_.ldr.transition(cmd_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkImage sw = swapchain->image(imageIndex);
     auto swBarrier = [&](VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcS, VkAccessFlags2 srcA,
                          VkPipelineStageFlags2 dstS, VkAccessFlags2 dstA) {
@@ -210,7 +210,7 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
     blit.srcOffsets[1] = {int32_t(targets_.width), int32_t(targets_.height), 1};
     blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     blit.dstOffsets[1] = {int32_t(ext.width), int32_t(ext.height), 1};
-    vkCmdBlitImage(cmd_, targets_.ldr.handle(), VK_IMAGE_LAYOUT_GENERAL, sw, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+    vkCmdBlitImage(cmd_, targets_.ldr.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, sw, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
     swBarrier(VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_BLIT_BIT,
               VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);
   }
