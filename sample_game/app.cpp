@@ -109,7 +109,11 @@ int runApp(const Options& o) {
   const int frames = o.frames > 0 ? o.frames : (headless ? 60 : -1);
 
   render::ContextOptions co;
+#ifndef NDEBUG
+  co.validation = true;  // debug builds always validate
+#else
   co.validation = o.validation;
+#endif
   co.requireSwapchain = !headless;
   if (!headless) co.instanceExtensions = platform::Window::requiredInstanceExtensions();
   render::VulkanContext ctx(co);
