@@ -13,6 +13,7 @@
 #include "dyngi/engine/platform/window.h"
 #include "dyngi/engine/render/image_io.h"
 #include "dyngi/engine/render/renderer.h"
+#include "dyngi/engine/scene/animation.h"
 #include "dyngi/engine/scene/gltf_import.h"
 #include "dyngi/engine/scene/scripted_motion.h"
 #include "dyngi/engine/scene/transform_system.h"
@@ -86,9 +87,18 @@ int runApp(const Options& o) {
     buildBuiltinScene(o.scene, world, assets);
   } else {
     scene::ImportReport report;
-    std::string err = scene::importGltf(o.scene, world, assets, &report);
+    scene::ImportOptions io;
+    io.clip = o.clip;
+    std::string err = scene::importGltf(o.scene, world, assets, &report, io);
     if (!err.empty()) {
       std::fprintf(stderr, "dyngi_sample: %s\n", err.c_str());
+      return 2;
+    }
+    if (report.missingClip) {
+      std::string names;
+      for (auto& c : report.clips) names += (names.empty() ? "" : ", ") + c;
+      std::fprintf(stderr, "dyngi_sample: %s: no animation clip '%s' (available: %s)\n", o.scene.c_str(), o.clip.c_str(),
+                   names.empty() ? "none" : names.c_str());
       return 2;
     }
     if (addDefaultLightIfUnlit(world))
@@ -133,7 +143,9 @@ int runApp(const Options& o) {
   ecs::Scheduler scheduler;
   if (window) scheduler.add(ecs::Phase::Update, std::make_unique<FlyCameraSystem>(*window));
   scheduler.add(ecs::Phase::Update, std::make_unique<scene::ScriptedMotionSystem>());
+  scheduler.add(ecs::Phase::Update, std::make_unique<scene::AnimationSystem>());
   scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
+  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::SkinningSystem>(assets));
 
   RunStats stats;
   stats.scene = o.scene;

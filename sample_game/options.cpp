@@ -18,6 +18,7 @@ std::string usage() {
          "  --out FILE.png                         write the last frame (tone-mapped, sRGB)\n"
          "  --hdr-out FILE.exr                     write the last frame's linear radiance before exposure\n"
          "  --stats FILE.json                      write timings (medians over frames after warm-up)\n"
+         "  --clip NAME                            glTF animation clip to play (default: the first)\n"
          "  --exposure X                           linear exposure multiplier (default 1)\n"
          "  --validation                           enable Vulkan validation layers\n"
          "  --help                                 this text\n"
@@ -52,6 +53,7 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
     else if (a == "--out") { if (!value(o.out)) return std::nullopt; }
     else if (a == "--hdr-out") { if (!value(o.hdrOut)) return std::nullopt; }
     else if (a == "--stats") { if (!value(o.stats)) return std::nullopt; }
+    else if (a == "--clip") { if (!value(o.clip)) return std::nullopt; }
     else if (a == "--size") {
       if (!value(v)) return std::nullopt;
       auto x = v.find('x');

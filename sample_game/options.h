@@ -15,6 +15,7 @@ struct Options {
   std::string out;                          // PNG of the last frame
   std::string hdrOut;                       // EXR, linear radiance before exposure
   std::string stats;                        // JSON
+  std::string clip;                         // animation clip of a glTF scene (default: the first)
   float exposure = 1.0f;
   bool validation = false;
   bool help = false;

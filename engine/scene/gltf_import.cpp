@@ -1,5 +1,7 @@
 #include "dyngi/engine/scene/gltf_import.h"
 
+#include "dyngi/engine/scene/animation.h"
+
 #include <tiny_gltf.h>
 
 #include <cmath>
@@ -120,6 +122,9 @@ class Importer {
     for (int r : roots) count(r, 0);
     if (meshNodes == 0) fail("the scene has no triangle meshes (empty scene)");
     checkMaterials();
+    skinInverseBind_.resize(model_.skins.size());
+    for (size_t sk = 0; sk < model_.skins.size(); ++sk) skinInverseBind_[sk] = readSkin(sk);
+    for (size_t a = 0; a < model_.animations.size(); ++a) clips_.push_back(readAnimation(a));
 
     // Phase 2: commit. Primitive meshes move into the asset store; keep their material indices.
     materialsByMesh_.resize(meshes_.size());
@@ -131,7 +136,10 @@ class Importer {
       for (auto& p : prims) ids.push_back(assets_.addMesh(std::move(p.mesh)));
       meshIds_.push_back(std::move(ids));
     }
+    nodeEntities_.assign(model_.nodes.size(), ecs::kNullEntity);
     for (int r : roots) commitNode(r, ecs::kNullEntity, glm::mat4(1.0f));
+    commitSkins();
+    commitAnimations();
     report_.textures = model_.textures.size();
     return report_;
   }
@@ -161,6 +169,22 @@ class Importer {
       if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
         p.mesh.uvs = AccessorReader(model_, it->second, "TEXCOORD_0").readVec<2>();
         if (p.mesh.uvs.size() != n) fail(where + " TEXCOORD_0 count differs from POSITION count");
+      }
+      if (auto jt = prim.attributes.find("JOINTS_0"), wt = prim.attributes.find("WEIGHTS_0");
+          jt != prim.attributes.end() && wt != prim.attributes.end()) {
+        AccessorReader jr(model_, jt->second, "JOINTS_0");
+        AccessorReader wr(model_, wt->second, "WEIGHTS_0");
+        if (jr.count() != n || wr.count() != n) fail(where + " JOINTS_0/WEIGHTS_0 count differs from POSITION count");
+        if (jr.components() != 4 || wr.components() != 4) fail(where + " JOINTS_0/WEIGHTS_0 must be VEC4");
+        p.mesh.joints.resize(n);
+        p.mesh.weights.resize(n);
+        for (size_t i = 0; i < n; ++i)
+          for (size_t c = 0; c < 4; ++c) {
+            float j = jr.readFloat(i, c), w = wr.readFloat(i, c);
+            if (!(j >= 0.0f) || !std::isfinite(w)) fail(where + " has invalid joint indices or weights");
+            p.mesh.joints[i][int(c)] = uint32_t(j);
+            p.mesh.weights[i][int(c)] = w;
+          }
       }
       if (prim.indices >= 0) {
         AccessorReader idx(model_, prim.indices, "indices");
@@ -213,6 +237,7 @@ class Importer {
       std::string where = "node " + std::to_string(i) + (node.name.empty() ? "" : " '" + node.name + "'");
       if (node.mesh >= int(model_.meshes.size())) fail(where + " references a missing mesh");
       if (node.camera >= int(model_.cameras.size())) fail(where + " references a missing camera");
+      if (node.skin >= int(model_.skins.size())) fail(where + " references a missing skin");
       for (int c : node.children)
         if (c < 0 || size_t(c) >= model_.nodes.size()) fail(where + " has a missing child node");
       for (double v : node.matrix) if (!std::isfinite(v)) fail(where + " has a non-finite matrix");
@@ -328,6 +353,7 @@ class Importer {
   void commitNode(int n, Entity parent, const glm::mat4& parentWorld) {
     const auto& node = model_.nodes[size_t(n)];
     Entity e = world_.create();
+    nodeEntities_[size_t(n)] = e;
     ++report_.nodes;
     Transform local = localTransform(node);
     local.parent = parent;
@@ -347,6 +373,7 @@ class Importer {
           world_.add(target, WorldTransform{worldM});
         }
         world_.add(target, MeshInstance{ids[p], true});
+        if (node.skin >= 0) pendingSkins_.push_back({target, node.skin, ids[p]});
         world_.add(target, materialFor(primMaterial(node.mesh, p)));
         if (opts_.markStatic) world_.add(target, StaticTag{});
         else world_.add(target, DynamicTag{});
@@ -389,6 +416,105 @@ class Importer {
     for (int c : node.children) commitNode(c, e, worldM);
   }
 
+  std::vector<glm::mat4> readSkin(size_t index) {
+    const auto& skin = model_.skins[index];
+    std::string where = "skin " + std::to_string(index);
+    for (int j : skin.joints)
+      if (j < 0 || size_t(j) >= model_.nodes.size()) fail(where + " has a missing joint node");
+    std::vector<glm::mat4> ibm(skin.joints.size(), glm::mat4(1.0f));
+    if (skin.inverseBindMatrices >= 0) {
+      AccessorReader r(model_, skin.inverseBindMatrices, "inverseBindMatrices");
+      if (r.components() != 16 || r.count() < skin.joints.size()) fail(where + " inverseBindMatrices must be MAT4, one per joint");
+      for (size_t j = 0; j < skin.joints.size(); ++j)
+        for (int c = 0; c < 16; ++c) {
+          float v = r.readFloat(j, size_t(c));
+          if (!std::isfinite(v)) fail(where + " has a non-finite inverse bind matrix");
+          ibm[j][c / 4][c % 4] = v;
+        }
+    }
+    return ibm;
+  }
+
+  AnimationClip readAnimation(size_t index) {
+    const auto& anim = model_.animations[index];
+    std::string where = "animation " + std::to_string(index) + (anim.name.empty() ? "" : " '" + anim.name + "'");
+    AnimationClip clip;
+    clip.name = anim.name.empty() ? "clip" + std::to_string(index) : anim.name;
+    for (const auto& ch : anim.channels) {
+      if (ch.target_path == "weights") continue;  // morph targets: not supported, ignored
+      if (ch.sampler < 0 || size_t(ch.sampler) >= anim.samplers.size()) fail(where + " channel has a missing sampler");
+      if (ch.target_node < 0 || size_t(ch.target_node) >= model_.nodes.size()) fail(where + " channel targets a missing node");
+      const auto& smp = anim.samplers[size_t(ch.sampler)];
+      AnimationChannel out;
+      out.node = uint32_t(ch.target_node);
+      if (ch.target_path == "translation") out.path = AnimationPath::Translation;
+      else if (ch.target_path == "rotation") out.path = AnimationPath::Rotation;
+      else if (ch.target_path == "scale") out.path = AnimationPath::Scale;
+      else fail(where + " has unknown target path '" + ch.target_path + "'");
+      if (smp.interpolation == "STEP") out.interpolation = Interpolation::Step;
+      else if (smp.interpolation == "CUBICSPLINE") out.interpolation = Interpolation::CubicSpline;
+      else out.interpolation = Interpolation::Linear;
+      AccessorReader in(model_, smp.input, "animation input");
+      AccessorReader val(model_, smp.output, "animation output");
+      size_t keys = in.count(), perKey = out.interpolation == Interpolation::CubicSpline ? 3 : 1;
+      size_t comps = out.path == AnimationPath::Rotation ? 4 : 3;
+      if (in.components() != 1 || val.components() != comps) fail(where + " sampler has the wrong accessor types");
+      if (val.count() != keys * perKey) fail(where + " sampler output count does not match its input");
+      out.times.resize(keys);
+      for (size_t k = 0; k < keys; ++k) {
+        out.times[k] = in.readFloat(k, 0);
+        if (!std::isfinite(out.times[k]) || (k > 0 && out.times[k] < out.times[k - 1])) fail(where + " key times are not increasing");
+      }
+      out.values.resize(val.count(), glm::vec4(0.0f));
+      for (size_t k = 0; k < val.count(); ++k)
+        for (size_t c = 0; c < comps; ++c) {
+          out.values[k][int(c)] = val.readFloat(k, c);
+          if (!std::isfinite(out.values[k][int(c)])) fail(where + " has non-finite key values");
+        }
+      if (!out.times.empty()) clip.duration = std::max(clip.duration, out.times.back());
+      clip.channels.push_back(std::move(out));
+    }
+    return clip;
+  }
+
+  void commitSkins() {
+    for (const auto& ps : pendingSkins_) {
+      const auto& skin = model_.skins[size_t(ps.skin)];
+      const MeshData& bind = assets_.mesh(ps.bindPose);
+      if (bind.joints.empty()) continue;  // skin on a mesh without JOINTS_0: draw it rigid
+      SkinnedMesh sm;
+      sm.bindPose = ps.bindPose;
+      for (int j : skin.joints) sm.joints.push_back(nodeEntities_[size_t(j)]);
+      sm.inverseBind = skinInverseBind_[size_t(ps.skin)];
+      MeshData deformed = bind;
+      deformed.name = bind.name + " (skinned)";
+      sm.deformed = assets_.addMesh(std::move(deformed));
+      world_.write<MeshInstance>(ps.entity).mesh = sm.deformed;
+      if (world_.has<StaticTag>(ps.entity)) world_.remove<StaticTag>(ps.entity);
+      if (!world_.has<DynamicTag>(ps.entity)) world_.add(ps.entity, DynamicTag{});
+      world_.add(ps.entity, std::move(sm));
+      ++report_.skinnedMeshes;
+    }
+  }
+
+  void commitAnimations() {
+    if (clips_.empty()) return;
+    Entity e = world_.create();
+    Animator a;
+    a.nodes = nodeEntities_;
+    a.clips = std::move(clips_);
+    a.active = 0;
+    if (!opts_.clip.empty()) {
+      a.active = a.findClip(opts_.clip);
+      if (a.active < 0) a.active = 0, report_.missingClip = true;
+    }
+    report_.clips.clear();
+    for (auto& c : a.clips) report_.clips.push_back(c.name);
+    world_.add(e, std::move(a));
+    world_.add(e, Name{"animator"});
+    report_.animator = e;
+  }
+
   int primMaterial(int mesh, size_t committedIndex) const { return materialsByMesh_[size_t(mesh)][committedIndex]; }
 
  private:
@@ -401,6 +527,15 @@ class Importer {
   std::vector<std::vector<int>> materialsByMesh_;
   std::vector<std::vector<MeshId>> meshIds_;
   std::vector<TextureId> textureIds_;
+  std::vector<Entity> nodeEntities_;
+  struct PendingSkin {
+    Entity entity;
+    int skin;
+    MeshId bindPose;
+  };
+  std::vector<PendingSkin> pendingSkins_;
+  std::vector<std::vector<glm::mat4>> skinInverseBind_;
+  std::vector<AnimationClip> clips_;
 };
 
 }  // namespace

@@ -32,6 +32,10 @@ struct MeshData {
   std::vector<glm::vec3> normals;
   std::vector<glm::vec2> uvs;  // empty when the mesh has none
   std::vector<uint32_t> indices;
+  // Skinning attributes (JOINTS_0 / WEIGHTS_0), empty for rigid meshes. Joint indices refer to the
+  // skin's joint list.
+  std::vector<glm::uvec4> joints;
+  std::vector<glm::vec4> weights;
   Aabb bounds;
   uint32_t version = 0;  // bumped when the vertices change (deforming meshes)
 

@@ -1,7 +1,7 @@
 #pragma once
 // glTF 2.0 (.gltf / .glb) import into the ECS world and the asset store.
 //
-// Supported: node hierarchy (TRS or matrix), indexed or non-indexed triangle primitives (normals
+// Supported: node hierarchy, skins (JOINTS_0/WEIGHTS_0, inverse bind matrices), node TRS animations, (TRS or matrix), indexed or non-indexed triangle primitives (normals
 // generated when absent), pbrMetallicRoughness base colour factor/texture, metallic/roughness factors,
 // emissive factor/texture with KHR_materials_emissive_strength, perspective cameras (the first one
 // becomes the active camera), KHR_lights_punctual point/spot/directional lights.
@@ -22,12 +22,17 @@ struct ImportReport {
   size_t lights = 0;
   size_t cameras = 0;
   size_t textures = 0;
+  size_t skinnedMeshes = 0;
+  std::vector<std::string> clips;   // animation clip names, in file order
+  Entity animator{};                // entity holding the Animator (null without animations)
+  bool missingClip = false;         // ImportOptions::clip named a clip the file lacks (first one plays)
   Entity activeCamera{};   // null when the file has no camera
   Aabb worldBounds;        // of all mesh instances at import time
 };
 
 struct ImportOptions {
-  bool markStatic = true;  // tag imported mesh entities StaticTag (DynamicTag otherwise)
+  bool markStatic = true;  // tag imported mesh entities StaticTag (DynamicTag otherwise); skinned ones are always dynamic
+  std::string clip;        // animation clip to play (empty: the first)
 };
 
 // Returns an empty string on success, else "<path>: <problem>".
