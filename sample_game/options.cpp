@@ -6,7 +6,7 @@
 
 namespace dyngi::sample {
 
-const char* const kGiModes[] = {"off"};
+const char* const kGiModes[] = {"off", "path"};
 
 std::string usage() {
   return "usage: dyngi_sample [options]\n"
@@ -14,7 +14,9 @@ std::string usage() {
          "  --headless                             render offscreen, no window\n"
          "  --size WxH                             render size (default 768x768)\n"
          "  --frames N                             frames to render (default: 60 headless, until closed windowed)\n"
-         "  --gi MODE                              global illumination: off\n"
+         "  --gi MODE                              global illumination: off | path (CPU reference path tracer)\n"
+         "  --spp N                                path tracer samples per pixel (default 64)\n"
+         "  --bounces B                            indirect bounces: 0 = direct only, 1 = one bounce (default 1)\n"
          "  --out FILE.png                         write the last frame (tone-mapped, sRGB)\n"
          "  --hdr-out FILE.exr                     write the last frame's linear radiance before exposure\n"
          "  --stats FILE.json                      write timings (medians over frames after warm-up)\n"
@@ -70,6 +72,15 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
         return std::nullopt;
       }
       o.frames = int(n);
+    } else if (a == "--spp" || a == "--bounces") {
+      uint32_t n;
+      if (!value(v)) return std::nullopt;
+      bool isSpp = a == "--spp";
+      if (!parseUint(v, n) || (isSpp && (n == 0 || n > 1000000)) || (!isSpp && n > 64)) {
+        error = a + (isSpp ? " wants 1..1000000" : " wants 0..64") + ", got '" + v + "'";
+        return std::nullopt;
+      }
+      (isSpp ? o.spp : o.bounces) = n;
     } else if (a == "--exposure") {
       if (!value(v)) return std::nullopt;
       float f = 0;
@@ -84,7 +95,7 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
       bool known = false;
       for (const char* m : kGiModes) known |= o.gi == m;
       if (!known) {
-        error = "unknown --gi mode '" + o.gi + "' (available: off)";
+        error = "unknown --gi mode '" + o.gi + "' (available: off, path)";
         return std::nullopt;
       }
     } else {

@@ -11,7 +11,9 @@ struct Options {
   bool headless = false;
   uint32_t width = 768, height = 768;
   int frames = -1;                          // -1: headless 60, windowed until closed
-  std::string gi = "off";
+  std::string gi = "off";                   // off | path
+  uint32_t spp = 64;                        // path tracer samples per pixel
+  uint32_t bounces = 1;                     // indirect bounces (path tracer; later the GI techniques)
   std::string out;                          // PNG of the last frame
   std::string hdrOut;                       // EXR, linear radiance before exposure
   std::string stats;                        // JSON

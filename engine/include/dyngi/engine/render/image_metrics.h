@@ -1,0 +1,27 @@
+#pragma once
+// Image comparison metrics for tests and tools. Images are linear RGBA float, row-major, equal size.
+// Metrics use RGB (alpha ignored); `mask` (optional, same size, nonzero = counted) selects a region.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace dyngi::render {
+
+using ImageRgba = std::vector<glm::vec4>;
+
+double rmse(const ImageRgba& a, const ImageRgba& reference, const std::vector<uint8_t>* mask = nullptr);
+// Mean of (a - ref)^2 / (ref^2 + 0.01) per channel: scale-independent error used for GI comparisons.
+double relativeMse(const ImageRgba& a, const ImageRgba& reference, const std::vector<uint8_t>* mask = nullptr);
+// PSNR in dB against `peak` (the reference's maximum when 0). Infinite for identical images.
+double psnr(const ImageRgba& a, const ImageRgba& reference, double peak = 0.0);
+// Mean SSIM over 8x8 windows (stride 4) of luminance, constants for a dynamic range L (the reference's
+// maximum luminance when 0).
+double ssim(const ImageRgba& a, const ImageRgba& reference, uint32_t width, uint32_t height, double range = 0.0);
+// Mean RGB over the masked pixels.
+glm::dvec3 meanOver(const ImageRgba& a, const std::vector<uint8_t>* mask = nullptr);
+
+// The tone map of the GPU pass (tonemap.comp) on the CPU, for images produced on the CPU (path tracer).
+std::vector<uint8_t> tonemapToSrgb8(const ImageRgba& hdr, float exposure, int toneMapper);
+
+}  // namespace dyngi::render

@@ -1,0 +1,104 @@
+#include "dyngi/engine/render/image_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dyngi::render {
+namespace {
+bool counted(const std::vector<uint8_t>* mask, size_t i) { return !mask || (*mask)[i]; }
+double luminance(const glm::vec4& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+}  // namespace
+
+double rmse(const ImageRgba& a, const ImageRgba& ref, const std::vector<uint8_t>* mask) {
+  double sum = 0;
+  size_t n = 0;
+  for (size_t i = 0; i < std::min(a.size(), ref.size()); ++i) {
+    if (!counted(mask, i)) continue;
+    for (int c = 0; c < 3; ++c) {
+      double d = double(a[i][c]) - ref[i][c];
+      sum += d * d;
+    }
+    n += 3;
+  }
+  return n ? std::sqrt(sum / double(n)) : 0.0;
+}
+
+double relativeMse(const ImageRgba& a, const ImageRgba& ref, const std::vector<uint8_t>* mask) {
+  double sum = 0;
+  size_t n = 0;
+  for (size_t i = 0; i < std::min(a.size(), ref.size()); ++i) {
+    if (!counted(mask, i)) continue;
+    for (int c = 0; c < 3; ++c) {
+      double d = double(a[i][c]) - ref[i][c];
+      sum += d * d / (double(ref[i][c]) * ref[i][c] + 0.01);
+    }
+    n += 3;
+  }
+  return n ? sum / double(n) : 0.0;
+}
+
+double psnr(const ImageRgba& a, const ImageRgba& ref, double peak) {
+  if (peak <= 0)
+    for (auto& p : ref) peak = std::max({peak, double(p.r), double(p.g), double(p.b)});
+  double e = rmse(a, ref);
+  if (e == 0.0) return std::numeric_limits<double>::infinity();
+  return 20.0 * std::log10(std::max(peak, 1e-12) / e);
+}
+
+double ssim(const ImageRgba& a, const ImageRgba& ref, uint32_t w, uint32_t h, double range) {
+  if (range <= 0)
+    for (auto& p : ref) range = std::max(range, luminance(p));
+  range = std::max(range, 1e-12);
+  const double c1 = (0.01 * range) * (0.01 * range), c2 = (0.03 * range) * (0.03 * range);
+  const uint32_t win = 8, stride = 4;
+  double sum = 0;
+  int windows = 0;
+  for (uint32_t y0 = 0; y0 + win <= h; y0 += stride)
+    for (uint32_t x0 = 0; x0 + win <= w; x0 += stride) {
+      double ma = 0, mb = 0;
+      for (uint32_t y = y0; y < y0 + win; ++y)
+        for (uint32_t x = x0; x < x0 + win; ++x) ma += luminance(a[size_t(y) * w + x]), mb += luminance(ref[size_t(y) * w + x]);
+      const double n = win * win;
+      ma /= n, mb /= n;
+      double va = 0, vb = 0, cov = 0;
+      for (uint32_t y = y0; y < y0 + win; ++y)
+        for (uint32_t x = x0; x < x0 + win; ++x) {
+          double da = luminance(a[size_t(y) * w + x]) - ma, db = luminance(ref[size_t(y) * w + x]) - mb;
+          va += da * da, vb += db * db, cov += da * db;
+        }
+      va /= n - 1, vb /= n - 1, cov /= n - 1;
+      sum += ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
+      ++windows;
+    }
+  return windows ? sum / windows : 1.0;
+}
+
+glm::dvec3 meanOver(const ImageRgba& a, const std::vector<uint8_t>* mask) {
+  glm::dvec3 s(0.0);
+  size_t n = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (counted(mask, i)) s += glm::dvec3(a[i]), ++n;
+  return n ? s / double(n) : s;
+}
+
+std::vector<uint8_t> tonemapToSrgb8(const ImageRgba& hdr, float exposure, int toneMapper) {
+  std::vector<uint8_t> out(hdr.size() * 4);
+  auto aces = [](float x) { return std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f); };
+  auto srgb = [](float c) {
+    c = std::clamp(c, 0.0f, 1.0f);
+    return c < 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+  };
+  for (size_t i = 0; i < hdr.size(); ++i) {
+    glm::vec3 c = glm::vec3(hdr[i]) * exposure;
+    if (!std::isfinite(c.r) || !std::isfinite(c.g) || !std::isfinite(c.b)) c = {1, 0, 1};
+    for (int k = 0; k < 3; ++k) {
+      float v = toneMapper == 0 ? aces(c[k]) : std::clamp(c[k], 0.0f, 1.0f);
+      out[i * 4 + size_t(k)] = uint8_t(std::lround(srgb(v) * 255.0f));
+    }
+    out[i * 4 + 3] = 255;
+  }
+  return out;
+}
+
+}  // namespace dyngi::render

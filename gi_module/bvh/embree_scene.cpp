@@ -1,0 +1,331 @@
+#include <embree3/rtcore.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "dyngi/engine/scene/animation.h"
+#include "dyngi/engine/scene/components.h"
+#include "dyngi/gi/bvh.h"
+
+namespace dyngi::gi {
+
+namespace {
+void onEmbreeError(void*, RTCError code, const char* msg) {
+  std::fprintf(stderr, "dyngi: embree error %d: %s\n", int(code), msg ? msg : "");
+}
+bool finiteMatrix(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+}  // namespace
+
+struct EmbreeScene::Impl {
+  struct Blas {
+    RTCScene scene = nullptr;
+    RTCGeometry geometry = nullptr;
+    uint32_t version = 0;
+    size_t vertexCount = 0, indexCount = 0;
+    bool refittable = false;
+  };
+  struct Instance {
+    RTCGeometry geometry = nullptr;
+    unsigned geomId = RTC_INVALID_GEOMETRY_ID;
+    ecs::Entity entity;
+    scene::MeshId mesh = 0;
+    glm::mat4 transform{1.0f};
+  };
+
+  RTCDevice device = nullptr;
+  RTCScene top = nullptr;
+  std::unordered_map<scene::MeshId, Blas> blas;
+  std::unordered_map<ecs::Entity, Instance> instances;
+  std::vector<ecs::Entity> byGeomId;  // top-level geomID -> entity
+  std::vector<scene::MeshId> meshByGeomId;
+
+  Impl() {
+    device = rtcNewDevice(nullptr);
+    if (!device) throw std::runtime_error("Embree device creation failed");
+    rtcSetDeviceErrorFunction(device, onEmbreeError, nullptr);
+    newTop();
+  }
+  ~Impl() { clear(); rtcReleaseScene(top); rtcReleaseDevice(device); }
+
+  void newTop() {
+    top = rtcNewScene(device);
+    rtcSetSceneFlags(top, RTC_SCENE_FLAG_DYNAMIC);
+    rtcSetSceneBuildQuality(top, RTC_BUILD_QUALITY_LOW);  // few instances, rebuilt often
+  }
+
+  void clear() {
+    for (auto& [_, inst] : instances) {
+      rtcDetachGeometry(top, inst.geomId);
+      rtcReleaseGeometry(inst.geometry);
+    }
+    instances.clear();
+    for (auto& [_, b] : blas) {
+      rtcReleaseGeometry(b.geometry);
+      rtcReleaseScene(b.scene);
+    }
+    blas.clear();
+    byGeomId.clear();
+    meshByGeomId.clear();
+  }
+
+  void writeVertices(RTCGeometry g, const scene::MeshData& m, bool create) {
+    float* v = create ? static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, m.positions.size()))
+                      : static_cast<float*>(rtcGetGeometryBufferData(g, RTC_BUFFER_TYPE_VERTEX, 0));
+    std::memcpy(v, m.positions.data(), m.positions.size() * 12);
+  }
+
+  std::unordered_set<scene::MeshId> rebuiltThisSync;
+
+  // Builds, refits or returns the bottom-level BVH of a mesh as its version requires.
+  Blas& ensureBlas(const scene::MeshData& m, scene::MeshId id, bool deforming, BvhStats& st) {
+    auto it = blas.find(id);
+    if (it != blas.end()) {
+      Blas& b = it->second;
+      if (b.version == m.version) return b;
+      if (b.vertexCount == m.positions.size() && b.indexCount == m.indices.size() && b.refittable) {
+        writeVertices(b.geometry, m, false);
+        rtcUpdateGeometryBuffer(b.geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+        rtcCommitGeometry(b.geometry);
+        rtcCommitScene(b.scene);  // REFIT quality: refits the existing tree
+        b.version = m.version;
+        ++st.meshesRefit;
+        return b;
+      }
+      rtcReleaseGeometry(b.geometry);
+      rtcReleaseScene(b.scene);
+      blas.erase(it);
+    }
+    Blas b;
+    b.scene = rtcNewScene(device);
+    b.refittable = deforming;
+    rtcSetSceneBuildQuality(b.scene, deforming ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
+    if (deforming) rtcSetSceneFlags(b.scene, RTC_SCENE_FLAG_DYNAMIC);
+    b.geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetGeometryBuildQuality(b.geometry, deforming ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
+    writeVertices(b.geometry, m, true);
+    auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(b.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, m.indices.size() / 3));
+    std::memcpy(idx, m.indices.data(), m.indices.size() * 4);
+    rtcCommitGeometry(b.geometry);
+    rtcAttachGeometry(b.scene, b.geometry);
+    rtcCommitScene(b.scene);
+    b.version = m.version;
+    b.vertexCount = m.positions.size();
+    b.indexCount = m.indices.size();
+    ++st.meshesRebuilt;
+    rebuiltThisSync.insert(id);
+    return blas.emplace(id, b).first->second;
+  }
+
+  void setTransform(Instance& inst, const glm::mat4& m) {
+    inst.transform = m;
+    rtcSetGeometryTransform(inst.geometry, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &m[0][0]);
+    rtcCommitGeometry(inst.geometry);
+  }
+
+  void addInstance(ecs::Entity e, scene::MeshId mesh, const glm::mat4& m, const Blas& b) {
+    Instance inst;
+    inst.entity = e;
+    inst.mesh = mesh;
+    inst.geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(inst.geometry, b.scene);
+    setTransform(inst, m);
+    inst.geomId = rtcAttachGeometry(top, inst.geometry);
+    if (byGeomId.size() <= inst.geomId) byGeomId.resize(inst.geomId + 1), meshByGeomId.resize(inst.geomId + 1);
+    byGeomId[inst.geomId] = e;
+    meshByGeomId[inst.geomId] = mesh;
+    instances.emplace(e, inst);
+  }
+
+  void removeInstance(ecs::Entity e) {
+    auto it = instances.find(e);
+    if (it == instances.end()) return;
+    rtcDetachGeometry(top, it->second.geomId);
+    rtcReleaseGeometry(it->second.geometry);
+    byGeomId[it->second.geomId] = ecs::kNullEntity;
+    instances.erase(it);
+  }
+};
+
+EmbreeScene::EmbreeScene() : impl_(std::make_unique<Impl>()) {}
+EmbreeScene::~EmbreeScene() = default;
+
+const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetStore& assets, ecs::Tick since) {
+  auto t0 = std::chrono::steady_clock::now();
+  Impl& im = *impl_;
+  BvhStats st;
+  bool topDirty = false;
+  im.rebuiltThisSync.clear();
+
+  // Meshes written by skinning deform every frame: build those for refit.
+  std::unordered_set<scene::MeshId> deforming;
+  world.each<scene::SkinnedMesh>([&](ecs::Entity, const scene::SkinnedMesh& s) { deforming.insert(s.deformed); });
+
+  // Removed instances (entity destroyed or MeshInstance removed).
+  for (ecs::Entity e : world.removedSince<scene::MeshInstance>(since)) {
+    if (im.instances.count(e)) im.removeInstance(e), ++st.instancesRemoved, topDirty = true;
+  }
+  for (auto it = im.instances.begin(); it != im.instances.end();) {  // stale handles (cheap: instances only)
+    ecs::Entity e = it->first;
+    ++it;
+    if (!world.alive(e) || !world.has<scene::MeshInstance>(e)) im.removeInstance(e), ++st.instancesRemoved, topDirty = true;
+  }
+
+  // Deformed meshes: refit once per mesh, whichever entities use them.
+  for (auto& [id, b] : im.blas) {
+    if (id < assets.meshCount() && assets.mesh(id).version != b.version) {
+      im.ensureBlas(assets.mesh(id), id, deforming.count(id) > 0, st);
+      topDirty = true;  // instance bounds changed
+    }
+  }
+  // A rebuilt BLAS is a new RTCScene: point its existing instances at it.
+  if (!im.rebuiltThisSync.empty())
+    for (auto& [e, inst] : im.instances)
+      if (im.rebuiltThisSync.count(inst.mesh)) {
+        rtcSetGeometryInstancedScene(inst.geometry, im.blas.at(inst.mesh).scene);
+        rtcCommitGeometry(inst.geometry);
+      }
+
+  // New or changed instances.
+  auto upsert = [&](ecs::Entity e) {
+    const auto* mi = world.tryGet<scene::MeshInstance>(e);
+    const auto* wt = world.tryGet<scene::WorldTransform>(e);
+    if (!mi || !wt || mi->mesh >= assets.meshCount()) return;
+    const scene::MeshData& mesh = assets.mesh(mi->mesh);
+    if (mesh.indices.empty() || !finiteMatrix(wt->matrix)) return;
+    auto it = im.instances.find(e);
+    if (it == im.instances.end()) {
+      Impl::Blas& b = im.ensureBlas(mesh, mi->mesh, deforming.count(mi->mesh) > 0, st);
+      im.addInstance(e, mi->mesh, wt->matrix, b);
+      ++st.instancesAdded;
+      topDirty = true;
+      return;
+    }
+    Impl::Instance& inst = it->second;
+    if (inst.mesh != mi->mesh) {
+      Impl::Blas& b = im.ensureBlas(mesh, mi->mesh, deforming.count(mi->mesh) > 0, st);
+      rtcSetGeometryInstancedScene(inst.geometry, b.scene);
+      inst.mesh = mi->mesh;
+      im.meshByGeomId[inst.geomId] = mi->mesh;
+      rtcCommitGeometry(inst.geometry);
+      topDirty = true;
+    }
+    if (inst.transform != wt->matrix) {
+      im.setTransform(inst, wt->matrix);
+      ++st.instancesUpdated;
+      topDirty = true;
+    }
+  };
+  world.forEachChanged<scene::WorldTransform>(since, upsert);
+  world.forEachChanged<scene::MeshInstance>(since, upsert);
+
+  if (topDirty || since == 0) rtcCommitScene(im.top);
+  st.instances = im.instances.size();
+  st.meshes = im.blas.size();
+  st.updateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  stats_ = st;
+  return stats_;
+}
+
+const BvhStats& EmbreeScene::rebuild(const ecs::World& world, const scene::AssetStore& assets) {
+  auto t0 = std::chrono::steady_clock::now();
+  impl_->clear();
+  rtcReleaseScene(impl_->top);
+  impl_->newTop();
+  sync(world, assets, 0);
+  stats_.updateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return stats_;
+}
+
+RayHit EmbreeScene::intersect(const glm::vec3& o, const glm::vec3& d, float tmin, float tmax) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh{};
+  rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
+  rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
+  rh.ray.tnear = tmin;
+  rh.ray.tfar = tmax;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->top, &ctx, &rh);
+  RayHit h;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+  unsigned inst = rh.hit.instID[0];
+  h.hit = true;
+  h.t = rh.ray.tfar;
+  h.primitive = rh.hit.primID;
+  h.u = rh.hit.u;
+  h.v = rh.hit.v;
+  if (inst < impl_->byGeomId.size()) {
+    h.entity = impl_->byGeomId[inst];
+    h.mesh = impl_->meshByGeomId[inst];
+  }
+  return h;
+}
+
+bool EmbreeScene::occluded(const Segment& s, float eps) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  glm::vec3 d = s.to - s.from;
+  float len = glm::length(d);
+  if (len <= 2.0f * eps) return false;
+  RTCRay r{};
+  r.org_x = s.from.x, r.org_y = s.from.y, r.org_z = s.from.z;
+  r.dir_x = d.x / len, r.dir_y = d.y / len, r.dir_z = d.z / len;
+  r.tnear = eps;
+  r.tfar = len - eps;
+  r.mask = 0xFFFFFFFFu;
+  rtcOccluded1(impl_->top, &ctx, &r);
+  return r.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
+}
+
+void EmbreeScene::occluded(const Segment* segs, size_t count, uint8_t* out, float eps) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  for (size_t base = 0; base < count; base += 8) {
+    RTCRay8 r;
+    int valid[8];
+    for (int k = 0; k < 8; ++k) {
+      size_t i = base + size_t(k);
+      valid[k] = 0;
+      r.tnear[k] = 0.0f;
+      r.tfar[k] = -1.0f;
+      r.mask[k] = 0xFFFFFFFFu;
+      r.time[k] = 0.0f;
+      r.flags[k] = 0;
+      r.id[k] = 0;
+      r.org_x[k] = r.org_y[k] = r.org_z[k] = 0.0f;
+      r.dir_x[k] = 0.0f, r.dir_y[k] = 0.0f, r.dir_z[k] = 1.0f;
+      if (i >= count) continue;
+      glm::vec3 d = segs[i].to - segs[i].from;
+      float len = glm::length(d);
+      if (len <= 2.0f * eps) continue;
+      valid[k] = -1;
+      r.org_x[k] = segs[i].from.x, r.org_y[k] = segs[i].from.y, r.org_z[k] = segs[i].from.z;
+      r.dir_x[k] = d.x / len, r.dir_y[k] = d.y / len, r.dir_z[k] = d.z / len;
+      r.tnear[k] = eps;
+      r.tfar[k] = len - eps;
+    }
+    rtcOccluded8(valid, impl_->top, &ctx, &r);
+    for (int k = 0; k < 8 && base + size_t(k) < count; ++k) out[base + size_t(k)] = valid[k] && r.tfar[k] < 0.0f ? 1 : 0;
+  }
+}
+
+glm::mat4 EmbreeScene::instanceTransform(ecs::Entity e) const {
+  auto it = impl_->instances.find(e);
+  return it == impl_->instances.end() ? glm::mat4(1.0f) : it->second.transform;
+}
+
+}  // namespace dyngi::gi

@@ -1,0 +1,220 @@
+#include "dyngi/gi/path_tracer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <thread>
+#include <unordered_map>
+
+#include "dyngi/engine/scene/light_units.h"
+
+namespace dyngi::gi {
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+// PCG32 (O'Neill): small, fast, good enough for Monte Carlo.
+struct Rng {
+  uint64_t state;
+  uint64_t inc;
+  Rng(uint64_t seed, uint64_t stream) : state(0), inc((stream << 1u) | 1u) {
+    next();
+    state += seed;
+    next();
+  }
+  uint32_t next() {
+    uint64_t old = state;
+    state = old * 6364136223846793005ULL + inc;
+    uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
+    uint32_t rot = uint32_t(old >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((32 - rot) & 31));
+  }
+  float uniform() { return float(next() >> 8) * (1.0f / 16777216.0f); }
+};
+
+uint64_t mix64(uint64_t x) {
+  x ^= x >> 30;
+  x *= 0xbf58476d1ce4e5b9ULL;
+  x ^= x >> 27;
+  x *= 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+float srgbToLinear(uint8_t v) {
+  float c = float(v) / 255.0f;
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+struct SurfaceHit {
+  glm::vec3 position, geometricNormal, shadingNormal;
+  glm::vec3 diffuseAlbedo;  // base colour x texture x (1 - metallic)
+  glm::vec3 emission;
+};
+
+class Tracer {
+ public:
+  Tracer(const render::RenderSnapshot& s, const EmbreeScene& bvh, const scene::AssetStore& assets, const PathTracerSettings& st)
+      : snap_(s), bvh_(bvh), assets_(assets), settings_(st) {
+    for (size_t i = 0; i < s.draws.size(); ++i) drawOf_[s.draws[i].entity] = i;
+    float extent = s.sceneBounds.valid() ? glm::length(s.sceneBounds.extent()) : 1.0f;
+    sceneScale_ = std::max(extent, 1e-3f);
+  }
+
+  glm::vec3 radiance(glm::vec3 origin, glm::vec3 dir, Rng& rng) const {
+    glm::vec3 L(0.0f), throughput(1.0f);
+    for (uint32_t depth = 0;; ++depth) {
+      RayHit h = bvh_.intersect(origin, dir, 0.0f, 1e30f);
+      if (!h.hit) {
+        L += throughput * settings_.background;
+        break;
+      }
+      SurfaceHit sh;
+      if (!surface(h, origin, dir, sh)) break;
+      L += throughput * sh.emission;
+      if (glm::dot(sh.diffuseAlbedo, sh.diffuseAlbedo) <= 0.0f) break;
+      L += throughput * directLight(sh);
+      if (depth >= settings_.bounces) break;
+      // Cosine-weighted bounce: the Lambert BRDF (albedo/pi) x cos / pdf (cos/pi) = albedo.
+      throughput *= sh.diffuseAlbedo;
+      if (depth + 1 >= settings_.rouletteAfter) {
+        float p = std::min(0.95f, std::max({throughput.r, throughput.g, throughput.b}));
+        if (p <= 0.0f || rng.uniform() >= p) break;
+        throughput /= p;
+      }
+      dir = cosineSample(sh.shadingNormal, rng);
+      if (glm::dot(dir, sh.geometricNormal) <= 0.0f) break;  // shading normal tilted below the surface
+      origin = offset(sh);
+    }
+    return L;
+  }
+
+ private:
+  glm::vec3 offset(const SurfaceHit& sh) const { return sh.position + sh.geometricNormal * (1e-4f * sceneScale_); }
+
+  static glm::vec3 cosineSample(const glm::vec3& n, Rng& rng) {
+    float u1 = rng.uniform(), u2 = rng.uniform();
+    float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
+    glm::vec3 t = std::abs(n.x) > 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    glm::vec3 b1 = glm::normalize(glm::cross(n, t)), b2 = glm::cross(n, b1);
+    return glm::normalize(r * std::cos(phi) * b1 + r * std::sin(phi) * b2 + std::sqrt(std::max(0.0f, 1.0f - u1)) * n);
+  }
+
+  bool surface(const RayHit& h, const glm::vec3& origin, const glm::vec3& dir, SurfaceHit& out) const {
+    auto it = drawOf_.find(h.entity);
+    if (it == drawOf_.end()) return false;
+    const render::DrawItem& d = snap_.draws[it->second];
+    const scene::MeshData& m = assets_.mesh(h.mesh);
+    size_t t = size_t(h.primitive) * 3;
+    if (t + 2 >= m.indices.size()) return false;
+    uint32_t i0 = m.indices[t], i1 = m.indices[t + 1], i2 = m.indices[t + 2];
+    float w0 = 1.0f - h.u - h.v;
+    glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(d.model)));
+    glm::vec3 p0 = m.positions[i0], p1 = m.positions[i1], p2 = m.positions[i2];
+    out.position = origin + dir * h.t;
+    glm::vec3 ng = glm::normalize(normalMatrix * glm::cross(p1 - p0, p2 - p0));
+    glm::vec3 ns = m.normals.size() == m.positions.size()
+                       ? glm::normalize(normalMatrix * (w0 * m.normals[i0] + h.u * m.normals[i1] + h.v * m.normals[i2]))
+                       : ng;
+    // Lit on the side the ray arrives from (as the G-buffer does for the camera).
+    if (glm::dot(ng, dir) > 0.0f) ng = -ng;
+    if (glm::dot(ns, ng) < 0.0f) ns = -ns;
+    out.geometricNormal = ng;
+    out.shadingNormal = ns;
+    const scene::Material& mat = d.material;
+    glm::vec3 base(mat.baseColor);
+    glm::vec2 uv(0.0f);
+    if (m.uvs.size() == m.positions.size()) uv = w0 * m.uvs[i0] + h.u * m.uvs[i1] + h.v * m.uvs[i2];
+    if (mat.baseColorTexture != scene::kNoTexture && mat.baseColorTexture < assets_.textureCount()) base *= texel(mat.baseColorTexture, uv);
+    out.diffuseAlbedo = base * (1.0f - mat.metallic);
+    out.emission = mat.emissive;
+    if (mat.emissiveTexture != scene::kNoTexture && mat.emissiveTexture < assets_.textureCount()) out.emission *= texel(mat.emissiveTexture, uv);
+    return true;
+  }
+
+  glm::vec3 texel(scene::TextureId id, glm::vec2 uv) const {
+    const scene::TextureData& t = assets_.texture(id);
+    if (t.width == 0 || t.height == 0) return glm::vec3(1.0f);
+    // Bilinear with wrap, like the rasterizer's sampler.
+    float x = (uv.x - std::floor(uv.x)) * float(t.width) - 0.5f, y = (uv.y - std::floor(uv.y)) * float(t.height) - 0.5f;
+    int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+    float fx = x - float(x0), fy = y - float(y0);
+    auto at = [&](int xi, int yi) {
+      uint32_t xx = uint32_t((xi % int(t.width) + int(t.width)) % int(t.width));
+      uint32_t yy = uint32_t((yi % int(t.height) + int(t.height)) % int(t.height));
+      const uint8_t* p = &t.rgba8[(size_t(yy) * t.width + xx) * 4];
+      return t.srgb ? glm::vec3(srgbToLinear(p[0]), srgbToLinear(p[1]), srgbToLinear(p[2])) : glm::vec3(p[0], p[1], p[2]) / 255.0f;
+    };
+    return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx), glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
+  }
+
+  glm::vec3 directLight(const SurfaceHit& sh) const {
+    glm::vec3 sum(0.0f);
+    glm::vec3 from = offset(sh);
+    for (const render::LightItem& li : snap_.lights) {
+      glm::vec3 e = scene::directIrradiance(li.light, li.position, li.direction, sh.position, sh.shadingNormal);
+      if (e.r + e.g + e.b <= 0.0f) continue;
+      glm::vec3 to = li.light.type == scene::LightType::Directional ? sh.position - li.direction * (4.0f * sceneScale_ + 1.0f) : li.position;
+      if (li.light.castShadows && bvh_.occluded(Segment{from, to}, 1e-5f * sceneScale_)) continue;
+      sum += sh.diffuseAlbedo / kPi * e;
+    }
+    return sum;
+  }
+
+  const render::RenderSnapshot& snap_;
+  const EmbreeScene& bvh_;
+  const scene::AssetStore& assets_;
+  PathTracerSettings settings_;
+  std::unordered_map<ecs::Entity, size_t> drawOf_;
+  float sceneScale_ = 1.0f;
+};
+
+}  // namespace
+
+render::ImageRgba pathTrace(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
+                            uint32_t width, uint32_t height, const PathTracerSettings& settings, PathTracerStats* stats,
+                            const PathTracerProgress& progress) {
+  auto t0 = std::chrono::steady_clock::now();
+  render::ImageRgba accum(size_t(width) * height, glm::vec4(0.0f));
+  if (width == 0 || height == 0) return accum;
+  Tracer tracer(snapshot, bvh, assets, settings);
+  glm::mat4 proj = snapshot.camera.projection(float(width) / float(height));
+  glm::mat4 invViewProj = glm::inverse(proj * snapshot.camera.view);
+  const glm::vec3 eye = snapshot.camera.position;
+  uint32_t threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
+  const uint32_t spp = std::max(1u, settings.spp);
+
+  for (uint32_t pass = 0; pass < spp; ++pass) {
+    std::atomic<uint32_t> nextRow{0};
+    auto worker = [&] {
+      for (uint32_t y; (y = nextRow.fetch_add(1)) < height;) {
+        for (uint32_t x = 0; x < width; ++x) {
+          size_t idx = size_t(y) * width + x;
+          Rng rng(mix64(settings.seed * 0x9E3779B97F4A7C15ULL + pass), idx);
+          float jx = rng.uniform(), jy = rng.uniform();
+          if (!settings.pixelJitter) jx = jy = 0.5f;
+          glm::vec4 ndc((float(x) + jx) / float(width) * 2.0f - 1.0f, (float(y) + jy) / float(height) * 2.0f - 1.0f, 1.0f, 1.0f);
+          glm::vec4 farPoint = invViewProj * ndc;
+          glm::vec3 dir = glm::normalize(glm::vec3(farPoint) / farPoint.w - eye);
+          glm::vec3 L = tracer.radiance(eye, dir, rng);
+          if (!std::isfinite(L.r) || !std::isfinite(L.g) || !std::isfinite(L.b)) L = glm::vec3(0.0f);
+          accum[idx] += glm::vec4(L, 1.0f);
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (uint32_t t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();
+    for (auto& th : pool) th.join();
+    if (progress) progress(pass + 1, spp);
+  }
+  for (auto& p : accum) p = glm::vec4(glm::vec3(p) / float(spp), 1.0f);
+  if (stats) {
+    stats->ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    stats->samples = uint64_t(width) * height * spp;
+    stats->samplesPerSecond = stats->ms > 0 ? double(stats->samples) / (stats->ms * 1e-3) : 0.0;
+  }
+  return accum;
+}
+
+}  // namespace dyngi::gi

@@ -1,0 +1,202 @@
+// The Embree scene against a brute-force ray/triangle oracle: static, after moving instances, after
+// adding/removing entities, and after a skinned deformation + refit.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <glm/gtc/quaternion.hpp>
+#include <random>
+
+#include "dyngi/engine/scene/animation.h"
+#include "dyngi/engine/scene/gltf_import.h"
+#include "dyngi/engine/scene/scripted_motion.h"
+#include "dyngi/engine/scene/transform_system.h"
+#include "dyngi/gi/bvh.h"
+#include "dyngi/gi/bvh_sync.h"
+#include "scenes/builtin_scenes.h"
+#include "support/scene_triangles.h"
+
+using namespace dyngi;
+using namespace dyngi::scene;
+
+namespace {
+
+struct Agreement {
+  int rays = 0, hits = 0, mismatches = 0;
+  double worstRel = 0;
+};
+
+// Random rays from points inside `bounds` in random directions.
+Agreement compare(const gi::EmbreeScene& bvh, const ecs::World& w, const AssetStore& assets, const Aabb& bounds, int count, uint32_t seed) {
+  auto tris = test::worldTriangles(w, assets);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> U(0.0f, 1.0f);
+  Agreement a;
+  for (int i = 0; i < count; ++i) {
+    glm::vec3 o = bounds.min + glm::vec3(U(rng), U(rng), U(rng)) * bounds.extent();
+    glm::vec3 d = glm::normalize(glm::vec3(U(rng) - 0.5f, U(rng) - 0.5f, U(rng) - 0.5f));
+    float ref = test::bruteForceHit(tris, o, d, 0.0f, 1e30f);
+    gi::RayHit h = bvh.intersect(o, d, 0.0f, 1e30f);
+    ++a.rays;
+    if (h.hit != (ref > 0.0f)) {
+      ++a.mismatches;
+      continue;
+    }
+    if (!h.hit) continue;
+    ++a.hits;
+    // Relative to the distance, floored at 1 cm: float positions carry ~1e-7 absolute error, which
+    // is not a relative 1e-4 on rays that start a hair from a wall.
+    double rel = std::abs(double(h.t) - ref) / std::max(double(ref), 0.01);
+    a.worstRel = std::max(a.worstRel, rel);
+    // Occlusion of the segment to just before / just past the hit agrees too.
+    EXPECT_FALSE(bvh.occluded(gi::Segment{o, o + d * (ref * 0.999f)}, 0.0f));
+    EXPECT_TRUE(bvh.occluded(gi::Segment{o, o + d * (ref * 1.001f + 1e-3f)}, 0.0f));
+  }
+  return a;
+}
+
+void expectAgreement(const Agreement& a) {
+  EXPECT_EQ(a.mismatches, 0) << "hit/miss disagreements out of " << a.rays;
+  EXPECT_GT(a.hits, a.rays / 2);
+  EXPECT_LT(a.worstRel, 1e-4);
+}
+
+Aabb roomBounds() {
+  Aabb b;
+  b.extend(glm::vec3(-0.98f, 0.02f, -0.98f));
+  b.extend(glm::vec3(0.98f, 1.98f, 0.98f));
+  return b;
+}
+
+}  // namespace
+
+TEST(EmbreeScene, StaticCornellMatchesBruteForce) {
+  ecs::World w;
+  AssetStore assets;
+  sample::buildBuiltinScene("cornell", w, assets);
+  gi::EmbreeScene bvh;
+  const auto& st = bvh.sync(w, assets, 0);
+  EXPECT_EQ(st.instances, 7u);
+  EXPECT_EQ(st.meshesRebuilt, 7u);
+  expectAgreement(compare(bvh, w, assets, roomBounds(), 4000, 1));
+  // Hits name the entity and primitive.
+  gi::RayHit h = bvh.intersect({0, 1.9f, 0.9f}, {0, -1, 0}, 0, 10);
+  ASSERT_TRUE(h.hit);
+  EXPECT_NEAR(h.t, 1.9f, 1e-5f);
+  EXPECT_EQ(w.get<Name>(h.entity).value, "floor");
+  EXPECT_LT(h.primitive, 2u);
+}
+
+TEST(EmbreeScene, MovingInstancesUpdateOnlyTransforms) {
+  ecs::World w;
+  AssetStore assets;
+  sample::buildBuiltinScene("cornell-dynamic", w, assets);
+  ecs::Scheduler s;
+  s.add(ecs::Phase::Update, std::make_unique<ScriptedMotionSystem>());
+  s.add(ecs::Phase::PostUpdate, std::make_unique<TransformSystem>());
+  gi::EmbreeScene bvh;
+  s.add(ecs::Phase::PostUpdate, std::make_unique<gi::BvhSyncSystem>(bvh, assets));
+  s.runFrame(w, {});
+  for (int f = 1; f <= 5; ++f) {
+    s.runFrame(w, ecs::FrameTime{0.25, 0.25 * f, uint64_t(f)});
+    const auto& st = bvh.stats();
+    EXPECT_EQ(st.instancesUpdated, 2u) << "the two moving boxes (the light is not geometry)";
+    EXPECT_EQ(st.meshesRebuilt, 0u);
+    EXPECT_EQ(st.meshesRefit, 0u);
+    EXPECT_EQ(st.instancesAdded, 0u);
+  }
+  expectAgreement(compare(bvh, w, assets, roomBounds(), 3000, 2));
+}
+
+TEST(EmbreeScene, EntitiesAddedAndRemovedAtRunTime) {
+  ecs::World w;
+  AssetStore assets;
+  sample::buildBuiltinScene("cornell", w, assets);
+  gi::EmbreeScene bvh;
+  bvh.sync(w, assets, 0);
+  ecs::Tick t = w.tick();
+  w.advanceTick();
+  Entity ball = w.create();
+  Transform bt;
+  bt.translation = {0.0f, 1.0f, 0.5f};
+  w.add(ball, bt);
+  w.add(ball, WorldTransform{bt.matrix()});
+  w.add(ball, MeshInstance{assets.addMesh(makeSphere(0.2f, 24, 12)), true});
+  Entity floor{};
+  w.each<Name>([&](Entity e, const Name& n) { if (n.value == "floor") floor = e; });
+  w.destroy(floor);
+  const auto& st = bvh.sync(w, assets, t);
+  EXPECT_EQ(st.instancesAdded, 1u);
+  EXPECT_EQ(st.instancesRemoved, 1u);
+  EXPECT_EQ(st.instances, 7u);
+  expectAgreement(compare(bvh, w, assets, roomBounds(), 3000, 3));
+  gi::RayHit h = bvh.intersect({0, 1.0f, 1.5f}, {0, 0, -1}, 0, 10);
+  ASSERT_TRUE(h.hit);
+  EXPECT_EQ(h.entity, ball);
+  EXPECT_FALSE(bvh.intersect({0, 0.5f, 0.9f}, {0, -1, 0}, 0, 10).hit) << "the floor is gone";
+}
+
+TEST(EmbreeScene, SkinnedFoxRefitMatchesBruteForce) {
+  std::string path = std::string(DYNGI_SHARED_SCENES) + "/Fox.glb";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "no shared scenes";
+  ecs::World w;
+  AssetStore assets;
+  ImportOptions io;
+  io.clip = "Run";
+  ASSERT_EQ(importGltf(path, w, assets, nullptr, io), "");
+  ecs::Scheduler s;
+  s.add(ecs::Phase::Update, std::make_unique<AnimationSystem>());
+  s.add(ecs::Phase::PostUpdate, std::make_unique<TransformSystem>());
+  s.add(ecs::Phase::PostUpdate, std::make_unique<SkinningSystem>(assets));
+  gi::EmbreeScene bvh;
+  s.add(ecs::Phase::PostUpdate, std::make_unique<gi::BvhSyncSystem>(bvh, assets));
+  for (int f = 0; f < 12; ++f) s.runFrame(w, ecs::FrameTime{1.0 / 30, f / 30.0, uint64_t(f)});
+  EXPECT_EQ(bvh.stats().meshesRefit, 1u);
+  EXPECT_EQ(bvh.stats().meshesRebuilt, 0u);
+  Aabb b;
+  w.each<SkinnedMesh, WorldTransform>([&](Entity, const SkinnedMesh& sm, const WorldTransform& wt) {
+    b.extend(assets.mesh(sm.deformed).bounds.transformed(wt.matrix));
+  });
+  // Rays from a box around the fox, aimed at its middle so many hit.
+  auto tris = test::worldTriangles(w, assets);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> U(0.0f, 1.0f);
+  int hits = 0, mismatches = 0;
+  double worst = 0;
+  for (int i = 0; i < 3000; ++i) {
+    glm::vec3 o = b.center() + (glm::vec3(U(rng), U(rng), U(rng)) - 0.5f) * b.extent() * 3.0f;
+    glm::vec3 target = b.min + glm::vec3(U(rng), U(rng), U(rng)) * b.extent();
+    glm::vec3 d = glm::normalize(target - o);
+    float ref = test::bruteForceHit(tris, o, d, 0.0f, 1e30f);
+    gi::RayHit h = bvh.intersect(o, d, 0.0f, 1e30f);
+    if (h.hit != (ref > 0)) { ++mismatches; continue; }
+    if (h.hit) ++hits, worst = std::max(worst, std::abs(double(h.t) - ref) / ref);
+  }
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(hits, 600);
+  EXPECT_LT(worst, 1e-4);
+}
+
+TEST(EmbreeScene, PacketOcclusionEqualsSingleRays) {
+  ecs::World w;
+  AssetStore assets;
+  sample::buildBuiltinScene("cornell", w, assets);
+  gi::EmbreeScene bvh;
+  bvh.sync(w, assets, 0);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> U(0.0f, 1.0f);
+  Aabb r = roomBounds();
+  std::vector<gi::Segment> segs(1003);
+  for (auto& s : segs) {
+    s.from = r.min + glm::vec3(U(rng), U(rng), U(rng)) * r.extent();
+    s.to = r.min + glm::vec3(U(rng), U(rng), U(rng)) * r.extent();
+  }
+  std::vector<uint8_t> packet(segs.size());
+  bvh.occluded(segs.data(), segs.size(), packet.data());
+  int blocked = 0;
+  for (size_t i = 0; i < segs.size(); ++i) {
+    EXPECT_EQ(packet[i] != 0, bvh.occluded(segs[i])) << i;
+    blocked += packet[i];
+  }
+  EXPECT_GT(blocked, 50);
+  EXPECT_LT(blocked, 950);
+}
