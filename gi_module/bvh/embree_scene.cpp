@@ -290,10 +290,39 @@ bool EmbreeScene::occluded(const Segment& s, float eps) const {
   return r.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
 }
 
-void EmbreeScene::occluded(const Segment* segs, size_t count, uint8_t* out, float eps) const {
+void EmbreeScene::occluded(const Segment* segs, size_t count, uint8_t* out, float eps, BatchMode mode) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  if (mode == BatchMode::Stream) {
+    // Streams of single rays: Embree reorders them internally.
+    constexpr size_t kChunk = 256;
+    RTCRay rays[kChunk];
+    for (size_t base = 0; base < count; base += kChunk) {
+      size_t m = std::min(kChunk, count - base);
+      for (size_t k = 0; k < m; ++k) {
+        const Segment& sg = segs[base + k];
+        glm::vec3 d = sg.to - sg.from;
+        float len = glm::length(d);
+        RTCRay& r = rays[k];
+        r = RTCRay{};
+        r.org_x = sg.from.x, r.org_y = sg.from.y, r.org_z = sg.from.z;
+        r.mask = 0xFFFFFFFFu;
+        if (len <= 2.0f * eps) {  // degenerate: an empty interval never hits
+          r.dir_z = 1.0f;
+          r.tnear = 1.0f;
+          r.tfar = 0.5f;
+          continue;
+        }
+        r.dir_x = d.x / len, r.dir_y = d.y / len, r.dir_z = d.z / len;
+        r.tnear = eps;
+        r.tfar = len - eps;
+      }
+      rtcOccluded1M(impl_->top, &ctx, rays, unsigned(m), sizeof(RTCRay));
+      for (size_t k = 0; k < m; ++k) out[base + k] = rays[k].tfar < 0.0f ? 1 : 0;
+    }
+    return;
+  }
   for (size_t base = 0; base < count; base += 8) {
     RTCRay8 r;
     int valid[8];

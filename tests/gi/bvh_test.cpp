@@ -190,13 +190,17 @@ TEST(EmbreeScene, PacketOcclusionEqualsSingleRays) {
     s.from = r.min + glm::vec3(U(rng), U(rng), U(rng)) * r.extent();
     s.to = r.min + glm::vec3(U(rng), U(rng), U(rng)) * r.extent();
   }
-  std::vector<uint8_t> packet(segs.size());
-  bvh.occluded(segs.data(), segs.size(), packet.data());
+  segs[17].to = segs[17].from;  // a degenerate segment is never occluded
+  std::vector<uint8_t> packet(segs.size()), stream(segs.size());
+  bvh.occluded(segs.data(), segs.size(), packet.data(), 1e-4f, gi::EmbreeScene::BatchMode::Packet8);
+  bvh.occluded(segs.data(), segs.size(), stream.data(), 1e-4f, gi::EmbreeScene::BatchMode::Stream);
   int blocked = 0;
   for (size_t i = 0; i < segs.size(); ++i) {
     EXPECT_EQ(packet[i] != 0, bvh.occluded(segs[i])) << i;
+    EXPECT_EQ(stream[i], packet[i]) << i;
     blocked += packet[i];
   }
+  EXPECT_EQ(packet[17], 0);
   EXPECT_GT(blocked, 50);
   EXPECT_LT(blocked, 950);
 }

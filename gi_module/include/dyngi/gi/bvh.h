@@ -58,8 +58,11 @@ class EmbreeScene {
   RayHit intersect(const glm::vec3& origin, const glm::vec3& direction, float tmin, float tmax) const;
   // True when something lies strictly between the segment's ends (ends shrunk by `epsilon`).
   bool occluded(const Segment& s, float epsilon = 1e-4f) const;
-  // Occlusion of many segments; out[i] = 1 when occluded. Uses 8-wide packets.
-  void occluded(const Segment* segments, size_t count, uint8_t* out, float epsilon = 1e-4f) const;
+  // Occlusion of many segments; out[i] = 1 when occluded. Stream: Embree's ray streams (rtcOccluded1M);
+  // Packet8: 8-wide packets (rtcOccluded8), which pay off only for coherent rays.
+  enum class BatchMode { Stream, Packet8 };
+  void occluded(const Segment* segments, size_t count, uint8_t* out, float epsilon = 1e-4f,
+                BatchMode mode = BatchMode::Stream) const;
 
   glm::mat4 instanceTransform(ecs::Entity e) const;
 
