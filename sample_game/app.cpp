@@ -20,6 +20,7 @@
 #include "dyngi/engine/scene/transform_system.h"
 #include "dyngi/gi/bvh_sync.h"
 #include "dyngi/gi/path_tracer.h"
+#include "dyngi/gi/voxel_scene.h"
 #include "scenes/builtin_scenes.h"
 #include "stats.h"
 
@@ -218,12 +219,23 @@ int runApp(const Options& o) {
   }
   renderer.resize(width, height);
 
+  // The voxel scene runs when something needs it (today: its debug views).
+  std::unique_ptr<gi::VoxelScene> voxels;
+  if (o.view != "final") {
+    gi::VoxelSettings vs;
+    vs.resolution = o.voxelResolution;
+    vs.debugView = o.view == "voxels" ? gi::VoxelDebugView::Voxels : gi::VoxelDebugView::SvoSteps;
+    voxels = std::make_unique<gi::VoxelScene>(ctx, vs);
+    renderer.addFeature(voxels.get());
+  }
+
   ecs::Scheduler scheduler;
   if (window) scheduler.add(ecs::Phase::Update, std::make_unique<FlyCameraSystem>(*window));
   scheduler.add(ecs::Phase::Update, std::make_unique<scene::ScriptedMotionSystem>());
   scheduler.add(ecs::Phase::Update, std::make_unique<scene::AnimationSystem>());
   scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
   scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::SkinningSystem>(assets));
+  if (voxels) scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(*voxels, assets));
 
   RunStats stats;
   stats.scene = o.scene;
@@ -279,6 +291,15 @@ int runApp(const Options& o) {
   stats.height = renderer.height();
   stats.scalars["draws"] = double(render::extractSnapshot(world, assets, 0).draws.size());
   stats.scalars["validation_errors"] = ctx.validationErrorCount();
+  if (voxels) {
+    const gi::VoxelStats& v = voxels->stats();
+    stats.scalars["voxel_resolution"] = o.voxelResolution;
+    stats.scalars["voxel_fragments"] = double(v.fragments);
+    stats.scalars["svo_nodes"] = double(v.nodes);
+    stats.scalars["svo_leaves"] = double(v.leaves);
+    stats.scalars["svo_bytes"] = double(v.svoBytes);
+    stats.scalars["voxel_total_bytes"] = double(v.totalBytes);
+  }
 
   int status = 0;
   if (rendered > 0 && !o.out.empty()) {

@@ -20,6 +20,8 @@ std::string usage() {
          "  --out FILE.png                         write the last frame (tone-mapped, sRGB)\n"
          "  --hdr-out FILE.exr                     write the last frame's linear radiance before exposure\n"
          "  --stats FILE.json                      write timings (medians over frames after warm-up)\n"
+         "  --view NAME                            final | voxels | svo-steps (debug views of the voxel scene)\n"
+         "  --voxel-res N                          voxel resolution, a power of two in 64..512 (default 128)\n"
          "  --clip NAME                            glTF animation clip to play (default: the first)\n"
          "  --exposure X                           linear exposure multiplier (default 1)\n"
          "  --validation                           enable Vulkan validation layers\n"
@@ -56,6 +58,20 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
     else if (a == "--hdr-out") { if (!value(o.hdrOut)) return std::nullopt; }
     else if (a == "--stats") { if (!value(o.stats)) return std::nullopt; }
     else if (a == "--clip") { if (!value(o.clip)) return std::nullopt; }
+    else if (a == "--view") {
+      if (!value(o.view)) return std::nullopt;
+      if (o.view != "final" && o.view != "voxels" && o.view != "svo-steps") {
+        error = "unknown --view '" + o.view + "' (available: final, voxels, svo-steps)";
+        return std::nullopt;
+      }
+    } else if (a == "--voxel-res") {
+      if (!value(v)) return std::nullopt;
+      if (!parseUint(v, o.voxelResolution) || o.voxelResolution < 64 || o.voxelResolution > 512 ||
+          (o.voxelResolution & (o.voxelResolution - 1)) != 0) {
+        error = "--voxel-res wants a power of two in 64..512, got '" + v + "'";
+        return std::nullopt;
+      }
+    }
     else if (a == "--size") {
       if (!value(v)) return std::nullopt;
       auto x = v.find('x');

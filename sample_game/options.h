@@ -17,6 +17,8 @@ struct Options {
   std::string out;                          // PNG of the last frame
   std::string hdrOut;                       // EXR, linear radiance before exposure
   std::string stats;                        // JSON
+  std::string view = "final";               // final | voxels | svo-steps
+  uint32_t voxelResolution = 128;           // voxel volume resolution (power of two, 64..512)
   std::string clip;                         // animation clip of a glTF scene (default: the first)
   float exposure = 1.0f;
   bool validation = false;

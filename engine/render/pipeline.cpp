@@ -81,6 +81,11 @@ Pipeline Pipeline::graphics(VulkanContext& ctx, const GraphicsDesc& desc) {
   std::vector<VkPipelineShaderStageCreateInfo> stages;
   VkShaderModule vs = makeModule(ctx.device(), desc.vertex);
   stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs, "main", nullptr});
+  VkShaderModule gs = VK_NULL_HANDLE;
+  if (desc.geometry.words) {
+    gs = makeModule(ctx.device(), desc.geometry);
+    stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_GEOMETRY_BIT, gs, "main", nullptr});
+  }
   VkShaderModule fs = VK_NULL_HANDLE;
   if (desc.fragment.words) {
     fs = makeModule(ctx.device(), desc.fragment);
@@ -139,6 +144,7 @@ Pipeline Pipeline::graphics(VulkanContext& ctx, const GraphicsDesc& desc) {
   VkResult r = vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline_);
   vkDestroyShaderModule(ctx.device(), vs, nullptr);
   if (fs) vkDestroyShaderModule(ctx.device(), fs, nullptr);
+  if (gs) vkDestroyShaderModule(ctx.device(), gs, nullptr);
   DYNGI_VK(r);
   ctx.setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p.pipeline_), desc.name);
   return p;

@@ -165,7 +165,7 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   DYNGI_VK(vkBeginCommandBuffer(cmd_, &bi));
   if (timer_) timer_->beginFrame(cmd_);
-  FrameContext frame{ctx_, cmd_, timer_.get(), snapshot, targets_, frameUniforms_, meshes, linearSampler_, nearestSampler_};
+  FrameContext frame{ctx_, cmd_, timer_.get(), snapshot, targets_, frameUniforms_, meshes, linearSampler_, nearestSampler_, textures};
 
   shadow_->execute(frame);
   gbuffer_->execute(frame, textures);
@@ -179,6 +179,7 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
     vkCmdClearColorImage(cmd_, targets_.indirect.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
   }
   composite_->execute(frame);
+  for (RenderFeature* f : features_) f->recordAfterComposite(frame);
   tonemap_->execute(frame);
 
   if (imageIndex != UINT32_MAX) {

@@ -1,6 +1,7 @@
 #pragma once
 // What a pass (built-in or a plugged-in render feature) sees while recording one frame.
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "dyngi/engine/render/gpu_timer.h"
@@ -49,6 +50,8 @@ struct FrameContext {
   const std::vector<GpuMesh*>& meshes;    // indexed like snapshot.draws
   VkSampler linearSampler;
   VkSampler nearestSampler;
+  // The view of a scene texture (a 1x1 white texture for kNoTexture or a missing one).
+  std::function<VkImageView(scene::TextureId)> textureView;
 };
 
 }  // namespace dyngi::render

@@ -36,6 +36,7 @@ class Pipeline {
 
   struct GraphicsDesc {
     ShaderCode vertex{};
+    ShaderCode geometry{};  // optional
     ShaderCode fragment{};  // words == nullptr: depth-only
     std::vector<VkVertexInputBindingDescription> vertexBindings;
     std::vector<VkVertexInputAttributeDescription> vertexAttributes;

@@ -14,6 +14,8 @@ class RenderFeature {
   virtual void prepare(VulkanContext& /*ctx*/, const RenderSnapshot& /*snapshot*/) {}
   // Records GPU work. Returns true when it wrote targets.indirect this frame (else it is cleared).
   virtual bool record(FrameContext& frame) = 0;
+  // Records after composite, before tone mapping: debug views that replace targets.hdr.
+  virtual void recordAfterComposite(FrameContext& /*frame*/) {}
   // Called after the frame's fence: read back results, resolve queries.
   virtual void frameFinished(VulkanContext& /*ctx*/) {}
   // Called when the render targets are recreated (resize).

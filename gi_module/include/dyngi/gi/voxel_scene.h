@@ -1,0 +1,129 @@
+#pragma once
+// The GPU voxel scene: per-frame voxelization into voxel fragments and a sparse voxel octree rebuilt
+// from them, plugged into the renderer as a RenderFeature ("voxelize", "svo_build" in stats).
+//
+// Each mesh entity owns a range of the fragment buffer. Only entities marked dirty (moved, deformed,
+// added; see VoxelSyncSystem) are re-voxelized into their range; a removed entity's range is emptied.
+// Static geometry is therefore voxelized once and cached. The SVO is rebuilt from all ranges whenever
+// any range changed, so voxels an object left are gone and the result equals a build from scratch.
+#include <memory>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "dyngi/engine/ecs/scheduler.h"
+#include "dyngi/engine/render/pipeline.h"
+#include "dyngi/engine/render/render_feature.h"
+#include "dyngi/gi/bvh.h"
+#include "dyngi/gi/voxel.h"
+
+namespace dyngi::gi {
+
+enum class VoxelDebugView { None, Voxels, SvoSteps };
+
+struct VoxelSettings {
+  uint32_t resolution = 128;       // power of two, 64..512
+  float padding = 0.05f;           // volume = scene bounds grown by this fraction per side
+  uint32_t maxNodeGroups = 1u << 20;  // SVO pool: 8 nodes (32 bytes) per group
+  VoxelDebugView debugView = VoxelDebugView::None;  // replaces the final image when set
+};
+
+struct VoxelStats {
+  uint32_t entitiesVoxelized = 0;    // this frame
+  uint64_t fragments = 0;            // voxel fragments currently stored (all entities)
+  uint64_t fragmentCapacity = 0;
+  uint64_t nodes = 0;                // SVO nodes allocated (8 per group)
+  uint64_t leaves = 0;               // occupied voxels
+  uint64_t svoBytes = 0;             // node pool bytes in use
+  uint64_t totalBytes = 0;           // fragments + nodes + attributes, allocated
+  uint32_t overflowedEntities = 0;   // re-voxelized next frame with a larger range
+  bool poolOverflow = false;         // SVO pool too small (occupancy then conservative)
+  uint64_t clippedFragments = 0;     // geometry outside the volume is not voxelized (reported, not an error)
+  bool rebuilt = false;              // the SVO was rebuilt this frame
+};
+
+class VoxelScene final : public render::RenderFeature {
+ public:
+  VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings = {});
+  ~VoxelScene() override;
+
+  const char* name() const override { return "voxels"; }
+  void prepare(render::VulkanContext& ctx, const render::RenderSnapshot& snapshot) override;
+  bool record(render::FrameContext& frame) override;
+  void frameFinished(render::VulkanContext& ctx) override;
+  void recordAfterComposite(render::FrameContext& frame) override;
+
+  // Change tracking (called by VoxelSyncSystem, or by hand).
+  void markDirty(ecs::Entity e) { dirty_.insert(e); }
+  void markRemoved(ecs::Entity e) { removed_.insert(e); }
+  void markAllDirty() { allDirty_ = true; }
+  // Fixes the volume (otherwise the first snapshot's bounds decide it). Re-voxelizes everything.
+  void setVolume(const VoxelVolume& v);
+
+  const VoxelVolume& volume() const { return volume_; }
+  bool hasVolume() const { return haveVolume_; }
+  const VoxelStats& stats() const { return stats_; }
+  const VoxelSettings& settings() const { return settings_; }
+
+  // GPU buffers for other stages (visibility march, debug view, cone tracing later).
+  const render::Buffer& nodes() const { return nodes_; }
+  const render::Buffer& leafAttributes() const { return attributes_; }
+  const render::Buffer& levels() const { return levels_; }
+
+  // Read-backs for tests and tools (synchronous).
+  std::vector<uint32_t> readbackNodes();
+  DenseVoxelGrid readbackFragmentGrid();  // every voxel some fragment marks
+  // Visibility of world-space segments through the SVO on the GPU; out[i] = 1 when occluded.
+  // Returns the GPU time of the march dispatch in ms.
+  double marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels = 1e-3f);
+  // Wall time of the last marchSegments submit-to-fence (what a CPU caller waits).
+  double lastMarchWallMs() const { return lastMarchWallMs_; }
+
+ private:
+  struct Range {
+    uint64_t first = 0, capacity = 0;
+    uint32_t counter = 0;    // index into the counters buffer
+    uint32_t lastCount = 0;  // fragments written (read back after the frame)
+    bool written = false;
+  };
+  void ensureCapacity(uint64_t fragments);
+  void relayout(const render::RenderSnapshot& snapshot);
+  uint64_t estimateFragments(const scene::MeshData& mesh, const glm::mat4& modelToVoxel) const;
+
+  render::VulkanContext& ctx_;
+  VoxelSettings settings_;
+  VoxelVolume volume_;
+  bool haveVolume_ = false;
+  bool allDirty_ = true;
+  std::unordered_set<ecs::Entity> dirty_, removed_;
+  std::unordered_map<ecs::Entity, Range> ranges_;
+  std::vector<uint32_t> freeCounters_;
+  uint32_t counterCount_ = 0;
+  uint64_t highWater_ = 0;
+
+  // What this frame records (decided in prepare).
+  std::vector<size_t> drawsToVoxelize_;   // indices into snapshot.draws
+  std::vector<Range> rangesToEmpty_;
+  bool rebuildSvo_ = false;
+  std::vector<ecs::Entity> voxelizedThisFrame_;
+
+  render::Buffer fragments_, counters_, nodes_, levels_, svoCounters_, attributes_;
+  render::Pipeline voxelize_, flag_, level_, alloc_, leafAttributes_, march_, debug_;
+  VoxelStats stats_;
+  double lastMarchWallMs_ = 0.0;
+};
+
+// Marks moved, deformed, added and removed mesh entities dirty in a VoxelScene (change ticks only).
+class VoxelSyncSystem final : public ecs::System {
+ public:
+  VoxelSyncSystem(VoxelScene& voxels, const scene::AssetStore& assets) : voxels_(voxels), assets_(assets) {}
+  const char* name() const override { return "voxel_sync"; }
+  void run(ecs::World& world, const ecs::SystemContext& ctx) override;
+
+ private:
+  VoxelScene& voxels_;
+  const scene::AssetStore& assets_;
+  std::unordered_map<scene::MeshId, uint32_t> meshVersions_;
+};
+
+}  // namespace dyngi::gi

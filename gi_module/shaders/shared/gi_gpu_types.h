@@ -1,0 +1,60 @@
+// Struct layouts and constants shared by the GI module's C++ and GLSL (the engine's live in
+// engine/shaders/shared/gpu_types.h). 16-byte members only, so std140/std430 and C++ agree.
+#ifndef DYNGI_GI_GPU_TYPES_H
+#define DYNGI_GI_GPU_TYPES_H
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+namespace dyngi::gi::gpu {
+using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
+using mat4 = glm::mat4;
+#endif
+
+// SVO node word: bit 31 = occupied / subdivided; bits 0..30 = child group (0: none yet). Children of a
+// node with group g are pool entries 8g .. 8g+7 (group 0 is the root's own group, so g >= 1).
+#define DYNGI_SVO_FLAG 0x80000000u
+#define DYNGI_SVO_GROUP_MASK 0x7FFFFFFFu
+#define DYNGI_SVO_MAX_LEVELS 10
+// A voxel fragment whose coord word is this is empty (ranges are filled with it before voxelizing).
+#define DYNGI_VOXEL_EMPTY 0xFFFFFFFFu
+#define DYNGI_VOXEL_COORD_BITS 10
+
+// Push constants of the voxelization draw (<= 128 bytes).
+#ifdef __cplusplus
+struct alignas(16) VoxelizePush {
+#else
+struct VoxelizePush {
+#endif
+  mat4 modelToVoxel;    // object space -> voxel units ([0, resolution)^3)
+  uvec4 range;          // x first fragment slot, y capacity, z counter index, w resolution
+  vec4 albedo;          // rgb base colour factor, a 1 when a base-colour texture is bound
+  vec4 emission;        // rgb emitted radiance, a 1 when an emissive texture is bound
+};
+
+// Per-level bookkeeping of the SVO build (storage buffer, one per level).
+#ifdef __cplusplus
+struct alignas(16) SvoLevel {
+#else
+struct SvoLevel {
+#endif
+  uvec4 range;          // x first node, y node count, z groups allocated before this level's alloc, w unused
+  uvec4 dispatch;       // indirect dispatch args for this level's alloc pass (x groups, 1, 1)
+};
+
+// Global SVO counters.
+#ifdef __cplusplus
+struct alignas(16) SvoCounters {
+#else
+struct SvoCounters {
+#endif
+  uvec4 groups;         // x groups allocated (incl. root group), y group capacity, z overflowed (0/1), w leaves
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(VoxelizePush) == 112);
+static_assert(sizeof(SvoLevel) == 32);
+}  // namespace dyngi::gi::gpu
+#endif
+
+#endif

@@ -1,0 +1,46 @@
+#version 460
+// Accumulates each fragment's albedo, normal and emission into its leaf (integer atomics: sums of
+// 8-bit albedo, signed 8-bit normals, 1/256-unit emission, and a count). Kept in a buffer apart from
+// the nodes so the visibility march never touches it.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gi_gpu_types.h"
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 0) readonly buffer Fragments { uvec4 fragments[]; };
+layout(set = 0, binding = 1) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = 2) readonly buffer Levels { SvoLevel levels[]; };
+layout(set = 0, binding = 3) buffer Attributes { int attributes[]; };  // 8 ints per leaf
+layout(push_constant) uniform Push { uint fragmentCount; uint depth; uint leafCapacity; };
+
+vec3 unpackEmission(uint e) {
+  vec4 v = unpackUnorm4x8(e);
+  return e == 0u ? vec3(0.0) : v.rgb * exp2(round(v.a * 255.0) - 8.0);
+}
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= fragmentCount) return;
+  uvec4 f = fragments[i];
+  if (f.x == DYNGI_VOXEL_EMPTY) return;
+  uvec3 v = uvec3(f.x & 1023u, (f.x >> 10) & 1023u, (f.x >> 20) & 1023u);
+  uint node = 0u;
+  for (uint l = 0u; l < depth; ++l) {
+    uint g = nodes[node] & DYNGI_SVO_GROUP_MASK;
+    if (g == 0u) return;
+    uint shift = depth - 1u - l;
+    node = 8u * g + (((v.x >> shift) & 1u) | (((v.y >> shift) & 1u) << 1) | (((v.z >> shift) & 1u) << 2));
+  }
+  uint leaf = node - levels[depth].range.x;
+  if (leaf >= leafCapacity) return;
+  vec4 albedo = unpackUnorm4x8(f.y);
+  vec4 normal = unpackSnorm4x8(f.z);
+  vec3 e = min(unpackEmission(f.w) * 256.0, vec3(8.0e6));
+  uint base = leaf * 8u;
+  atomicAdd(attributes[base + 0u], int(round(albedo.r * 255.0)));
+  atomicAdd(attributes[base + 1u], int(round(albedo.g * 255.0)));
+  atomicAdd(attributes[base + 2u], int(round(albedo.b * 255.0)));
+  atomicAdd(attributes[base + 3u], 1);
+  atomicAdd(attributes[base + 4u], int(round(normal.x * 127.0)));
+  atomicAdd(attributes[base + 5u], int(round(normal.y * 127.0)));
+  atomicAdd(attributes[base + 6u], int(round(normal.z * 127.0)));
+  atomicAdd(attributes[base + 7u], int(round((e.r + e.g + e.b) / 3.0)));
+}

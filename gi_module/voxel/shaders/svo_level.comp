@@ -1,0 +1,20 @@
+#version 460
+// SVO build bookkeeping (one thread): before level `level`'s alloc pass, fix that level's node range
+// from the groups the previous level allocated, remember the group counter, and write the indirect
+// dispatch size of the alloc pass.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gi_gpu_types.h"
+layout(local_size_x = 1) in;
+layout(set = 0, binding = 0) buffer Levels { SvoLevel levels[]; };
+layout(set = 0, binding = 1) buffer Counters { SvoCounters counters; };
+layout(push_constant) uniform Push { uint level; };
+void main() {
+  uint used = min(counters.groups.x, counters.groups.y);
+  if (level == 0u) {
+    levels[0].range = uvec4(0u, 1u, used, 0u);
+  } else {
+    uint before = levels[level - 1u].range.z;
+    levels[level].range = uvec4(8u * before, 8u * (used - before), used, 0u);
+  }
+  levels[level].dispatch = uvec4((levels[level].range.y + 63u) / 64u, 1u, 1u, 0u);
+}

@@ -1,0 +1,24 @@
+#version 460
+// Visibility of many segments through the SVO (one thread per segment).
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gi_gpu_types.h"
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 0) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = 1) readonly buffer Segments { vec4 segments[]; };  // pairs: from, to (world)
+layout(set = 0, binding = 2) buffer Results { uint results[]; };             // 1 = occluded
+#include "svo_traverse.glsl"
+layout(push_constant) uniform Push {
+  vec4 worldToVoxel;  // xyz origin, w 1 / voxel size
+  uint count;
+  uint depth;
+  float res;
+  float eps;          // voxel units
+};
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= count) return;
+  vec3 a = (segments[2u * i].xyz - worldToVoxel.xyz) * worldToVoxel.w;
+  vec3 b = (segments[2u * i + 1u].xyz - worldToVoxel.xyz) * worldToVoxel.w;
+  uint steps;
+  results[i] = svoOccluded(a, b, eps, depth, res, steps) ? 1u : 0u;
+}

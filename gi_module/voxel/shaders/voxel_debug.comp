@@ -1,0 +1,45 @@
+#version 460
+// Debug views of the voxel scene, written over the HDR image: `voxels` shows each pixel's first
+// occupied voxel with its averaged albedo, lit by its averaged normal; `svo-steps` shows how many
+// restarts the SVO march took (blue few, red many).
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gpu_types.h"
+#include "shared/gi_gpu_types.h"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = 1) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = 2) readonly buffer Levels { SvoLevel levels[]; };
+layout(set = 0, binding = 3) readonly buffer Attributes { int attributes[]; };
+layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D outHdr;
+#include "svo_traverse.glsl"
+layout(push_constant) uniform Push {
+  vec4 worldToVoxel;  // xyz origin, w 1 / voxel size
+  uint depth;
+  float res;
+  uint mode;          // 0 voxels, 1 svo-steps
+};
+void main() {
+  ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+  if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return;
+  vec2 ndc = (vec2(px) + 0.5) / vec2(frame.sizeAndCount.xy) * 2.0 - 1.0;
+  vec4 farP = frame.invViewProj * vec4(ndc, 1.0, 1.0);
+  vec3 dirWorld = normalize(farP.xyz / farP.w - frame.cameraPos.xyz);
+  vec3 o = (frame.cameraPos.xyz - worldToVoxel.xyz) * worldToVoxel.w;
+  float tHit;
+  uint steps;
+  uint node = svoFirstHit(o, dirWorld, 0.0, 1e30, depth, res, tHit, steps);
+  vec3 color = vec3(0.0);
+  if (mode == 1u) {
+    float s = clamp(float(steps) / 64.0, 0.0, 1.0);
+    color = vec3(s, 0.2 * (1.0 - abs(2.0 * s - 1.0)), 1.0 - s) * 0.6;
+  } else if (node != 0xFFFFFFFFu) {
+    uint leaf = node - levels[depth].range.x;
+    uint base = leaf * 8u;
+    float count = max(float(attributes[base + 3u]), 1.0);
+    vec3 albedo = vec3(attributes[base], attributes[base + 1u], attributes[base + 2u]) / (255.0 * count);
+    vec3 n = vec3(attributes[base + 4u], attributes[base + 5u], attributes[base + 6u]);
+    float lambert = length(n) > 0.0 ? abs(dot(normalize(n), dirWorld)) : 1.0;
+    color = albedo * (0.25 + 0.75 * lambert) * 0.8 + vec3(attributes[base + 7u]) / (256.0 * count);
+  }
+  imageStore(outHdr, px, vec4(color, 1.0));
+}

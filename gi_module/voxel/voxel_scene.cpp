@@ -1,0 +1,456 @@
+#include "dyngi/gi/voxel_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <chrono>
+#include <cstring>
+
+#include "dyngi/engine/render/gpu_timer.h"
+#include "dyngi/engine/scene/animation.h"
+#include "shaders/shared/gi_gpu_types.h"
+#include "spirv/svo_alloc.comp.spv.h"
+#include "spirv/svo_flag.comp.spv.h"
+#include "spirv/svo_leaf_attributes.comp.spv.h"
+#include "spirv/svo_level.comp.spv.h"
+#include "spirv/svo_march.comp.spv.h"
+#include "spirv/voxel_debug.comp.spv.h"
+#include "spirv/voxelize.frag.spv.h"
+#include "spirv/voxelize.geom.spv.h"
+#include "spirv/voxelize.vert.spv.h"
+
+namespace dyngi::gi {
+
+using render::Binding;
+using render::Buffer;
+using render::DescriptorWrites;
+using render::MemoryUsage;
+using render::Pipeline;
+
+namespace {
+constexpr VkShaderStageFlags kCS = VK_SHADER_STAGE_COMPUTE_BIT;
+constexpr VkDescriptorType kSSBO = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+constexpr uint32_t kAttributeInts = 8;
+
+void computeBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT) {
+  render::memoryBarrier(cmd, src | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+}
+uint32_t groups64(uint64_t n) { return uint32_t((n + 63) / 64); }
+}  // namespace
+
+VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings) : ctx_(ctx), settings_(settings) {
+  uint32_t r = settings.resolution;
+  if (r < 8 || r > 1024 || (r & (r - 1)) != 0)
+    throw std::invalid_argument("voxel resolution must be a power of two in 8..1024, got " + std::to_string(r));
+  Pipeline::GraphicsDesc d;
+  d.vertex = DYNGI_SHADER(spv_voxelize_vert);
+  d.geometry = DYNGI_SHADER(spv_voxelize_geom);
+  d.fragment = DYNGI_SHADER(spv_voxelize_frag);
+  d.vertexBindings = {{0, sizeof(render::GpuVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+  d.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(render::GpuVertex, position)},
+                        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(render::GpuVertex, uv)}};
+  d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  d.pushConstantBytes = sizeof(gpu::VoxelizePush);
+  d.bindings = {{0, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {1, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  d.name = "voxelize";
+  voxelize_ = Pipeline::graphics(ctx, d);
+
+  const Binding flagB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
+  flag_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_flag_comp), flagB, 12, "svo_flag");
+  const Binding levelB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}};
+  level_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_level_comp), levelB, 4, "svo_level");
+  const Binding allocB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
+  alloc_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_alloc_comp), allocB, 4, "svo_alloc");
+  const Binding attrB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}};
+  leafAttributes_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, 12, "svo_leaf_attributes");
+  const Binding marchB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
+  march_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_march_comp), marchB, 32, "svo_march");
+  const Binding debugB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS},
+                            {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
+  debug_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_voxel_debug_comp), debugB, 28, "voxel_debug");
+
+  nodes_ = Buffer(ctx, VkDeviceSize(settings.maxNodeGroups) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo nodes");
+  levels_ = Buffer(ctx, sizeof(gpu::SvoLevel) * DYNGI_SVO_MAX_LEVELS, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                   MemoryUsage::Readback, "svo levels");
+  svoCounters_ = Buffer(ctx, sizeof(gpu::SvoCounters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "svo counters");
+  ensureCapacity(1u << 16);
+}
+
+VoxelScene::~VoxelScene() = default;
+
+void VoxelScene::setVolume(const VoxelVolume& v) {
+  volume_ = v;
+  volume_.resolution = settings_.resolution;
+  haveVolume_ = true;
+  allDirty_ = true;
+}
+
+void VoxelScene::ensureCapacity(uint64_t fragments) {
+  if (fragments_.valid() && fragments_.size() >= fragments * 16) return;
+  uint64_t cap = std::max<uint64_t>(fragments + fragments / 2, 1u << 16);
+  vkDeviceWaitIdle(ctx_.device());
+  fragments_ = Buffer(ctx_, cap * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragments");
+  attributes_ = Buffer(ctx_, cap * kAttributeInts * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel leaf attributes");
+  stats_.fragmentCapacity = cap;
+  allDirty_ = true;  // contents are gone: everything is voxelized again
+}
+
+uint64_t VoxelScene::estimateFragments(const scene::MeshData& mesh, const glm::mat4& m) const {
+  // Per triangle: its area projected on the dominant plane plus its perimeter (the columns it can touch),
+  // times two for the depth spread inside a column, plus slack. Overshoots are caught after the frame.
+  double sum = 0;
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    glm::vec3 a(m * glm::vec4(mesh.positions[mesh.indices[t]], 1)), b(m * glm::vec4(mesh.positions[mesh.indices[t + 1]], 1)),
+        c(m * glm::vec4(mesh.positions[mesh.indices[t + 2]], 1));
+    glm::vec3 n = glm::abs(glm::cross(b - a, c - a));
+    double area = 0.5 * std::max({n.x, n.y, n.z});
+    double perimeter = glm::length(b - a) + glm::length(c - b) + glm::length(a - c);
+    sum += 2.0 * (area + perimeter + 2.0);
+  }
+  return uint64_t(sum * 1.25) + 64;
+}
+
+void VoxelScene::relayout(const render::RenderSnapshot& snapshot) {
+  (void)snapshot;
+  ranges_.clear();
+  freeCounters_.clear();
+  counterCount_ = 0;
+  highWater_ = 0;
+  rangesToEmpty_.clear();
+}
+
+void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& snapshot) {
+  drawsToVoxelize_.clear();
+  rangesToEmpty_.clear();
+  voxelizedThisFrame_.clear();
+  rebuildSvo_ = false;
+  stats_.rebuilt = false;
+  stats_.entitiesVoxelized = 0;
+  if (!snapshot.assets) return;
+  if (!haveVolume_) {
+    volume_ = VoxelVolume::around(snapshot.sceneBounds, settings_.resolution, settings_.padding);
+    haveVolume_ = true;
+    allDirty_ = true;
+  }
+  const glm::mat4 toVoxel = volume_.worldToVoxelMatrix();
+
+  // Entities that disappeared from the draw list count as removed.
+  std::unordered_set<ecs::Entity> present;
+  for (const auto& d : snapshot.draws) present.insert(d.entity);
+  for (const auto& [e, r] : ranges_)
+    if (!present.count(e)) removed_.insert(e);
+
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (allDirty_) {
+      relayout(snapshot);
+      for (const auto& d : snapshot.draws) dirty_.insert(d.entity);
+      allDirty_ = false;
+      rebuildSvo_ = true;
+    }
+    for (ecs::Entity e : removed_) {
+      auto it = ranges_.find(e);
+      if (it == ranges_.end()) continue;
+      rangesToEmpty_.push_back(it->second);
+      freeCounters_.push_back(it->second.counter);
+      ranges_.erase(it);
+      rebuildSvo_ = true;
+    }
+    removed_.clear();
+    drawsToVoxelize_.clear();
+    uint64_t newHighWater = highWater_;
+    std::vector<std::pair<ecs::Entity, Range>> planned;
+    for (size_t i = 0; i < snapshot.draws.size(); ++i) {
+      const auto& d = snapshot.draws[i];
+      if (!dirty_.count(d.entity)) continue;
+      const scene::MeshData& mesh = snapshot.assets->mesh(d.mesh);
+      uint64_t need = std::max<uint64_t>(estimateFragments(mesh, toVoxel * d.model), 0);
+      auto it = ranges_.find(d.entity);
+      Range r = it != ranges_.end() ? it->second : Range{};
+      if (it != ranges_.end() && r.lastCount > r.capacity) need = std::max<uint64_t>(need, uint64_t(r.lastCount) * 5 / 4 + 64);
+      if (it == ranges_.end() || r.capacity < need) {
+        if (it != ranges_.end()) rangesToEmpty_.push_back(r);  // the old place must not keep stale voxels
+        Range fresh;
+        fresh.first = newHighWater;
+        fresh.capacity = need;
+        if (it != ranges_.end()) fresh.counter = r.counter;
+        else if (!freeCounters_.empty()) fresh.counter = freeCounters_.back(), freeCounters_.pop_back();
+        else fresh.counter = counterCount_++;
+        newHighWater += need;
+        r = fresh;
+      }
+      planned.push_back({d.entity, r});
+      drawsToVoxelize_.push_back(i);
+    }
+    if (!fragments_.valid() || newHighWater * 16 > fragments_.size()) {
+      ensureCapacity(newHighWater);  // sets allDirty_: lay everything out again in the new buffer
+      continue;
+    }
+    for (auto& [e, r] : planned) {
+      r.written = true;
+      ranges_[e] = r;
+      voxelizedThisFrame_.push_back(e);
+    }
+    highWater_ = newHighWater;
+    break;
+  }
+  dirty_.clear();
+  if (!drawsToVoxelize_.empty()) rebuildSvo_ = true;
+  uint64_t countersBytes = uint64_t(std::max(counterCount_, 1u)) * 4;
+  if (!counters_.valid() || counters_.size() < countersBytes) {
+    vkDeviceWaitIdle(ctx_.device());
+    Buffer grown(ctx_, std::max<uint64_t>(countersBytes * 2, 1024), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "voxel counters");
+    if (counters_.valid()) std::memcpy(grown.mapped(), counters_.mapped(), counters_.size());
+    counters_ = std::move(grown);
+  }
+  stats_.entitiesVoxelized = uint32_t(drawsToVoxelize_.size());
+}
+
+bool VoxelScene::record(render::FrameContext& frame) {
+  if (!rebuildSvo_ || !haveVolume_) return false;
+  VkCommandBuffer cmd = frame.cmd;
+  const uint32_t res = volume_.resolution, depth = volume_.depth();
+  {
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "voxelize");
+    for (const Range& r : rangesToEmpty_)
+      vkCmdFillBuffer(cmd, fragments_.handle(), r.first * 16, r.capacity * 16, DYNGI_VOXEL_EMPTY);
+    for (size_t i : drawsToVoxelize_) {
+      const Range& r = ranges_.at(frame.snapshot.draws[i].entity);
+      vkCmdFillBuffer(cmd, fragments_.handle(), r.first * 16, r.capacity * 16, DYNGI_VOXEL_EMPTY);
+      vkCmdFillBuffer(cmd, counters_.handle(), uint64_t(r.counter) * 4, 4, 0);
+    }
+    render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    if (!drawsToVoxelize_.empty()) {
+      VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+      ri.renderArea = {{0, 0}, {res, res}};
+      ri.layerCount = 1;
+      vkCmdBeginRendering(cmd, &ri);
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, voxelize_.handle());
+      VkViewport vp{0, 0, float(res), float(res), 0, 1};
+      VkRect2D sc{{0, 0}, {res, res}};
+      vkCmdSetViewport(cmd, 0, 1, &vp);
+      vkCmdSetScissor(cmd, 0, 1, &sc);
+      const glm::mat4 toVoxel = volume_.worldToVoxelMatrix();
+      for (size_t i : drawsToVoxelize_) {
+        const render::DrawItem& d = frame.snapshot.draws[i];
+        const render::GpuMesh* mesh = frame.meshes[i];
+        if (!mesh || mesh->indexCount == 0) continue;
+        const Range& r = ranges_.at(d.entity);
+        gpu::VoxelizePush pc;
+        pc.modelToVoxel = toVoxel * d.model;
+        pc.range = glm::uvec4(uint32_t(r.first), uint32_t(r.capacity), r.counter, res);
+        pc.albedo = glm::vec4(glm::vec3(d.material.baseColor) * (1.0f - d.material.metallic),
+                              d.material.baseColorTexture != scene::kNoTexture ? 1.0f : 0.0f);
+        pc.emission = glm::vec4(d.material.emissive, d.material.emissiveTexture != scene::kNoTexture ? 1.0f : 0.0f);
+        DescriptorWrites()
+            .storageBuffer(0, fragments_.handle())
+            .storageBuffer(1, counters_.handle())
+            .sampledImage(2, frame.textureView(d.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+            .sampledImage(3, frame.textureView(d.material.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+            .push(ctx_, cmd, voxelize_);
+        vkCmdPushConstants(cmd, voxelize_.layout(),
+                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+        VkDeviceSize off = 0;
+        VkBuffer vb = mesh->vertices.handle();
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &off);
+        vkCmdBindIndexBuffer(cmd, mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, mesh->indexCount, 1, 0, 0, 0);
+      }
+      vkCmdEndRendering(cmd);
+    }
+    computeBarrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT);
+  }
+  {
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "svo_build");
+    gpu::SvoCounters init{};
+    init.groups = glm::uvec4(1, settings_.maxNodeGroups, 0, 0);
+    vkCmdUpdateBuffer(cmd, svoCounters_.handle(), 0, sizeof(init), &init);
+    vkCmdFillBuffer(cmd, nodes_.handle(), 0, 32, 0);  // the root group
+    computeBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT);
+    const uint32_t fragCount = uint32_t(highWater_);
+    for (uint32_t l = 0; l <= depth; ++l) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, flag_.handle());
+      DescriptorWrites().storageBuffer(0, fragments_.handle()).storageBuffer(1, nodes_.handle()).storageBuffer(2, svoCounters_.handle()).push(ctx_, cmd, flag_);
+      uint32_t fp[3] = {l, fragCount, depth};
+      vkCmdPushConstants(cmd, flag_.layout(), kCS, 0, sizeof(fp), fp);
+      vkCmdDispatch(cmd, groups64(fragCount), 1, 1);
+      computeBarrier(cmd);
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, level_.handle());
+      DescriptorWrites().storageBuffer(0, levels_.handle()).storageBuffer(1, svoCounters_.handle()).push(ctx_, cmd, level_);
+      vkCmdPushConstants(cmd, level_.layout(), kCS, 0, 4, &l);
+      vkCmdDispatch(cmd, 1, 1, 1);
+      computeBarrier(cmd);
+      if (l == depth) break;  // leaves: flagged, never subdivided
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, alloc_.handle());
+      DescriptorWrites().storageBuffer(0, nodes_.handle()).storageBuffer(1, levels_.handle()).storageBuffer(2, svoCounters_.handle()).push(ctx_, cmd, alloc_);
+      vkCmdPushConstants(cmd, alloc_.layout(), kCS, 0, 4, &l);
+      vkCmdDispatchIndirect(cmd, levels_.handle(), VkDeviceSize(l) * sizeof(gpu::SvoLevel) + offsetof(gpu::SvoLevel, dispatch));
+      computeBarrier(cmd);
+    }
+    // Leaf attributes, kept apart from the nodes.
+    vkCmdFillBuffer(cmd, attributes_.handle(), 0, VK_WHOLE_SIZE, 0);
+    computeBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, leafAttributes_.handle());
+    DescriptorWrites()
+        .storageBuffer(0, fragments_.handle())
+        .storageBuffer(1, nodes_.handle())
+        .storageBuffer(2, levels_.handle())
+        .storageBuffer(3, attributes_.handle())
+        .push(ctx_, cmd, leafAttributes_);
+    uint32_t ap[3] = {fragCount, depth, uint32_t(stats_.fragmentCapacity)};
+    vkCmdPushConstants(cmd, leafAttributes_.layout(), kCS, 0, sizeof(ap), ap);
+    vkCmdDispatch(cmd, groups64(fragCount), 1, 1);
+    computeBarrier(cmd);
+  }
+  stats_.rebuilt = true;
+  return false;  // the voxel scene feeds other stages; it does not write indirect light
+}
+
+void VoxelScene::recordAfterComposite(render::FrameContext& frame) {
+  if (settings_.debugView == VoxelDebugView::None || !haveVolume_) return;
+  render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "voxel_debug_view");
+  render::RenderTargets& t = frame.targets;
+  t.hdr.transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, debug_.handle());
+  DescriptorWrites()
+      .uniformBuffer(0, frame.frameUniforms.handle())
+      .storageBuffer(1, nodes_.handle())
+      .storageBuffer(2, levels_.handle())
+      .storageBuffer(3, attributes_.handle())
+      .storageImage(4, t.hdr.view())
+      .push(ctx_, frame.cmd, debug_);
+  struct {
+    glm::vec4 worldToVoxel;
+    uint32_t depth;
+    float res;
+    uint32_t mode;
+  } pc{glm::vec4(volume_.origin, 1.0f / volume_.voxelSize), volume_.depth(), float(volume_.resolution),
+       settings_.debugView == VoxelDebugView::SvoSteps ? 1u : 0u};
+  vkCmdPushConstants(frame.cmd, debug_.layout(), kCS, 0, sizeof(pc), &pc);
+  vkCmdDispatch(frame.cmd, (t.width + 7) / 8, (t.height + 7) / 8, 1);
+}
+
+void VoxelScene::frameFinished(render::VulkanContext&) {
+  if (!stats_.rebuilt) return;
+  counters_.invalidateForRead();
+  svoCounters_.invalidateForRead();
+  const uint32_t* counts = static_cast<const uint32_t*>(counters_.mapped());
+  stats_.overflowedEntities = 0;
+  for (ecs::Entity e : voxelizedThisFrame_) {
+    Range& r = ranges_.at(e);
+    r.lastCount = counts[r.counter];
+    if (r.lastCount > r.capacity) {
+      ++stats_.overflowedEntities;
+      dirty_.insert(e);  // next frame: a larger range
+    }
+  }
+  uint64_t total = 0;
+  for (auto& [e, r] : ranges_) total += std::min<uint64_t>(r.lastCount, r.capacity);
+  stats_.fragments = total;
+  const auto* c = static_cast<const gpu::SvoCounters*>(svoCounters_.mapped());
+  uint64_t groups = std::min<uint64_t>(c->groups.x, c->groups.y);
+  stats_.nodes = groups * 8;
+  stats_.leaves = c->groups.w;
+  stats_.poolOverflow = c->groups.z != 0;
+  stats_.svoBytes = stats_.nodes * 4;
+  stats_.totalBytes = fragments_.size() + nodes_.size() + attributes_.size();
+  if (stats_.poolOverflow) std::fprintf(stderr, "dyngi: warning: SVO node pool overflow (%u groups); raise maxNodeGroups\n", settings_.maxNodeGroups);
+}
+
+std::vector<uint32_t> VoxelScene::readbackNodes() {
+  svoCounters_.invalidateForRead();
+  const auto* c = static_cast<const gpu::SvoCounters*>(svoCounters_.mapped());
+  uint64_t groups = std::min<uint64_t>(c->groups.x, c->groups.y);
+  VkDeviceSize bytes = groups * 8 * 4;
+  Buffer host(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "svo readback");
+  ctx_.immediate([&](VkCommandBuffer cmd) {
+    VkBufferCopy copy{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, nodes_.handle(), host.handle(), 1, &copy);
+  });
+  host.invalidateForRead();
+  const uint32_t* p = static_cast<const uint32_t*>(host.mapped());
+  return std::vector<uint32_t>(p, p + groups * 8);
+}
+
+DenseVoxelGrid VoxelScene::readbackFragmentGrid() {
+  DenseVoxelGrid grid(volume_.resolution);
+  if (highWater_ == 0) return grid;
+  VkDeviceSize bytes = highWater_ * 16;
+  Buffer host(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "fragment readback");
+  ctx_.immediate([&](VkCommandBuffer cmd) {
+    VkBufferCopy copy{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, fragments_.handle(), host.handle(), 1, &copy);
+  });
+  host.invalidateForRead();
+  const uint32_t* p = static_cast<const uint32_t*>(host.mapped());
+  for (uint64_t i = 0; i < highWater_; ++i) {
+    uint32_t c = p[i * 4];
+    if (c == DYNGI_VOXEL_EMPTY) continue;
+    grid.set(c & 1023u, (c >> 10) & 1023u, (c >> 20) & 1023u);
+  }
+  return grid;
+}
+
+double VoxelScene::marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels) {
+  out.assign(segments.size(), 0);
+  if (segments.empty()) return 0.0;
+  std::vector<glm::vec4> packed(segments.size() * 2);
+  for (size_t i = 0; i < segments.size(); ++i) {
+    packed[2 * i] = glm::vec4(segments[i].from, 1.0f);
+    packed[2 * i + 1] = glm::vec4(segments[i].to, 1.0f);
+  }
+  Buffer segBuf(ctx_, packed.size() * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "march segments");
+  segBuf.upload(packed.data(), packed.size() * 16);
+  Buffer results(ctx_, segments.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "march results");
+  render::GpuTimer timer(ctx_, 2);
+  auto t0 = std::chrono::steady_clock::now();
+  ctx_.immediate([&](VkCommandBuffer cmd) {
+    timer.beginFrame(cmd);
+    uint32_t s = timer.begin(cmd, "svo_march");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, march_.handle());
+    DescriptorWrites().storageBuffer(0, nodes_.handle()).storageBuffer(1, segBuf.handle()).storageBuffer(2, results.handle()).push(ctx_, cmd, march_);
+    struct {
+      glm::vec4 worldToVoxel;
+      uint32_t count, depth;
+      float res, eps;
+    } pc{glm::vec4(volume_.origin, 1.0f / volume_.voxelSize), uint32_t(segments.size()), volume_.depth(), float(volume_.resolution), epsVoxels};
+    vkCmdPushConstants(cmd, march_.layout(), kCS, 0, sizeof(pc), &pc);
+    vkCmdDispatch(cmd, groups64(segments.size()), 1, 1);
+    timer.end(cmd, s);
+    render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                          VK_ACCESS_2_HOST_READ_BIT);
+  });
+  double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  timer.resolve();
+  lastMarchWallMs_ = wallMs;
+  results.invalidateForRead();
+  const uint32_t* r = static_cast<const uint32_t*>(results.mapped());
+  for (size_t i = 0; i < segments.size(); ++i) out[i] = r[i] ? 1 : 0;
+  return timer.results().empty() ? 0.0 : timer.results()[0].second;
+}
+
+void VoxelSyncSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {
+  auto markIfMesh = [&](ecs::Entity e) {
+    if (world.has<scene::MeshInstance>(e)) voxels_.markDirty(e);
+  };
+  world.forEachChanged<scene::WorldTransform>(ctx.lastRun, markIfMesh);
+  world.forEachChanged<scene::MeshInstance>(ctx.lastRun, markIfMesh);
+  world.forEachChanged<scene::Material>(ctx.lastRun, markIfMesh);
+  for (ecs::Entity e : world.removedSince<scene::MeshInstance>(ctx.lastRun)) voxels_.markRemoved(e);
+  // Deforming meshes: their vertices change without any component write.
+  world.each<scene::SkinnedMesh, scene::MeshInstance>([&](ecs::Entity e, const scene::SkinnedMesh& s, const scene::MeshInstance&) {
+    uint32_t v = assets_.mesh(s.deformed).version;
+    auto it = meshVersions_.find(s.deformed);
+    if (it == meshVersions_.end() || it->second != v) {
+      meshVersions_[s.deformed] = v;
+      voxels_.markDirty(e);
+    }
+  });
+}
+
+}  // namespace dyngi::gi
