@@ -167,22 +167,28 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
   if (timer_) timer_->beginFrame(cmd_);
   FrameContext frame{ctx_, cmd_, timer_.get(), snapshot, targets_, frameUniforms_, meshes, linearSampler_, nearestSampler_, textures};
 
-  shadow_->execute(frame);
-  gbuffer_->execute(frame, textures);
-  direct_->execute(frame, *shadow_);
+  if (!settings_.featuresOnly) {
+    shadow_->execute(frame);
+    gbuffer_->execute(frame, textures);
+    direct_->execute(frame, *shadow_);
+  }
   bool indirectWritten = false;
   for (RenderFeature* f : features_) indirectWritten |= f->record(frame);
-  if (!indirectWritten) {
+  if (settings_.featuresOnly) {
+    // nothing else to record
+  } else if (!indirectWritten) {
     targets_.indirect.transition(cmd_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     VkClearColorValue zero{};
     VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     vkCmdClearColorImage(cmd_, targets_.indirect.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
   }
-  composite_->execute(frame);
-  for (RenderFeature* f : features_) f->recordAfterComposite(frame);
-  tonemap_->execute(frame);
+  if (!settings_.featuresOnly) {
+    composite_->execute(frame);
+    for (RenderFeature* f : features_) f->recordAfterComposite(frame);
+    tonemap_->execute(frame);
+  }
 
-  if (imageIndex != UINT32_MAX) {
+  if (imageIndex != UINT32_MAX && !settings_.featuresOnly) {
     ScopedPass scope(ctx_, timer_.get(), cmd_, "present_blit");
     targets_.ldr.transition(cmd_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkImage sw = swapchain->image(imageIndex);

@@ -11,6 +11,7 @@
 #include "shaders/shared/gi_gpu_types.h"
 #include "spirv/svo_alloc.comp.spv.h"
 #include "spirv/svo_flag.comp.spv.h"
+#include "spirv/svo_gather.comp.spv.h"
 #include "spirv/svo_leaf_attributes.comp.spv.h"
 #include "spirv/svo_level.comp.spv.h"
 #include "spirv/svo_march.comp.spv.h"
@@ -60,14 +61,16 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
   d.name = "voxelize";
   voxelize_ = Pipeline::graphics(ctx, d);
 
+  const Binding gatherB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
+  gather_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_gather_comp), gatherB, 4, "svo_gather");
   const Binding flagB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
-  flag_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_flag_comp), flagB, 12, "svo_flag");
+  flag_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_flag_comp), flagB, 8, "svo_flag");
   const Binding levelB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}};
   level_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_level_comp), levelB, 4, "svo_level");
   const Binding allocB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
   alloc_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_alloc_comp), allocB, 4, "svo_alloc");
-  const Binding attrB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}};
-  leafAttributes_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, 12, "svo_leaf_attributes");
+  const Binding attrB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS}};
+  leafAttributes_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, 8, "svo_leaf_attributes");
   const Binding marchB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
   march_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_march_comp), marchB, 32, "svo_march");
   const Binding debugB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS},
@@ -77,7 +80,8 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
   nodes_ = Buffer(ctx, VkDeviceSize(settings.maxNodeGroups) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo nodes");
   levels_ = Buffer(ctx, sizeof(gpu::SvoLevel) * DYNGI_SVO_MAX_LEVELS, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                    MemoryUsage::Readback, "svo levels");
-  svoCounters_ = Buffer(ctx, sizeof(gpu::SvoCounters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "svo counters");
+  svoCounters_ = Buffer(ctx, sizeof(gpu::SvoCounters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                        MemoryUsage::Readback, "svo counters");
   ensureCapacity(1u << 16);
 }
 
@@ -95,6 +99,7 @@ void VoxelScene::ensureCapacity(uint64_t fragments) {
   uint64_t cap = std::max<uint64_t>(fragments + fragments / 2, 1u << 16);
   vkDeviceWaitIdle(ctx_.device());
   fragments_ = Buffer(ctx_, cap * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragments");
+  dense_ = Buffer(ctx_, cap * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragments (dense)");
   attributes_ = Buffer(ctx_, cap * kAttributeInts * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel leaf attributes");
   stats_.fragmentCapacity = cap;
   allDirty_ = true;  // contents are gone: everything is voxelized again
@@ -269,21 +274,28 @@ bool VoxelScene::record(render::FrameContext& frame) {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "svo_build");
     gpu::SvoCounters init{};
     init.groups = glm::uvec4(1, settings_.maxNodeGroups, 0, 0);
+    init.fragments = glm::uvec4(0, uint32_t(std::min<uint64_t>(stats_.fragmentCapacity, 0xFFFFFFFFu)), 0, 0);
     vkCmdUpdateBuffer(cmd, svoCounters_.handle(), 0, sizeof(init), &init);
     vkCmdFillBuffer(cmd, nodes_.handle(), 0, 32, 0);  // the root group
-    computeBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT);
-    const uint32_t fragCount = uint32_t(highWater_);
+    computeBarrier(cmd);
+    const uint32_t slots = uint32_t(highWater_);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, gather_.handle());
+    DescriptorWrites().storageBuffer(0, fragments_.handle()).storageBuffer(1, dense_.handle()).storageBuffer(2, svoCounters_.handle()).push(ctx_, cmd, gather_);
+    vkCmdPushConstants(cmd, gather_.layout(), kCS, 0, 4, &slots);
+    vkCmdDispatch(cmd, groups64(slots), 1, 1);
+    computeBarrier(cmd);
+    const VkDeviceSize fragmentDispatch = offsetof(gpu::SvoCounters, fragmentDispatch);
     for (uint32_t l = 0; l <= depth; ++l) {
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, flag_.handle());
-      DescriptorWrites().storageBuffer(0, fragments_.handle()).storageBuffer(1, nodes_.handle()).storageBuffer(2, svoCounters_.handle()).push(ctx_, cmd, flag_);
-      uint32_t fp[3] = {l, fragCount, depth};
-      vkCmdPushConstants(cmd, flag_.layout(), kCS, 0, sizeof(fp), fp);
-      vkCmdDispatch(cmd, groups64(fragCount), 1, 1);
-      computeBarrier(cmd);
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, level_.handle());
       DescriptorWrites().storageBuffer(0, levels_.handle()).storageBuffer(1, svoCounters_.handle()).push(ctx_, cmd, level_);
       vkCmdPushConstants(cmd, level_.layout(), kCS, 0, 4, &l);
       vkCmdDispatch(cmd, 1, 1, 1);
+      computeBarrier(cmd);
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, flag_.handle());
+      DescriptorWrites().storageBuffer(0, dense_.handle()).storageBuffer(1, nodes_.handle()).storageBuffer(2, svoCounters_.handle()).push(ctx_, cmd, flag_);
+      uint32_t fp[2] = {l, depth};
+      vkCmdPushConstants(cmd, flag_.layout(), kCS, 0, sizeof(fp), fp);
+      vkCmdDispatchIndirect(cmd, svoCounters_.handle(), fragmentDispatch);
       computeBarrier(cmd);
       if (l == depth) break;  // leaves: flagged, never subdivided
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, alloc_.handle());
@@ -294,17 +306,18 @@ bool VoxelScene::record(render::FrameContext& frame) {
     }
     // Leaf attributes, kept apart from the nodes.
     vkCmdFillBuffer(cmd, attributes_.handle(), 0, VK_WHOLE_SIZE, 0);
-    computeBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT);
+    computeBarrier(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, leafAttributes_.handle());
     DescriptorWrites()
-        .storageBuffer(0, fragments_.handle())
+        .storageBuffer(0, dense_.handle())
         .storageBuffer(1, nodes_.handle())
         .storageBuffer(2, levels_.handle())
         .storageBuffer(3, attributes_.handle())
+        .storageBuffer(4, svoCounters_.handle())
         .push(ctx_, cmd, leafAttributes_);
-    uint32_t ap[3] = {fragCount, depth, uint32_t(stats_.fragmentCapacity)};
+    uint32_t ap[2] = {depth, uint32_t(stats_.fragmentCapacity)};
     vkCmdPushConstants(cmd, leafAttributes_.layout(), kCS, 0, sizeof(ap), ap);
-    vkCmdDispatch(cmd, groups64(fragCount), 1, 1);
+    vkCmdDispatchIndirect(cmd, svoCounters_.handle(), fragmentDispatch);
     computeBarrier(cmd);
   }
   stats_.rebuilt = true;
@@ -358,7 +371,7 @@ void VoxelScene::frameFinished(render::VulkanContext&) {
   stats_.leaves = c->groups.w;
   stats_.poolOverflow = c->groups.z != 0;
   stats_.svoBytes = stats_.nodes * 4;
-  stats_.totalBytes = fragments_.size() + nodes_.size() + attributes_.size();
+  stats_.totalBytes = fragments_.size() + dense_.size() + nodes_.size() + attributes_.size();
   if (stats_.poolOverflow) std::fprintf(stderr, "dyngi: warning: SVO node pool overflow (%u groups); raise maxNodeGroups\n", settings_.maxNodeGroups);
 }
 

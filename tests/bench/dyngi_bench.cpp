@@ -4,6 +4,8 @@
 
 #include <filesystem>
 #include <glm/gtc/quaternion.hpp>
+#include <chrono>
+#include <cmath>
 #include <random>
 
 #include "dyngi/engine/scene/animation.h"
@@ -12,6 +14,10 @@
 #include "dyngi/gi/bvh.h"
 #include "dyngi/gi/bvh_sync.h"
 #include "dyngi/gi/path_tracer.h"
+#include "dyngi/gi/voxel_scene.h"
+#include "dyngi/engine/render/renderer.h"
+#include "dyngi/engine/scene/scripted_motion.h"
+#include <thread>
 #include "scenes/builtin_scenes.h"
 
 using namespace dyngi;
@@ -165,6 +171,161 @@ void BM_PathTracer(benchmark::State& state) {
   state.SetItemsProcessed(int64_t(state.iterations()) * 128 * 128 * 4);
 }
 BENCHMARK(BM_PathTracer)->Arg(0)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// ---- voxel scene -------------------------------------------------------------------------------
+
+render::VulkanContext& vulkan() {
+  static render::VulkanContext ctx(render::ContextOptions{.quiet = true});
+  return ctx;
+}
+
+// The Cornell box plus four 37k-triangle spheres (about 150k dynamic triangles).
+struct HeavyCornell {
+  ecs::World w;
+  AssetStore assets;
+  std::vector<Entity> spheres;
+  HeavyCornell() {
+    sample::buildBuiltinScene("cornell", w, assets);
+    MeshId sphere = assets.addMesh(makeSphere(0.18f, 192, 96));
+    for (int i = 0; i < 4; ++i) {
+      Entity e = w.create();
+      Transform t;
+      t.translation = {-0.5f + 0.33f * float(i), 1.3f, 0.3f};
+      w.add(e, t);
+      w.add(e, WorldTransform{t.matrix()});
+      w.add(e, MeshInstance{sphere, true});
+      w.add(e, Material{.baseColor = glm::vec4(0.7f)});
+      w.add(e, DynamicTag{});
+      spheres.push_back(e);
+    }
+  }
+  size_t dynamicTriangles() const { return 4 * assets.mesh(MeshId(assets.meshCount() - 1)).triangleCount(); }
+};
+
+// Voxelize + SVO build per frame, wall time (lavapipe's timestamps do not bracket compute work reliably).
+// Full: everything re-voxelized each frame. Incremental: one sphere moves per frame; the rest is cached.
+void voxelBench(benchmark::State& state, bool full) {
+  HeavyCornell scene;
+  uint32_t res = uint32_t(state.range(0));
+  gi::VoxelScene voxels(vulkan(), gi::VoxelSettings{.resolution = res, .maxNodeGroups = 1u << 21});
+  render::Renderer renderer(vulkan(), render::RendererSettings{.gpuTimestamps = false, .featuresOnly = true});
+  renderer.addFeature(&voxels);
+  renderer.resize(8, 8);
+  ecs::Scheduler s;
+  s.add(ecs::Phase::PostUpdate, std::make_unique<TransformSystem>());
+  s.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(voxels, scene.assets));
+  uint64_t frame = 0;
+  auto step = [&] {
+    if (full) voxels.markAllDirty();
+    else scene.w.write<Transform>(scene.spheres[frame % 4]).translation.y = 1.3f + 0.1f * std::sin(float(frame));
+    s.runFrame(scene.w, ecs::FrameTime{1.0 / 60, double(frame) / 60, frame});
+    auto snap = render::extractSnapshot(scene.w, scene.assets, frame);
+    auto t0 = std::chrono::steady_clock::now();
+    renderer.render(snap);
+    ++frame;
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  step();
+  step();  // warm-up: pipelines compiled, buffers sized
+  for (auto _ : state) state.SetIterationTime(step());
+  const gi::VoxelStats& st = voxels.stats();
+  state.counters["dynamic_triangles"] = double(scene.dynamicTriangles());
+  state.counters["entities_voxelized"] = double(st.entitiesVoxelized);
+  state.counters["fragments"] = double(st.fragments);
+  state.counters["svo_nodes"] = double(st.nodes);
+  state.counters["svo_MB"] = double(st.svoBytes) / (1 << 20);
+  state.counters["total_MB"] = double(st.totalBytes) / (1 << 20);
+}
+void BM_VoxelizeBuild_Full(benchmark::State& s) { voxelBench(s, true); }
+void BM_VoxelizeBuild_Incremental(benchmark::State& s) { voxelBench(s, false); }
+BENCHMARK(BM_VoxelizeBuild_Full)->Arg(128)->Arg(256)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(10);
+BENCHMARK(BM_VoxelizeBuild_Incremental)->Arg(128)->Arg(256)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(10);
+
+// VPL-to-surface segments in the heavy Cornell box: 256 "VPLs" where the spot's rays land, 4096 points
+// the camera sees; both ends lifted 1.5 voxels off their surface (so neither starts inside its own voxel).
+struct VisibilitySet {
+  HeavyCornell scene;
+  gi::EmbreeScene bvh;
+  std::unique_ptr<gi::VoxelScene> voxels;
+  std::unique_ptr<render::Renderer> renderer;
+  std::vector<gi::Segment> segments;
+  VisibilitySet() {
+    ecs::Scheduler s;
+    s.add(ecs::Phase::PostUpdate, std::make_unique<TransformSystem>());
+    s.runFrame(scene.w, {});
+    bvh.sync(scene.w, scene.assets, 0);
+    voxels = std::make_unique<gi::VoxelScene>(vulkan(), gi::VoxelSettings{.resolution = 128, .maxNodeGroups = 1u << 21});
+    renderer = std::make_unique<render::Renderer>(vulkan(), render::RendererSettings{.gpuTimestamps = false, .featuresOnly = true});
+    renderer->addFeature(voxels.get());
+    renderer->resize(8, 8);
+    auto snap = render::extractSnapshot(scene.w, scene.assets, 0);
+    renderer->render(snap);
+    float lift = 1.5f * voxels->volume().voxelSize;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> U(0.0f, 1.0f);
+    auto surfacePoint = [&](glm::vec3 o, glm::vec3 d, glm::vec3& p) {
+      gi::RayHit h = bvh.intersect(o, d, 1e-4f, 100.0f);
+      if (!h.hit) return false;
+      p = o + d * h.t;
+      // Lift against the incoming direction (towards the side that was seen).
+      p -= d * lift * 1.2f;
+      return true;
+    };
+    std::vector<glm::vec3> vpls, points;
+    while (vpls.size() < 256) {
+      float phi = 6.2831853f * U(rng), ct = 1.0f - U(rng) * (1.0f - std::cos(0.7f));
+      float st = std::sqrt(1 - ct * ct);
+      glm::vec3 p;
+      if (surfacePoint({0, 1.9f, 0}, {st * std::cos(phi), -ct, st * std::sin(phi)}, p)) vpls.push_back(p);
+    }
+    while (points.size() < 4096) {
+      glm::vec3 target(U(rng) * 2 - 1, U(rng) * 2, -1.0f);
+      glm::vec3 p;
+      if (surfacePoint({0, 1, 3.9f}, glm::normalize(target - glm::vec3(0, 1, 3.9f)), p)) points.push_back(p);
+    }
+    for (auto& v : vpls)
+      for (auto& p : points) segments.push_back({v, p});
+  }
+};
+VisibilitySet& visibilitySet() {
+  static VisibilitySet set;
+  return set;
+}
+
+void BM_SvoVisibility(benchmark::State& state) {
+  VisibilitySet& v = visibilitySet();
+  std::vector<uint8_t> out;
+  size_t blocked = 0;
+  for (auto _ : state) {
+    v.voxels->marchSegments(v.segments, out);
+    state.SetIterationTime(v.voxels->lastMarchWallMs() * 1e-3);
+  }
+  for (uint8_t b : out) blocked += b;
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(v.segments.size()));
+  state.counters["occluded_fraction"] = double(blocked) / double(v.segments.size());
+}
+BENCHMARK(BM_SvoVisibility)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(5);
+
+// The same segments through Embree on all cores (streams).
+void BM_EmbreeOcclusion(benchmark::State& state) {
+  VisibilitySet& v = visibilitySet();
+  std::vector<uint8_t> out(v.segments.size());
+  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  for (auto _ : state) {
+    std::vector<std::thread> pool;
+    size_t chunk = (v.segments.size() + threads - 1) / threads;
+    for (unsigned t = 0; t < threads; ++t) {
+      size_t b = t * chunk, e = std::min(v.segments.size(), b + chunk);
+      pool.emplace_back([&, b, e] { v.bvh.occluded(v.segments.data() + b, e - b, out.data() + b); });
+    }
+    for (auto& th : pool) th.join();
+  }
+  size_t blocked = 0;
+  for (uint8_t b : out) blocked += b;
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(v.segments.size()));
+  state.counters["occluded_fraction"] = double(blocked) / double(v.segments.size());
+}
+BENCHMARK(BM_EmbreeOcclusion)->UseRealTime()->Unit(benchmark::kMillisecond)->Iterations(5);
 
 }  // namespace
 

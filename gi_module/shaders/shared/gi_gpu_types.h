@@ -49,11 +49,14 @@ struct alignas(16) SvoCounters {
 struct SvoCounters {
 #endif
   uvec4 groups;         // x groups allocated (incl. root group), y group capacity, z overflowed (0/1), w leaves
+  uvec4 fragments;      // x valid fragments gathered into the dense list, y its capacity
+  uvec4 fragmentDispatch;  // indirect dispatch args over the dense list (x groups, 1, 1)
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(VoxelizePush) == 112);
 static_assert(sizeof(SvoLevel) == 32);
+static_assert(sizeof(SvoCounters) == 48);
 }  // namespace dyngi::gi::gpu
 #endif
 

@@ -6,10 +6,10 @@ layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) readonly buffer Fragments { uvec4 fragments[]; };
 layout(set = 0, binding = 1) buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = 2) buffer Counters { SvoCounters counters; };
-layout(push_constant) uniform Push { uint level; uint fragmentCount; uint depth; };
+layout(push_constant) uniform Push { uint level; uint depth; };
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= fragmentCount) return;
+  if (i >= min(counters.fragments.x, counters.fragments.y)) return;
   uint c = fragments[i].x;
   if (c == DYNGI_VOXEL_EMPTY) return;
   uvec3 v = uvec3(c & 1023u, (c >> 10) & 1023u, (c >> 20) & 1023u);

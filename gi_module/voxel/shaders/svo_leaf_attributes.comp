@@ -9,7 +9,8 @@ layout(set = 0, binding = 0) readonly buffer Fragments { uvec4 fragments[]; };
 layout(set = 0, binding = 1) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = 2) readonly buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = 3) buffer Attributes { int attributes[]; };  // 8 ints per leaf
-layout(push_constant) uniform Push { uint fragmentCount; uint depth; uint leafCapacity; };
+layout(set = 0, binding = 4) readonly buffer Counters { SvoCounters counters; };
+layout(push_constant) uniform Push { uint depth; uint leafCapacity; };
 
 vec3 unpackEmission(uint e) {
   vec4 v = unpackUnorm4x8(e);
@@ -18,7 +19,7 @@ vec3 unpackEmission(uint e) {
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= fragmentCount) return;
+  if (i >= min(counters.fragments.x, counters.fragments.y)) return;
   uvec4 f = fragments[i];
   if (f.x == DYNGI_VOXEL_EMPTY) return;
   uvec3 v = uvec3(f.x & 1023u, (f.x >> 10) & 1023u, (f.x >> 20) & 1023u);

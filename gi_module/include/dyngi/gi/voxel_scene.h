@@ -107,8 +107,8 @@ class VoxelScene final : public render::RenderFeature {
   bool rebuildSvo_ = false;
   std::vector<ecs::Entity> voxelizedThisFrame_;
 
-  render::Buffer fragments_, counters_, nodes_, levels_, svoCounters_, attributes_;
-  render::Pipeline voxelize_, flag_, level_, alloc_, leafAttributes_, march_, debug_;
+  render::Buffer fragments_, dense_, counters_, nodes_, levels_, svoCounters_, attributes_;
+  render::Pipeline voxelize_, gather_, flag_, level_, alloc_, leafAttributes_, march_, debug_;
   VoxelStats stats_;
   double lastMarchWallMs_ = 0.0;
 };

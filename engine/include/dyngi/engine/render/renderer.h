@@ -29,6 +29,9 @@ struct RendererSettings {
   int toneMapper = 0;              // 0 ACES fit, 1 clamp (for tests that compare linear values)
   glm::vec3 background{0.0f};      // radiance where no geometry is hit
   bool gpuTimestamps = true;
+  // Run only the render features (no shadow/G-buffer/lighting/tone map): for compute-only work such as
+  // benchmarks of a feature.
+  bool featuresOnly = false;
 };
 
 enum class TargetId { Position, Normal, Albedo, Emissive, Direct, Indirect, Hdr, Ldr };
