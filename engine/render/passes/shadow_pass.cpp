@@ -4,25 +4,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "shared/gpu_types.h"
+#include "dyngi/engine/render/light_views.h"
 #include "passes.h"
 #include "spirv/shadow.vert.spv.h"
 
 namespace dyngi::render {
-namespace {
-glm::mat4 perspectiveZO(float fov, float nearZ, float farZ) { return glm::perspectiveRH_ZO(fov, 1.0f, nearZ, farZ); }
-
-// Distance from p to the farthest corner of b (the far plane that still sees the whole scene).
-float farthestCorner(const scene::Aabb& b, const glm::vec3& p) {
-  float d = 0.0f;
-  for (int i = 0; i < 8; ++i) {
-    glm::vec3 c((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z);
-    d = std::max(d, glm::length(c - p));
-  }
-  return d;
-}
-glm::vec3 anyUp(const glm::vec3& dir) { return std::abs(dir.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0); }
-}  // namespace
-
 ShadowPass::ShadowPass(VulkanContext& ctx, const Settings& settings) : ctx_(ctx), settings_(settings) {
   Pipeline::GraphicsDesc d;
   d.vertex = DYNGI_SHADER(spv_shadow_vert);
@@ -60,20 +46,12 @@ ShadowPass::~ShadowPass() { vkDestroySampler(ctx_.device(), compareSampler_, nul
 void ShadowPass::prepare(const RenderSnapshot& snapshot) {
   std::vector<gpu::GpuLight> lights;
   layerMatrices_.clear();
-  const scene::Aabb& bounds = snapshot.sceneBounds;
-  float texelAngle = 2.0f / float(settings_.mapSize);  // 2 tan(fov/2) / res for a 90 degree frustum
   for (const LightItem& item : snapshot.lights) {
     if (lights.size() >= DYNGI_MAX_LIGHTS) break;
+    gpu::GpuLight g = toGpuLight(item);
     const scene::Light& l = item.light;
-    gpu::GpuLight g{};
-    g.positionType = glm::vec4(item.position, float(uint32_t(l.type)));
-    g.directionRange = glm::vec4(item.direction, l.range);
-    g.radiance = glm::vec4(l.color * l.intensity, l.enabled ? 1.0f : 0.0f);
-    float outer = std::clamp(l.outerConeAngle, 1e-3f, 1.5707f);
-    float inner = std::clamp(l.innerConeAngle, 0.0f, outer);
-    g.cone = glm::vec4(std::cos(outer), std::cos(inner), -1.0f, 0.0f);
     uint32_t needed = l.type == scene::LightType::Point ? 6u : 1u;
-    bool shadowed = l.castShadows && l.enabled && bounds.valid();
+    bool shadowed = l.castShadows && l.enabled && snapshot.sceneBounds.valid();
     if (shadowed && layerMatrices_.size() + needed > settings_.maxLayers) {
       if (!warnedCapacity_) std::fprintf(stderr, "dyngi: warning: shadow map layers exhausted; further lights are unshadowed\n");
       warnedCapacity_ = true;
@@ -81,25 +59,10 @@ void ShadowPass::prepare(const RenderSnapshot& snapshot) {
     }
     if (shadowed) {
       g.cone.z = float(layerMatrices_.size());
-      float farZ = l.range > 0.0f ? l.range : farthestCorner(bounds, item.position) * 1.01f + 0.01f;
-      float nearZ = std::max(farZ * 1e-3f, 0.02f);
-      if (l.type == scene::LightType::Spot) {
-        float fov = std::min(2.0f * outer + 0.05f, 3.0f);
-        layerMatrices_.push_back(perspectiveZO(fov, nearZ, farZ) *
-                                 glm::lookAtRH(item.position, item.position + item.direction, anyUp(item.direction)));
-        g.cone.w = settings_.normalOffsetTexels * 2.0f * std::tan(0.5f * fov) / float(settings_.mapSize);
-      } else if (l.type == scene::LightType::Point) {
-        const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-        for (const auto& d : dirs)
-          layerMatrices_.push_back(perspectiveZO(glm::radians(90.0f), nearZ, farZ) * glm::lookAtRH(item.position, item.position + d, anyUp(d)));
-        g.cone.w = settings_.normalOffsetTexels * texelAngle;
-      } else {
-        glm::vec3 c = bounds.center();
-        float r = 0.5f * glm::length(bounds.extent()) + 1e-3f;
-        glm::mat4 view = glm::lookAtRH(c - item.direction * (2.0f * r), c, anyUp(item.direction));
-        layerMatrices_.push_back(glm::orthoRH_ZO(-r, r, -r, r, 0.0f, 4.0f * r) * view);
-        g.cone.w = settings_.normalOffsetTexels * 2.0f * r / float(settings_.mapSize);
-      }
+      std::vector<LightView> views = lightViews(item, snapshot.sceneBounds);
+      for (const LightView& v : views) layerMatrices_.push_back(v.viewProj);
+      // Normal offset of ~1.5 texels: per unit distance for perspective maps, absolute for orthographic.
+      g.cone.w = settings_.normalOffsetTexels * views[0].extent / float(settings_.mapSize);
     }
     lights.push_back(g);
   }

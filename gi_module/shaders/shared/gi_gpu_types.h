@@ -53,8 +53,36 @@ struct SvoCounters {
   uvec4 fragmentDispatch;  // indirect dispatch args over the dense list (x groups, 1, 1)
 };
 
+// A virtual point light: a point on a surface that reflects `flux` (watts, reflected: rho * E * A)
+// with a cosine lobe around `normal`.
+#ifdef __cplusplus
+struct alignas(16) GpuVpl {
+#else
+struct GpuVpl {
+#endif
+  vec4 position;        // xyz world, w bounce (0: lit directly by a light), negative: invalid
+  vec4 normal;          // xyz unit normal, w path index
+  vec4 flux;            // rgb reflected flux, w luminance (for skipping dim VPLs)
+};
+
+// Push constants of the RSM pass.
+#ifdef __cplusplus
+struct alignas(16) RsmPush {
+#else
+struct RsmPush {
+#endif
+  mat4 lightViewProjModel;
+  mat4 model;
+  vec4 baseColor;       // rgb linear, a 1 when a base-colour texture is bound
+  vec4 light;           // xyz light position (directional: unused), w layer index
+  vec4 params;          // x texel scale (2 tan(fov/2) / res, or directional texel side), y light index, z type, w unused
+};
+
+#define DYNGI_MAX_RSM_LAYERS 24
+
 #ifdef __cplusplus
 static_assert(sizeof(VoxelizePush) == 112);
+static_assert(sizeof(GpuVpl) == 48);
 static_assert(sizeof(SvoLevel) == 32);
 static_assert(sizeof(SvoCounters) == 48);
 }  // namespace dyngi::gi::gpu
