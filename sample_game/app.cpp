@@ -3,6 +3,7 @@
 #include <GLFW/glfw3.h>
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -20,6 +21,7 @@
 #include "dyngi/engine/scene/transform_system.h"
 #include "dyngi/gi/bvh_sync.h"
 #include "dyngi/gi/path_tracer.h"
+#include "dyngi/gi/many_lights.h"
 #include "dyngi/gi/voxel_scene.h"
 #include "scenes/builtin_scenes.h"
 #include "stats.h"
@@ -219,14 +221,32 @@ int runApp(const Options& o) {
   }
   renderer.resize(width, height);
 
-  // The voxel scene runs when something needs it (today: its debug views).
+  // The voxel scene runs when something needs it: --gi svo, or its debug views.
   std::unique_ptr<gi::VoxelScene> voxels;
-  if (o.view != "final") {
+  std::unique_ptr<gi::ManyLights> manyLights;
+  const bool voxelView = o.view == "voxels" || o.view == "svo-steps";
+  if (voxelView || o.gi == "svo") {
     gi::VoxelSettings vs;
     vs.resolution = o.voxelResolution;
-    vs.debugView = o.view == "voxels" ? gi::VoxelDebugView::Voxels : gi::VoxelDebugView::SvoSteps;
+    if (voxelView) vs.debugView = o.view == "voxels" ? gi::VoxelDebugView::Voxels : gi::VoxelDebugView::SvoSteps;
     voxels = std::make_unique<gi::VoxelScene>(ctx, vs);
     renderer.addFeature(voxels.get());
+  }
+  if (o.gi == "svo") {
+    gi::ManyLightsSettings ms;
+    ms.vplCount = o.vpls;
+    ms.bounces = std::clamp(o.bounces, 1u, 3u);
+    ms.interleave = o.interleave;
+    ms.distanceClamp = o.distanceClamp;
+    ms.view = o.view == "indirect" ? gi::ManyLightsView::Indirect
+              : o.view == "vpls"   ? gi::ManyLightsView::Vpls
+              : o.view == "subimages" ? gi::ManyLightsView::SubImages
+                                      : gi::ManyLightsView::Final;
+    manyLights = std::make_unique<gi::ManyLights>(ctx, *voxels, ms);
+    renderer.addFeature(manyLights.get());
+  } else if (o.view == "indirect" || o.view == "vpls" || o.view == "subimages") {
+    std::fprintf(stderr, "dyngi_sample: --view %s needs --gi svo\n", o.view.c_str());
+    return 2;
   }
 
   ecs::Scheduler scheduler;
@@ -291,6 +311,11 @@ int runApp(const Options& o) {
   stats.height = renderer.height();
   stats.scalars["draws"] = double(render::extractSnapshot(world, assets, 0).draws.size());
   stats.scalars["validation_errors"] = ctx.validationErrorCount();
+  if (manyLights) {
+    stats.scalars["vpls"] = o.vpls;
+    stats.scalars["interleave"] = o.interleave;
+    stats.scalars["bounces"] = std::clamp(o.bounces, 1u, 3u);
+  }
   if (voxels) {
     const gi::VoxelStats& v = voxels->stats();
     stats.scalars["voxel_resolution"] = o.voxelResolution;

@@ -6,7 +6,7 @@
 
 namespace dyngi::sample {
 
-const char* const kGiModes[] = {"off", "path"};
+const char* const kGiModes[] = {"off", "path", "svo"};
 
 std::string usage() {
   return "usage: dyngi_sample [options]\n"
@@ -14,13 +14,17 @@ std::string usage() {
          "  --headless                             render offscreen, no window\n"
          "  --size WxH                             render size (default 768x768)\n"
          "  --frames N                             frames to render (default: 60 headless, until closed windowed)\n"
-         "  --gi MODE                              global illumination: off | path (CPU reference path tracer)\n"
+         "  --gi MODE                              global illumination: off | svo (many lights, SVO visibility) |\n"
+         "                                         path (CPU reference path tracer)\n"
+         "  --vpls N                               VPLs for --gi svo (default 512)\n"
+         "  --interleave K                         K x K interleaved sub-images (default 4)\n"
+         "  --clamp B                              distance clamp B in world units^2 (default 0.01)\n"
          "  --spp N                                path tracer samples per pixel (default 64)\n"
          "  --bounces B                            indirect bounces: 0 = direct only, 1 = one bounce (default 1)\n"
          "  --out FILE.png                         write the last frame (tone-mapped, sRGB)\n"
          "  --hdr-out FILE.exr                     write the last frame's linear radiance before exposure\n"
          "  --stats FILE.json                      write timings (medians over frames after warm-up)\n"
-         "  --view NAME                            final | voxels | svo-steps (debug views of the voxel scene)\n"
+         "  --view NAME                            final | voxels | svo-steps | indirect | vpls | subimages\n"
          "  --voxel-res N                          voxel resolution, a power of two in 64..512 (default 128)\n"
          "  --clip NAME                            glTF animation clip to play (default: the first)\n"
          "  --exposure X                           linear exposure multiplier (default 1)\n"
@@ -60,8 +64,11 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
     else if (a == "--clip") { if (!value(o.clip)) return std::nullopt; }
     else if (a == "--view") {
       if (!value(o.view)) return std::nullopt;
-      if (o.view != "final" && o.view != "voxels" && o.view != "svo-steps") {
-        error = "unknown --view '" + o.view + "' (available: final, voxels, svo-steps)";
+      const char* views[] = {"final", "voxels", "svo-steps", "indirect", "vpls", "subimages"};
+      bool known = false;
+      for (const char* name : views) known |= o.view == name;
+      if (!known) {
+        error = "unknown --view '" + o.view + "' (available: final, voxels, svo-steps, indirect, vpls, subimages)";
         return std::nullopt;
       }
     } else if (a == "--voxel-res") {
@@ -88,6 +95,24 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
         return std::nullopt;
       }
       o.frames = int(n);
+    } else if (a == "--vpls" || a == "--interleave") {
+      uint32_t n;
+      if (!value(v)) return std::nullopt;
+      bool isVpls = a == "--vpls";
+      if (!parseUint(v, n) || (isVpls ? (n < 16 || n > 65536) : (n < 1 || n > 8))) {
+        error = a + (isVpls ? " wants 16..65536" : " wants 1..8") + ", got '" + v + "'";
+        return std::nullopt;
+      }
+      (isVpls ? o.vpls : o.interleave) = n;
+    } else if (a == "--clamp") {
+      if (!value(v)) return std::nullopt;
+      float f = 0;
+      auto r = std::from_chars(v.data(), v.data() + v.size(), f);
+      if (r.ec != std::errc() || r.ptr != v.data() + v.size() || !std::isfinite(f) || f < 0) {
+        error = "--clamp wants a number >= 0, got '" + v + "'";
+        return std::nullopt;
+      }
+      o.distanceClamp = f;
     } else if (a == "--spp" || a == "--bounces") {
       uint32_t n;
       if (!value(v)) return std::nullopt;
@@ -111,7 +136,7 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
       bool known = false;
       for (const char* m : kGiModes) known |= o.gi == m;
       if (!known) {
-        error = "unknown --gi mode '" + o.gi + "' (available: off, path)";
+        error = "unknown --gi mode '" + o.gi + "' (available: off, svo, path)";
         return std::nullopt;
       }
     } else {

@@ -11,13 +11,16 @@ struct Options {
   bool headless = false;
   uint32_t width = 768, height = 768;
   int frames = -1;                          // -1: headless 60, windowed until closed
-  std::string gi = "off";                   // off | path
+  std::string gi = "off";                   // off | path | svo
+  uint32_t vpls = 512;                      // many-lights VPL count
+  uint32_t interleave = 4;                  // many-lights K (K x K sub-images)
+  float distanceClamp = 0.01f;              // many-lights B (world units^2)
   uint32_t spp = 64;                        // path tracer samples per pixel
   uint32_t bounces = 1;                     // indirect bounces (path tracer; later the GI techniques)
   std::string out;                          // PNG of the last frame
   std::string hdrOut;                       // EXR, linear radiance before exposure
   std::string stats;                        // JSON
-  std::string view = "final";               // final | voxels | svo-steps
+  std::string view = "final";               // final | voxels | svo-steps | indirect | vpls | subimages
   uint32_t voxelResolution = 128;           // voxel volume resolution (power of two, 64..512)
   std::string clip;                         // animation clip of a glTF scene (default: the first)
   float exposure = 1.0f;

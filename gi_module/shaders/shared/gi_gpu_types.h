@@ -65,17 +65,37 @@ struct GpuVpl {
   vec4 flux;            // rgb reflected flux, w luminance (for skipping dim VPLs)
 };
 
-// Push constants of the RSM pass.
+// One layer of the reflective shadow maps (storage buffer): how light `light` sees the scene.
+#ifdef __cplusplus
+struct alignas(16) RsmLayer {
+#else
+struct RsmLayer {
+#endif
+  mat4 viewProj;
+  vec4 axis;            // xyz view forward, w texel footprint (perspective: per unit distance; ortho: world side)
+  uvec4 info;           // x light index, y orthographic (0/1), z RSM resolution
+};
+
+// Push constants of the RSM draw.
 #ifdef __cplusplus
 struct alignas(16) RsmPush {
 #else
 struct RsmPush {
 #endif
-  mat4 lightViewProjModel;
   mat4 model;
-  vec4 baseColor;       // rgb linear, a 1 when a base-colour texture is bound
-  vec4 light;           // xyz light position (directional: unused), w layer index
-  vec4 params;          // x texel scale (2 tan(fov/2) / res, or directional texel side), y light index, z type, w unused
+  vec4 baseColor;       // rgb linear base colour x (1 - metallic), a 1 when a base-colour texture is bound
+  uvec4 info;           // x layer
+};
+
+// Settings of the indirect gather (push constants).
+#ifdef __cplusplus
+struct alignas(16) GatherPush {
+#else
+struct GatherPush {
+#endif
+  vec4 worldToVoxel;    // xyz origin, w 1 / voxel size
+  vec4 params;          // x distance clamp B (world units^2), y luminance threshold, z lift (world units), w voxel resolution
+  uvec4 info;           // x VPL count, y interleave K, z visibility (0 SVO, 1 none), w SVO depth
 };
 
 #define DYNGI_MAX_RSM_LAYERS 24
@@ -83,6 +103,8 @@ struct RsmPush {
 #ifdef __cplusplus
 static_assert(sizeof(VoxelizePush) == 112);
 static_assert(sizeof(GpuVpl) == 48);
+static_assert(sizeof(RsmPush) == 96);
+static_assert(sizeof(GatherPush) == 48);
 static_assert(sizeof(SvoLevel) == 32);
 static_assert(sizeof(SvoCounters) == 48);
 }  // namespace dyngi::gi::gpu

@@ -55,8 +55,12 @@ class Renderer {
   uint32_t width() const { return targets_.width; }
   uint32_t height() const { return targets_.height; }
 
-  // Features record in the order added; the renderer does not own them.
-  void addFeature(RenderFeature* feature) { features_.push_back(feature); }
+  // Features record in the order added; the renderer does not own them. A feature added after
+  // resize() is sized at once.
+  void addFeature(RenderFeature* feature) {
+    features_.push_back(feature);
+    if (targets_.width) feature->resize(ctx_, targets_.width, targets_.height);
+  }
 
   // Renders one frame; when `swapchain` is given (and valid) the result is presented to it.
   const FrameStats& render(const RenderSnapshot& snapshot, Swapchain* swapchain = nullptr);

@@ -1,0 +1,359 @@
+#include "dyngi/gi/many_lights.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "dyngi/engine/render/light_views.h"
+#include "shaders/shared/gi_gpu_types.h"
+#include "spirv/filter.comp.spv.h"
+#include "spirv/gather.comp.spv.h"
+#include "spirv/many_lights_debug.comp.spv.h"
+#include "spirv/rsm.frag.spv.h"
+#include "spirv/rsm.vert.spv.h"
+#include "spirv/vpl_bounce.comp.spv.h"
+#include "spirv/vpl_cdf_rows.comp.spv.h"
+#include "spirv/vpl_cdf_total.comp.spv.h"
+#include "spirv/vpl_sample.comp.spv.h"
+
+namespace dyngi::gi {
+
+using render::Binding;
+using render::Buffer;
+using render::DescriptorWrites;
+using render::Image;
+using render::MemoryUsage;
+using render::Pipeline;
+
+namespace {
+constexpr VkShaderStageFlags kCS = VK_SHADER_STAGE_COMPUTE_BIT;
+constexpr VkDescriptorType kSSBO = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+constexpr VkDescriptorType kStorageImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+
+void computeToCompute(VkCommandBuffer cmd) {
+  render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+}
+uint32_t groups(uint32_t n, uint32_t local) { return (n + local - 1) / local; }
+}  // namespace
+
+ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const ManyLightsSettings& settings)
+    : ctx_(ctx), voxels_(voxels), settings_(settings) {
+  Pipeline::GraphicsDesc d;
+  d.vertex = DYNGI_SHADER(spv_rsm_vert);
+  d.fragment = DYNGI_SHADER(spv_rsm_frag);
+  d.vertexBindings = {{0, sizeof(render::GpuVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+  d.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(render::GpuVertex, position)},
+                        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(render::GpuVertex, normal)},
+                        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(render::GpuVertex, uv)}};
+  d.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT};
+  d.depthFormat = VK_FORMAT_D32_SFLOAT;
+  d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  d.pushConstantBytes = sizeof(gpu::RsmPush);
+  d.bindings = {{0, kSSBO, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
+                {1, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {2, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  d.name = "rsm";
+  rsm_ = Pipeline::graphics(ctx, d);
+
+  const Binding rowsB[] = {{0, kSampled, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
+  cdfRows_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_cdf_rows_comp), rowsB, 8, "vpl_cdf_rows");
+  const Binding totalB[] = {{0, kSSBO, kCS}};
+  cdfTotal_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_cdf_total_comp), totalB, 4, "vpl_cdf_total");
+  const Binding sampleB[] = {{0, kSampled, kCS}, {1, kSampled, kCS}, {2, kSampled, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS}, {5, kSSBO, kCS}};
+  sample_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_sample_comp), sampleB, 16, "vpl_sample");
+  const Binding bounceB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}};
+  bounce_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_bounce_comp), bounceB, 40, "vpl_bounce");
+  const Binding gatherB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSampled, kCS}, {2, kSampled, kCS},
+                             {3, kSSBO, kCS}, {4, kSSBO, kCS}, {5, kStorageImage, kCS}};
+  gather_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_gather_comp), gatherB, sizeof(gpu::GatherPush), "indirect_gather");
+  const Binding filterB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSampled, kCS}, {2, kSampled, kCS},
+                             {3, kStorageImage, kCS}, {4, kStorageImage, kCS}};
+  filter_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_filter_comp), filterB, 8, "indirect_filter");
+  const Binding debugB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSampled, kCS}, {2, kStorageImage, kCS},
+                            {3, kStorageImage, kCS}, {4, kSSBO, kCS}, {5, kStorageImage, kCS}};
+  debug_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_many_lights_debug_comp), debugB, 12, "many_lights_debug");
+
+  lights_ = Buffer(ctx, sizeof(::dyngi::gpu::GpuLight) * DYNGI_MAX_LIGHTS, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "rsm lights");
+  layers_ = Buffer(ctx, sizeof(gpu::RsmLayer) * DYNGI_MAX_RSM_LAYERS, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "rsm layers");
+}
+
+ManyLights::~ManyLights() = default;
+
+void ManyLights::ensureRsm(uint32_t layers) {
+  layers = std::max(layers, 1u);
+  uint32_t res = settings_.rsmResolution;
+  if (rsmLayers_ >= layers && rsmPosition_.valid() && rsmPosition_.desc().width == res) return;
+  vkDeviceWaitIdle(ctx_.device());
+  auto make = [&](VkFormat f, VkImageUsageFlags usage, const char* name) {
+    render::ImageDesc d;
+    d.width = d.height = res;
+    d.layers = layers;
+    d.format = f;
+    d.usage = usage;
+    d.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+    d.name = name;
+    return Image(ctx_, d);
+  };
+  constexpr VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+  rsmPosition_ = make(VK_FORMAT_R32G32B32A32_SFLOAT, color, "rsm position");
+  rsmNormal_ = make(VK_FORMAT_R16G16B16A16_SFLOAT, color, "rsm normal");
+  rsmFlux_ = make(VK_FORMAT_R32G32B32A32_SFLOAT, color, "rsm flux");
+  rsmDepth_ = make(VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "rsm depth");
+  rowPrefix_ = Buffer(ctx_, VkDeviceSize(res) * res * layers * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "vpl row prefix");
+  rowCdf_ = Buffer(ctx_, VkDeviceSize(res) * layers * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "vpl row cdf");
+  rsmLayers_ = layers;
+}
+
+void ManyLights::resize(render::VulkanContext& ctx, uint32_t width, uint32_t height) {
+  render::ImageDesc d;
+  d.width = width;
+  d.height = height;
+  d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  d.name = "indirect raw (interleaved)";
+  raw_ = Image(ctx, d);
+}
+
+void ManyLights::prepare(render::VulkanContext&, const render::RenderSnapshot& snapshot) {
+  settings_.bounces = std::clamp(settings_.bounces, 1u, 3u);
+  settings_.interleave = std::clamp(settings_.interleave, 1u, 8u);
+  perBounce_ = std::max(1u, settings_.vplCount / settings_.bounces);
+  std::vector<::dyngi::gpu::GpuLight> lights;
+  std::vector<gpu::RsmLayer> layers;
+  for (const render::LightItem& item : snapshot.lights) {
+    if (lights.size() >= DYNGI_MAX_LIGHTS) break;
+    if (!item.light.enabled || item.light.intensity <= 0.0f) continue;
+    auto views = render::lightViews(item, snapshot.sceneBounds);
+    if (layers.size() + views.size() > DYNGI_MAX_RSM_LAYERS) break;
+    for (const auto& v : views) {
+      gpu::RsmLayer l;
+      l.viewProj = v.viewProj;
+      l.axis = glm::vec4(v.axis, v.extent);
+      l.info = glm::uvec4(uint32_t(lights.size()), v.orthographic ? 1u : 0u, settings_.rsmResolution, 0u);
+      layers.push_back(l);
+    }
+    lights.push_back(render::toGpuLight(item));
+  }
+  rsmLayersUsed_ = uint32_t(layers.size());
+  ensureRsm(rsmLayersUsed_);
+  if (!lights.empty()) lights_.upload(lights.data(), lights.size() * sizeof(lights[0]));
+  if (!layers.empty()) layers_.upload(layers.data(), layers.size() * sizeof(layers[0]));
+  VkDeviceSize vplBytes = VkDeviceSize(perBounce_) * settings_.bounces * sizeof(gpu::GpuVpl);
+  if (!vpls_.valid() || vpls_.size() < vplBytes)
+    vpls_ = Buffer(ctx_, vplBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "vpls");
+}
+
+bool ManyLights::record(render::FrameContext& frame) {
+  if (!voxels_.hasVolume() || !raw_.valid()) return false;
+  VkCommandBuffer cmd = frame.cmd;
+  const uint32_t res = settings_.rsmResolution;
+  const uint32_t vplTotal = perBounce_ * settings_.bounces;
+  const VoxelVolume& vol = voxels_.volume();
+
+  {  // 1. reflective shadow maps
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "rsm");
+    for (Image* img : {&rsmPosition_, &rsmNormal_, &rsmFlux_})
+      img->transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    rsmDepth_.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+    for (uint32_t layer = 0; layer < rsmLayers_; ++layer) {
+      // Unused layers are cleared too: their flux must read as zero.
+      VkRenderingAttachmentInfo att[3];
+      Image* colors[3] = {&rsmPosition_, &rsmNormal_, &rsmFlux_};
+      for (int i = 0; i < 3; ++i) {
+        att[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        att[i].imageView = colors[i]->layerView(layer);
+        att[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        att[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        att[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        att[i].clearValue.color = {{0, 0, 0, 0}};
+      }
+      VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+      depth.imageView = rsmDepth_.layerView(layer);
+      depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+      depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+      depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+      depth.clearValue.depthStencil = {1.0f, 0};
+      VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+      ri.renderArea = {{0, 0}, {res, res}};
+      ri.layerCount = 1;
+      ri.colorAttachmentCount = 3;
+      ri.pColorAttachments = att;
+      ri.pDepthAttachment = &depth;
+      vkCmdBeginRendering(cmd, &ri);
+      if (layer < rsmLayersUsed_) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, rsm_.handle());
+        VkViewport vp{0, 0, float(res), float(res), 0, 1};
+        VkRect2D sc{{0, 0}, {res, res}};
+        vkCmdSetViewport(cmd, 0, 1, &vp);
+        vkCmdSetScissor(cmd, 0, 1, &sc);
+        for (size_t i = 0; i < frame.snapshot.draws.size(); ++i) {
+          const render::DrawItem& dr = frame.snapshot.draws[i];
+          const render::GpuMesh* mesh = frame.meshes[i];
+          if (!mesh || mesh->indexCount == 0) continue;
+          gpu::RsmPush pc;
+          pc.model = dr.model;
+          pc.baseColor = glm::vec4(glm::vec3(dr.material.baseColor) * (1.0f - dr.material.metallic),
+                                   dr.material.baseColorTexture != scene::kNoTexture ? 1.0f : 0.0f);
+          pc.info = glm::uvec4(layer, 0, 0, 0);
+          DescriptorWrites()
+              .storageBuffer(0, layers_.handle())
+              .storageBuffer(1, lights_.handle())
+              .sampledImage(2, frame.textureView(dr.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+              .push(ctx_, cmd, rsm_);
+          vkCmdPushConstants(cmd, rsm_.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+          VkDeviceSize off = 0;
+          VkBuffer vb = mesh->vertices.handle();
+          vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &off);
+          vkCmdBindIndexBuffer(cmd, mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+          vkCmdDrawIndexed(cmd, mesh->indexCount, 1, 0, 0, 0);
+        }
+      }
+      vkCmdEndRendering(cmd);
+    }
+    for (Image* img : {&rsmPosition_, &rsmNormal_, &rsmFlux_})
+      img->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  }
+
+  {  // 2. VPLs by importance sampling the RSM flux
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "vpl_generate");
+    constexpr VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    uint32_t rows = res * rsmLayers_;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cdfRows_.handle());
+    DescriptorWrites().sampledImage(0, rsmFlux_.view(), frame.nearestSampler, ro).storageBuffer(1, rowPrefix_.handle()).storageBuffer(2, rowCdf_.handle()).push(ctx_, cmd, cdfRows_);
+    uint32_t rp[2] = {res, rsmLayers_};
+    vkCmdPushConstants(cmd, cdfRows_.layout(), kCS, 0, sizeof(rp), rp);
+    vkCmdDispatch(cmd, groups(rows, 64), 1, 1);
+    computeToCompute(cmd);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cdfTotal_.handle());
+    DescriptorWrites().storageBuffer(0, rowCdf_.handle()).push(ctx_, cmd, cdfTotal_);
+    vkCmdPushConstants(cmd, cdfTotal_.layout(), kCS, 0, 4, &rows);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    computeToCompute(cmd);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, sample_.handle());
+    DescriptorWrites()
+        .sampledImage(0, rsmPosition_.view(), frame.nearestSampler, ro)
+        .sampledImage(1, rsmNormal_.view(), frame.nearestSampler, ro)
+        .sampledImage(2, rsmFlux_.view(), frame.nearestSampler, ro)
+        .storageBuffer(3, rowPrefix_.handle())
+        .storageBuffer(4, rowCdf_.handle())
+        .storageBuffer(5, vpls_.handle())
+        .push(ctx_, cmd, sample_);
+    uint32_t sp[4] = {res, rsmLayers_, perBounce_, settings_.seed * 7919u};
+    vkCmdPushConstants(cmd, sample_.layout(), kCS, 0, sizeof(sp), sp);
+    vkCmdDispatch(cmd, groups(perBounce_, 64), 1, 1);
+    computeToCompute(cmd);
+  }
+
+  if (settings_.bounces > 1) {  // 3. further bounces through the voxel scene
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "vpl_bounce");
+    for (uint32_t b = 1; b < settings_.bounces; ++b) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bounce_.handle());
+      DescriptorWrites()
+          .storageBuffer(0, vpls_.handle())
+          .storageBuffer(1, voxels_.nodes().handle())
+          .storageBuffer(2, voxels_.levels().handle())
+          .storageBuffer(3, voxels_.leafAttributes().handle())
+          .push(ctx_, cmd, bounce_);
+      struct {
+        glm::vec4 worldToVoxel;
+        uint32_t parentFirst, count, bounce, depth;
+        float res, lift;
+      } pc{glm::vec4(vol.origin, 1.0f / vol.voxelSize), (b - 1) * perBounce_, perBounce_, b, vol.depth(), float(vol.resolution), settings_.liftVoxels};
+      vkCmdPushConstants(cmd, bounce_.layout(), kCS, 0, sizeof(pc), &pc);
+      vkCmdDispatch(cmd, groups(perBounce_, 64), 1, 1);
+      computeToCompute(cmd);
+    }
+  }
+
+  render::RenderTargets& t = frame.targets;
+  const uint32_t K = settings_.interleave;
+  {  // 4. interleaved gather with SVO visibility
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "indirect");
+    for (Image* in : {&t.position, &t.normal})
+      in->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    raw_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, gather_.handle());
+    DescriptorWrites()
+        .uniformBuffer(0, frame.frameUniforms.handle())
+        .sampledImage(1, t.position.view(), frame.nearestSampler)
+        .sampledImage(2, t.normal.view(), frame.nearestSampler)
+        .storageBuffer(3, vpls_.handle())
+        .storageBuffer(4, voxels_.nodes().handle())
+        .storageImage(5, raw_.view())
+        .push(ctx_, cmd, gather_);
+    gpu::GatherPush pc;
+    pc.worldToVoxel = glm::vec4(vol.origin, 1.0f / vol.voxelSize);
+    pc.params = glm::vec4(settings_.distanceClamp, settings_.luminanceThreshold, settings_.liftVoxels, float(vol.resolution));
+    pc.info = glm::uvec4(vplTotal, K, settings_.visibility ? 0u : 1u, vol.depth());
+    vkCmdPushConstants(cmd, gather_.layout(), kCS, 0, sizeof(pc), &pc);
+    vkCmdDispatch(cmd, groups(groups(t.width, K), 8), groups(groups(t.height, K), 8), K * K);
+  }
+  {  // 5. merge + geometry-aware filter
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "filter");
+    raw_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    t.indirect.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, filter_.handle());
+    DescriptorWrites()
+        .uniformBuffer(0, frame.frameUniforms.handle())
+        .sampledImage(1, t.position.view(), frame.nearestSampler)
+        .sampledImage(2, t.normal.view(), frame.nearestSampler)
+        .storageImage(3, raw_.view())
+        .storageImage(4, t.indirect.view())
+        .push(ctx_, cmd, filter_);
+    struct {
+      uint32_t K;
+      float tol;
+    } fp{K, settings_.filterPlaneTolerance};
+    vkCmdPushConstants(cmd, filter_.layout(), kCS, 0, sizeof(fp), &fp);
+    vkCmdDispatch(cmd, groups(t.width, 8), groups(t.height, 8), 1);
+  }
+  return true;
+}
+
+void ManyLights::recordAfterComposite(render::FrameContext& frame) {
+  if (settings_.view == ManyLightsView::Final || !raw_.valid()) return;
+  render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "many_lights_debug_view");
+  render::RenderTargets& t = frame.targets;
+  t.hdr.transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                   VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  t.indirect.transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  raw_.transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, debug_.handle());
+  DescriptorWrites()
+      .uniformBuffer(0, frame.frameUniforms.handle())
+      .sampledImage(1, t.albedo.view(), frame.nearestSampler)
+      .storageImage(2, t.indirect.view())
+      .storageImage(3, raw_.view())
+      .storageBuffer(4, vpls_.handle())
+      .storageImage(5, t.hdr.view())
+      .push(ctx_, frame.cmd, debug_);
+  uint32_t mode = settings_.view == ManyLightsView::Indirect ? 0u : settings_.view == ManyLightsView::Vpls ? 1u : 2u;
+  uint32_t vplTotal = perBounce_ * settings_.bounces;
+  uint32_t pc[3] = {mode, settings_.interleave, vplTotal};
+  vkCmdPushConstants(frame.cmd, debug_.layout(), kCS, 0, sizeof(pc), pc);
+  uint32_t n = mode == 1 ? vplTotal : t.width * t.height;
+  vkCmdDispatch(frame.cmd, groups(n, 64), 1, 1);
+}
+
+std::vector<VplReadback> ManyLights::readbackVpls() {
+  std::vector<VplReadback> out;
+  if (!vpls_.valid()) return out;
+  uint32_t n = perBounce_ * settings_.bounces;
+  Buffer host(ctx_, VkDeviceSize(n) * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "vpl readback");
+  ctx_.immediate([&](VkCommandBuffer cmd) {
+    VkBufferCopy c{0, 0, VkDeviceSize(n) * sizeof(gpu::GpuVpl)};
+    vkCmdCopyBuffer(cmd, vpls_.handle(), host.handle(), 1, &c);
+  });
+  host.invalidateForRead();
+  const auto* v = static_cast<const gpu::GpuVpl*>(host.mapped());
+  for (uint32_t i = 0; i < n; ++i)
+    out.push_back({glm::vec3(v[i].position), v[i].position.w < 0 ? -1 : int(v[i].position.w + 0.5f), glm::vec3(v[i].normal), glm::vec3(v[i].flux)});
+  return out;
+}
+
+}  // namespace dyngi::gi

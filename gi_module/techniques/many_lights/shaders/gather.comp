@@ -1,0 +1,54 @@
+#version 460
+// Interleaved indirect gather: pixel (x, y) belongs to sub-image s = (x mod K) + K (y mod K) and gathers
+// only VPLs s, s + K^2, ...; one workgroup covers pixels of one sub-image, so its threads walk the same
+// VPLs (coherent VPL and SVO reads). E = sum flux G V with G = cos_x cos_y / max(B, d^2) and V from the
+// SVO-restart march; dim or back-facing VPLs are skipped before marching. Writes K^2 E / pi^2, so the
+// K x K filter's average is the full sum's E / pi (what composite multiplies by albedo).
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gpu_types.h"
+#include "shared/gi_gpu_types.h"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D gPosition;
+layout(set = 0, binding = 2) uniform sampler2D gNormal;
+layout(set = 0, binding = 3) readonly buffer Vpls { GpuVpl vpls[]; };
+layout(set = 0, binding = 4) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D outRaw;
+#include "svo_traverse.glsl"
+layout(push_constant) uniform Push { GatherPush pc; };
+
+const float PI = 3.14159265358979;
+
+void main() {
+  uint K = pc.info.y;
+  uint s = gl_GlobalInvocationID.z;
+  ivec2 px = ivec2(gl_GlobalInvocationID.xy) * int(K) + ivec2(s % K, s / K);
+  if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return;
+  vec4 pos = texelFetch(gPosition, px, 0);
+  if (pos.w == 0.0) { imageStore(outRaw, px, vec4(0.0)); return; }
+  vec3 x = pos.xyz;
+  vec3 nx = normalize(texelFetch(gNormal, px, 0).xyz);
+  vec3 xv = (x - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + nx * pc.params.z;
+  vec3 e = vec3(0.0);
+  uint K2 = K * K;
+  // Importance sampling gives every first-bounce VPL the same luminance; the threshold is relative to it.
+  float threshold = pc.params.y * vpls[0].flux.w;
+  for (uint i = s; i < pc.info.x; i += K2) {
+    GpuVpl v = vpls[i];
+    if (v.position.w < 0.0 || v.flux.w <= threshold) continue;
+    vec3 d = v.position.xyz - x;
+    float d2 = dot(d, d);
+    if (d2 <= 0.0) continue;
+    vec3 w = d * inversesqrt(d2);
+    float cx = dot(nx, w), cy = -dot(v.normal.xyz, w);
+    if (cx <= 0.0 || cy <= 0.0) continue;
+    float g = cx * cy / max(pc.params.x, d2);
+    if (pc.info.z == 0u) {
+      vec3 yv = (v.position.xyz - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + v.normal.xyz * pc.params.z;
+      uint steps;
+      if (svoOccluded(xv, yv, 1e-3, pc.info.w, pc.params.w, steps)) continue;
+    }
+    e += v.flux.rgb * g;
+  }
+  imageStore(outRaw, px, vec4(float(K2) * e / (PI * PI), 1.0));
+}

@@ -1,0 +1,47 @@
+#version 460
+// Debug views of the many-lights technique, written over the HDR image.
+// mode 0: indirect light only (albedo x indirect); 1: VPL positions as dots over the final image
+// (white: lit directly, orange: second bounce, red: third); 2: the K x K sub-images side by side.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gpu_types.h"
+#include "shared/gi_gpu_types.h"
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = 1) uniform sampler2D gAlbedo;
+layout(set = 0, binding = 2, rgba32f) uniform readonly image2D indirect;
+layout(set = 0, binding = 3, rgba32f) uniform readonly image2D raw;
+layout(set = 0, binding = 4) readonly buffer Vpls { GpuVpl vpls[]; };
+layout(set = 0, binding = 5, rgba32f) uniform image2D hdr;
+layout(push_constant) uniform Push { uint mode; uint K; uint vplCount; };
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  ivec2 size = ivec2(frame.sizeAndCount.xy);
+  if (mode == 1u) {
+    if (i >= vplCount) return;
+    GpuVpl v = vpls[i];
+    if (v.position.w < 0.0) return;
+    vec4 clip = frame.viewProj * vec4(v.position.xyz, 1.0);
+    if (clip.w <= 0.0) return;
+    vec2 p = (clip.xy / clip.w * 0.5 + 0.5) * vec2(size);
+    vec3 c = v.position.w < 0.5 ? vec3(4.0) : (v.position.w < 1.5 ? vec3(4.0, 1.5, 0.0) : vec3(4.0, 0.0, 0.0));
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        ivec2 q = ivec2(p) + ivec2(dx, dy);
+        if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size))) imageStore(hdr, q, vec4(c, 1.0));
+      }
+    return;
+  }
+  if (i >= uint(size.x * size.y)) return;
+  ivec2 px = ivec2(i % uint(size.x), i / uint(size.x));
+  vec4 a = texelFetch(gAlbedo, px, 0);
+  vec3 albedo = a.rgb * (1.0 - a.a);
+  if (mode == 0u) {
+    imageStore(hdr, px, vec4(albedo * imageLoad(indirect, px).rgb, 1.0));
+  } else {
+    ivec2 tile = size / int(K);
+    ivec2 sub = min(px / max(tile, ivec2(1)), ivec2(int(K) - 1));
+    ivec2 src = (px - sub * tile) * int(K) + sub;
+    src = clamp(src, ivec2(0), size - 1);
+    imageStore(hdr, px, vec4(imageLoad(raw, src).rgb / float(K * K) * albedo + 0.0, 1.0));
+  }
+}

@@ -1,0 +1,47 @@
+#version 460
+// Reflective shadow map: per texel the surface the light sees first, its normal (facing the light) and
+// the flux it reflects: rho * (the flux the light sends through this texel).
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gpu_types.h"
+#include "shared/gi_gpu_types.h"
+#include "shared/lighting.glsl"
+layout(set = 0, binding = 0) readonly buffer Layers { RsmLayer layers[]; };
+layout(set = 0, binding = 1) readonly buffer Lights { GpuLight lights[]; };
+layout(set = 0, binding = 2) uniform sampler2D baseColorTex;
+layout(push_constant) uniform Push { RsmPush pc; };
+layout(location = 0) in vec3 inWorld;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUv;
+layout(location = 0) out vec4 outPosition;  // xyz world, w 1
+layout(location = 1) out vec4 outNormal;    // xyz facing the light
+layout(location = 2) out vec4 outFlux;      // rgb reflected flux (W), a luminance
+void main() {
+  RsmLayer layer = layers[pc.info.x];
+  GpuLight L = lights[layer.info.x];
+  vec3 albedo = pc.baseColor.rgb;
+  if (pc.baseColor.a > 0.5) albedo *= texture(baseColorTex, inUv).rgb;
+  vec3 n = normalize(inNormal);
+  vec3 radiant = L.radiance.rgb * L.radiance.w;
+  vec3 flux;
+  if (layer.info.y == 1u) {
+    vec3 dir = L.directionRange.xyz;
+    if (dot(n, dir) > 0.0) n = -n;
+    // Irradiance E on a plane facing the light times the texel's area across the beam.
+    float texelSide = layer.axis.w / float(layer.info.z);
+    flux = albedo * radiant * texelSide * texelSide;
+  } else {
+    vec3 d = inWorld - L.positionType.xyz;
+    float dist = length(d);
+    vec3 w = d / max(dist, 1e-6);
+    if (dot(n, w) > 0.0) n = -n;
+    float cosAxis = max(dot(w, layer.axis.xyz), 1e-4);
+    float texel = layer.axis.w / float(layer.info.z);
+    float solidAngle = texel * texel * cosAxis * cosAxis * cosAxis;
+    float atten = rangeWindow(dist, L.directionRange.w);
+    if (int(L.positionType.w) == DYNGI_LIGHT_SPOT) atten *= spotFalloff(dot(w, L.directionRange.xyz), L.cone.x, L.cone.y);
+    flux = albedo * radiant * solidAngle * atten;
+  }
+  outPosition = vec4(inWorld, 1.0);
+  outNormal = vec4(n, 0.0);
+  outFlux = vec4(flux, dot(flux, vec3(0.2126, 0.7152, 0.0722)));
+}

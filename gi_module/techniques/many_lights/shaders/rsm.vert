@@ -1,0 +1,18 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gi_gpu_types.h"
+layout(set = 0, binding = 0) readonly buffer Layers { RsmLayer layers[]; };
+layout(push_constant) uniform Push { RsmPush pc; };
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUv;
+layout(location = 0) out vec3 outWorld;
+layout(location = 1) out vec3 outNormal;
+layout(location = 2) out vec2 outUv;
+void main() {
+  vec4 w = pc.model * vec4(inPosition, 1.0);
+  outWorld = w.xyz;
+  outNormal = transpose(inverse(mat3(pc.model))) * inNormal;
+  outUv = inUv;
+  gl_Position = layers[pc.info.x].viewProj * w;
+}

@@ -1,0 +1,63 @@
+#version 460
+// Multi-bounce VPLs: each VPL of bounce b-1 shoots one cosine-distributed (Halton) direction through the
+// voxel scene; where it lands, a VPL of bounce b reflects parent flux x the voxel's albedo.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gi_gpu_types.h"
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 0) buffer Vpls { GpuVpl vpls[]; };
+layout(set = 0, binding = 1) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = 2) readonly buffer Levels { SvoLevel levels[]; };
+layout(set = 0, binding = 3) readonly buffer Attributes { int attributes[]; };
+#include "svo_traverse.glsl"
+layout(push_constant) uniform Push {
+  vec4 worldToVoxel;  // xyz origin, w 1 / voxel size
+  uint parentFirst;   // first VPL of bounce b-1
+  uint count;         // VPLs per bounce
+  uint bounce;
+  uint depth;
+  float res;
+  float lift;         // voxel units the ray starts off its surface
+};
+
+float halton(uint i, uint base) {
+  float f = 1.0, r = 0.0;
+  while (i > 0u) { f /= float(base); r += f * float(i % base); i /= base; }
+  return r;
+}
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= count) return;
+  GpuVpl parent = vpls[parentFirst + i];
+  GpuVpl child;
+  child.position = vec4(0.0, 0.0, 0.0, -1.0);
+  child.normal = vec4(0.0, 1.0, 0.0, parent.normal.w);
+  child.flux = vec4(0.0);
+  uint childIndex = parentFirst + count + i;
+  if (parent.position.w < 0.0 || parent.flux.w <= 0.0) { vpls[childIndex] = child; return; }
+  vec3 n = parent.normal.xyz;
+  float u1 = halton(i + 1u, 2u), u2 = halton(i + 1u, 3u);
+  u2 = fract(u2 + 0.618034 * float(bounce));  // decorrelate bounces
+  float r = sqrt(u1), phi = 6.2831853 * u2;
+  vec3 t = abs(n.x) > 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+  vec3 b1 = normalize(cross(n, t)), b2 = cross(n, b1);
+  vec3 dir = normalize(r * cos(phi) * b1 + r * sin(phi) * b2 + sqrt(max(0.0, 1.0 - u1)) * n);
+  vec3 o = (parent.position.xyz - worldToVoxel.xyz) * worldToVoxel.w + n * lift;
+  float tHit;
+  uint steps;
+  uint node = svoFirstHit(o, dir, 0.0, 1e30, depth, res, tHit, steps);
+  if (node != 0xFFFFFFFFu) {
+    uint leaf = node - levels[depth].range.x;
+    uint base = leaf * 8u;
+    float cnt = max(float(attributes[base + 3u]), 1.0);
+    vec3 albedo = vec3(attributes[base], attributes[base + 1u], attributes[base + 2u]) / (255.0 * cnt);
+    vec3 vn = vec3(attributes[base + 4u], attributes[base + 5u], attributes[base + 6u]);
+    vn = length(vn) > 0.0 ? normalize(vn) : -dir;
+    if (dot(vn, dir) > 0.0) vn = -vn;  // face the incoming ray
+    vec3 hitVoxel = o + dir * tHit;
+    child.position = vec4(hitVoxel / worldToVoxel.w + worldToVoxel.xyz, float(bounce));
+    child.normal = vec4(vn, parent.normal.w);
+    child.flux = vec4(parent.flux.rgb * albedo, dot(parent.flux.rgb * albedo, vec3(0.2126, 0.7152, 0.0722)));
+  }
+  vpls[childIndex] = child;
+}

@@ -1,0 +1,12 @@
+#version 460
+// VPL sampling, step 2 (one thread): running sum over rows; the last entry is the total.
+layout(local_size_x = 1) in;
+layout(set = 0, binding = 0) buffer RowSums { float rowSums[]; };  // in: per row; out: inclusive prefix
+layout(push_constant) uniform Push { uint rows; };
+void main() {
+  float sum = 0.0;
+  for (uint r = 0u; r < rows; ++r) {
+    sum += rowSums[r];
+    rowSums[r] = sum;
+  }
+}

@@ -1,0 +1,167 @@
+// Many-lights GI with SVO visibility against the reference path tracer at the same bounce count.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "dyngi/engine/render/image_metrics.h"
+#include "dyngi/gi/many_lights.h"
+#include "dyngi/gi/path_tracer.h"
+#include "render/render_fixture.h"
+#include "scenes/builtin_scenes.h"
+
+using namespace dyngi;
+using namespace dyngi::test;
+
+namespace {
+
+constexpr uint32_t kSize = 128;
+
+struct Regions {
+  std::map<std::string, std::vector<uint8_t>> masks;
+};
+
+// Interior pixels of each wall and of each box face (from the G-buffer and the boxes' transforms).
+Regions cornellRegions(const Frame& f, const scene::AssetStore& assets) {
+  std::vector<std::string> label(f.hdr.size());
+  std::vector<Obb> boxes;
+  std::vector<std::string> boxNames;
+  for (const auto& d : f.snapshot.draws) {
+    const auto& m = assets.mesh(d.mesh);
+    if (m.name == "short_box" || m.name == "tall_box") boxes.push_back({d.model, m.bounds.extent() * 0.5f}), boxNames.push_back(m.name);
+  }
+  for (size_t i = 0; i < f.hdr.size(); ++i) {
+    const glm::vec4& p = f.position[i];
+    const glm::vec4& n = f.normal[i];
+    if (p.w < 0.5f) continue;
+    for (size_t b = 0; b < boxes.size(); ++b) {
+      glm::vec3 l = glm::vec3(glm::inverse(boxes[b].model) * glm::vec4(glm::vec3(p), 1.0f));
+      glm::vec3 h = boxes[b].halfExtent + 1e-3f;
+      if (std::abs(l.x) <= h.x && std::abs(l.y) <= h.y && std::abs(l.z) <= h.z) {
+        glm::vec3 ln = glm::vec3(glm::inverse(boxes[b].model) * glm::vec4(glm::vec3(n), 0.0f));
+        int axis = std::abs(ln.x) > 0.9f ? 0 : std::abs(ln.y) > 0.9f ? 1 : 2;
+        label[i] = boxNames[b] + (ln[axis] > 0 ? " +" : " -") + "xyz"[axis];
+      }
+    }
+    if (!label[i].empty()) continue;
+    if (std::abs(p.y) < 1e-3f && n.y > 0.99f) label[i] = "floor";
+    else if (std::abs(p.y - 2.0f) < 1e-3f && n.y < -0.99f) label[i] = "ceiling";
+    else if (p.z < -0.999f && n.z > 0.99f) label[i] = "back wall";
+    else if (p.x < -0.999f && n.x > 0.99f) label[i] = "red wall";
+    else if (p.x > 0.999f && n.x < -0.99f) label[i] = "green wall";
+  }
+  Regions r;
+  for (uint32_t y = 1; y + 1 < kSize; ++y)
+    for (uint32_t x = 1; x + 1 < kSize; ++x) {
+      size_t i = size_t(y) * kSize + x;
+      const std::string& l = label[i];
+      if (l.empty() || label[i - 1] != l || label[i + 1] != l || label[i - kSize] != l || label[i + kSize] != l) continue;
+      auto& m = r.masks[l];
+      if (m.empty()) m.assign(f.hdr.size(), 0);
+      m[i] = 1;
+    }
+  return r;
+}
+
+double luminance(const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+class ManyLightsTest : public RenderTest {
+ protected:
+  void SetUp() override { sample::buildBuiltinScene("cornell", world, assets); }
+
+  Frame renderSvo(const gi::ManyLightsSettings& s) {
+    gi::VoxelScene voxels(context(), gi::VoxelSettings{.resolution = 128});
+    gi::ManyLights ml(context(), voxels, s);
+    render::Renderer renderer(context());
+    renderer.addFeature(&voxels);
+    renderer.addFeature(&ml);
+    renderer.resize(kSize, kSize);
+    Frame f;
+    f.snapshot = render::extractSnapshot(world, assets, 0);
+    renderer.render(f.snapshot);
+    f.width = f.height = kSize;
+    f.hdr = renderer.readback(render::TargetId::Hdr);
+    f.position = renderer.readback(render::TargetId::Position);
+    f.normal = renderer.readback(render::TargetId::Normal);
+    return f;
+  }
+  const render::ImageRgba& reference(uint32_t bounces) {
+    auto it = references.find(bounces);
+    if (it != references.end()) return it->second;
+    gi::EmbreeScene bvh;
+    bvh.sync(world, assets, 0);
+    gi::PathTracerSettings pts;
+    pts.spp = 512;
+    pts.bounces = bounces;
+    pts.pixelJitter = false;  // same sample positions as the rasterized G-buffer
+    auto snap = render::extractSnapshot(world, assets, 0);
+    return references[bounces] = gi::pathTrace(snap, bvh, assets, kSize, kSize, pts);
+  }
+  ecs::World world;
+  scene::AssetStore assets;
+  std::map<uint32_t, render::ImageRgba> references;
+};
+
+}  // namespace
+
+TEST_F(ManyLightsTest, MatchesPathTracerPerRegionWithColourBleeding) {
+  for (uint32_t bounces : {1u, 2u}) {
+    gi::ManyLightsSettings s;
+    s.vplCount = 1024 * bounces;
+    s.bounces = bounces;
+    Frame f = renderSvo(s);
+    const render::ImageRgba& ref = reference(bounces);
+    Regions regions = cornellRegions(f, assets);
+    ASSERT_GE(regions.masks.size(), 9u);
+    for (auto& [name, mask] : regions.masks) {
+      size_t n = 0;
+      for (uint8_t m : mask) n += m;
+      if (n < 60) continue;
+      double a = luminance(render::meanOver(f.hdr, &mask)), b = luminance(render::meanOver(ref, &mask));
+      std::printf("bounces %u  %-16s svo %.4f  path %.4f  ratio %.3f  (%zu px)\n", bounces, name.c_str(), a, b, a / b, n);
+      EXPECT_NEAR(a / b, 1.0, 0.10) << name << " at " << bounces << " bounce(s)";
+    }
+    double rel = render::relativeMse(f.hdr, ref);
+    std::printf("bounces %u  relMSE %.4f\n", bounces, rel);
+    EXPECT_LE(rel, 0.02);
+    if (bounces == 1) {
+      // Colour bleeding: the tall box's face towards the red wall (-x) is redder than its other faces,
+      // in the reference's proportion.
+      auto redness = [&](const render::ImageRgba& img, const char* face) {
+        glm::dvec3 c = render::meanOver(img, &regions.masks.at(face));
+        return c.r / c.g;
+      };
+      ASSERT_TRUE(regions.masks.count("tall_box -x") && regions.masks.count("tall_box +z"));
+      double ours = redness(f.hdr, "tall_box -x") / redness(f.hdr, "tall_box +z");
+      double theirs = redness(ref, "tall_box -x") / redness(ref, "tall_box +z");
+      std::printf("colour bleeding (red/green of the face to the red wall over the front face): svo %.3f path %.3f\n", ours, theirs);
+      EXPECT_GT(ours, 1.2) << "the face turned to the red wall is redder";
+      EXPECT_NEAR(ours / theirs, 1.0, 0.15);
+    }
+  }
+}
+
+TEST_F(ManyLightsTest, VisibilityIsUsedAndCorrect) {
+  gi::ManyLightsSettings s;
+  s.vplCount = 1024;
+  Frame withV = renderSvo(s);
+  s.visibility = false;
+  Frame noV = renderSvo(s);
+  const render::ImageRgba& ref = reference(1);
+  double eV = render::relativeMse(withV.hdr, ref), eNoV = render::relativeMse(noV.hdr, ref);
+  std::printf("relMSE with SVO visibility %.4f, with V = 1 %.4f\n", eV, eNoV);
+  EXPECT_GT(eNoV, 1.5 * eV) << "ignoring indirect shadows must make the image worse";
+}
+
+TEST_F(ManyLightsTest, MoreVplsKeepEnergyAndReduceError) {
+  gi::ManyLightsSettings s;
+  s.vplCount = 512;
+  Frame f512 = renderSvo(s);
+  s.vplCount = 4096;
+  Frame f4096 = renderSvo(s);
+  const render::ImageRgba& ref = reference(1);
+  double m512 = luminance(render::meanOver(f512.hdr)), m4096 = luminance(render::meanOver(f4096.hdr));
+  double e512 = render::relativeMse(f512.hdr, ref), e4096 = render::relativeMse(f4096.hdr, ref);
+  std::printf("mean radiance 512 VPLs %.5f, 4096 VPLs %.5f; relMSE %.4f -> %.4f\n", m512, m4096, e512, e4096);
+  EXPECT_NEAR(m512 / m4096, 1.0, 0.03);
+  EXPECT_LT(e4096, e512);
+}
