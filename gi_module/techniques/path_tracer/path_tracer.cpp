@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "dyngi/engine/scene/light_units.h"
+#include "dyngi/gi/scene_surfaces.h"
 
 namespace dyngi::gi {
 namespace {
@@ -41,25 +42,11 @@ uint64_t mix64(uint64_t x) {
   return x ^ (x >> 31);
 }
 
-float srgbToLinear(uint8_t v) {
-  float c = float(v) / 255.0f;
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
-struct SurfaceHit {
-  glm::vec3 position, geometricNormal, shadingNormal;
-  glm::vec3 diffuseAlbedo;  // base colour x texture x (1 - metallic)
-  glm::vec3 emission;
-};
 
 class Tracer {
  public:
   Tracer(const render::RenderSnapshot& s, const EmbreeScene& bvh, const scene::AssetStore& assets, const PathTracerSettings& st)
-      : snap_(s), bvh_(bvh), assets_(assets), settings_(st) {
-    for (size_t i = 0; i < s.draws.size(); ++i) drawOf_[s.draws[i].entity] = i;
-    float extent = s.sceneBounds.valid() ? glm::length(s.sceneBounds.extent()) : 1.0f;
-    sceneScale_ = std::max(extent, 1e-3f);
-  }
+      : snap_(s), bvh_(bvh), surfaces_(s, assets), settings_(st), sceneScale_(surfaces_.sceneScale()) {}
 
   glm::vec3 radiance(glm::vec3 origin, glm::vec3 dir, Rng& rng) const {
     glm::vec3 L(0.0f), throughput(1.0f);
@@ -70,7 +57,7 @@ class Tracer {
         break;
       }
       SurfaceHit sh;
-      if (!surface(h, origin, dir, sh)) break;
+      if (!surfaces_.at(h, origin, dir, sh)) break;
       L += throughput * sh.emission;
       if (glm::dot(sh.diffuseAlbedo, sh.diffuseAlbedo) <= 0.0f) break;
       L += throughput * directLight(sh);
@@ -100,54 +87,6 @@ class Tracer {
     return glm::normalize(r * std::cos(phi) * b1 + r * std::sin(phi) * b2 + std::sqrt(std::max(0.0f, 1.0f - u1)) * n);
   }
 
-  bool surface(const RayHit& h, const glm::vec3& origin, const glm::vec3& dir, SurfaceHit& out) const {
-    auto it = drawOf_.find(h.entity);
-    if (it == drawOf_.end()) return false;
-    const render::DrawItem& d = snap_.draws[it->second];
-    const scene::MeshData& m = assets_.mesh(h.mesh);
-    size_t t = size_t(h.primitive) * 3;
-    if (t + 2 >= m.indices.size()) return false;
-    uint32_t i0 = m.indices[t], i1 = m.indices[t + 1], i2 = m.indices[t + 2];
-    float w0 = 1.0f - h.u - h.v;
-    glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(d.model)));
-    glm::vec3 p0 = m.positions[i0], p1 = m.positions[i1], p2 = m.positions[i2];
-    out.position = origin + dir * h.t;
-    glm::vec3 ng = glm::normalize(normalMatrix * glm::cross(p1 - p0, p2 - p0));
-    glm::vec3 ns = m.normals.size() == m.positions.size()
-                       ? glm::normalize(normalMatrix * (w0 * m.normals[i0] + h.u * m.normals[i1] + h.v * m.normals[i2]))
-                       : ng;
-    // Lit on the side the ray arrives from (as the G-buffer does for the camera).
-    if (glm::dot(ng, dir) > 0.0f) ng = -ng;
-    if (glm::dot(ns, ng) < 0.0f) ns = -ns;
-    out.geometricNormal = ng;
-    out.shadingNormal = ns;
-    const scene::Material& mat = d.material;
-    glm::vec3 base(mat.baseColor);
-    glm::vec2 uv(0.0f);
-    if (m.uvs.size() == m.positions.size()) uv = w0 * m.uvs[i0] + h.u * m.uvs[i1] + h.v * m.uvs[i2];
-    if (mat.baseColorTexture != scene::kNoTexture && mat.baseColorTexture < assets_.textureCount()) base *= texel(mat.baseColorTexture, uv);
-    out.diffuseAlbedo = base * (1.0f - mat.metallic);
-    out.emission = mat.emissive;
-    if (mat.emissiveTexture != scene::kNoTexture && mat.emissiveTexture < assets_.textureCount()) out.emission *= texel(mat.emissiveTexture, uv);
-    return true;
-  }
-
-  glm::vec3 texel(scene::TextureId id, glm::vec2 uv) const {
-    const scene::TextureData& t = assets_.texture(id);
-    if (t.width == 0 || t.height == 0) return glm::vec3(1.0f);
-    // Bilinear with wrap, like the rasterizer's sampler.
-    float x = (uv.x - std::floor(uv.x)) * float(t.width) - 0.5f, y = (uv.y - std::floor(uv.y)) * float(t.height) - 0.5f;
-    int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-    float fx = x - float(x0), fy = y - float(y0);
-    auto at = [&](int xi, int yi) {
-      uint32_t xx = uint32_t((xi % int(t.width) + int(t.width)) % int(t.width));
-      uint32_t yy = uint32_t((yi % int(t.height) + int(t.height)) % int(t.height));
-      const uint8_t* p = &t.rgba8[(size_t(yy) * t.width + xx) * 4];
-      return t.srgb ? glm::vec3(srgbToLinear(p[0]), srgbToLinear(p[1]), srgbToLinear(p[2])) : glm::vec3(p[0], p[1], p[2]) / 255.0f;
-    };
-    return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx), glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
-  }
-
   glm::vec3 directLight(const SurfaceHit& sh) const {
     glm::vec3 sum(0.0f);
     glm::vec3 from = offset(sh);
@@ -163,9 +102,8 @@ class Tracer {
 
   const render::RenderSnapshot& snap_;
   const EmbreeScene& bvh_;
-  const scene::AssetStore& assets_;
+  SceneSurfaces surfaces_;
   PathTracerSettings settings_;
-  std::unordered_map<ecs::Entity, size_t> drawOf_;
   float sceneScale_ = 1.0f;
 };
 

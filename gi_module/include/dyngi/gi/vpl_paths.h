@@ -1,0 +1,100 @@
+#pragma once
+// Incremental instant radiosity on the CPU: VPLs stored as light paths and kept valid incrementally.
+//
+// The pool is an array: index = path * bounces + bounce. The VPL of path p at bounce b has as parent
+// the light (b = 0) or the VPL (p, b - 1). Each frame:
+//  1. invalidation: a VPL is invalid when its parent no longer sees it (Embree occlusion), when the
+//     entity its surface belongs to moved or deformed, when its light moved/turned/changed or is gone,
+//     or when it left its spot light's cone; invalidating a VPL invalidates its children;
+//  2. replacement: at most `reshootBudget` VPLs are reshot, found by a round-robin cursor that goes on
+//     where the last frame stopped; a VPL is reshot only when its parent is valid. Light rays sample the
+//     light's emission (a spot's cone, a point's sphere, a directional light's beam over the scene),
+//     VPL rays a cosine hemisphere; the closest hit comes from Embree and the flux from the hit's
+//     material (texture via barycentrics). A ray that leaves the scene makes a valid VPL with no flux
+//     (the estimator's zero), so reshooting always completes.
+//  3. temporal sets: set k holds VPLs[T i + k]; sets whose VPLs changed since they were last rendered
+//     are reported dirty.
+#include <cstdint>
+#include <unordered_set>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "dyngi/engine/render/snapshot.h"
+#include "dyngi/gi/bvh.h"
+
+namespace dyngi::gi {
+
+struct VplPathSettings {
+  uint32_t count = 512;         // VPLs in the pool (paths x bounces)
+  uint32_t bounces = 1;         // 1..3
+  uint32_t reshootBudget = 0;   // per frame; 0: count / temporalSets (one set's worth)
+  uint32_t temporalSets = 16;   // T
+  uint64_t seed = 1;
+};
+
+struct PathVpl {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f, 1.0f, 0.0f};
+  glm::vec3 flux{0.0f};          // reflected flux (W); zero for a path that left the scene
+  ecs::Entity surface{};         // entity the VPL lies on (null when the path left the scene)
+  bool valid = false;
+  bool placed = false;           // has a position (false: escaped ray, zero flux)
+};
+
+struct VplPathStats {
+  uint32_t count = 0, valid = 0;
+  uint32_t invalidatedThisFrame = 0, replacedThisFrame = 0;
+  uint64_t invalidatedTotal = 0, replacedTotal = 0;
+  uint32_t reshootBudget = 0;
+  double invalidateMs = 0, replaceMs = 0;
+};
+
+class VplPaths {
+ public:
+  explicit VplPaths(const VplPathSettings& settings = {});
+
+  // One frame: invalidate against `moved` (entities whose world transform or mesh changed) and the
+  // snapshot's lights, then replace up to the budget.
+  void update(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
+              const std::unordered_set<ecs::Entity>& moved);
+  void invalidate(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const std::unordered_set<ecs::Entity>& moved);
+  void replace(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets);
+
+  const std::vector<PathVpl>& vpls() const { return vpls_; }
+  const VplPathSettings& settings() const { return settings_; }
+  const VplPathStats& stats() const { return stats_; }
+  uint32_t paths() const { return paths_; }
+  uint32_t bounces() const { return settings_.bounces; }
+  uint32_t setOf(uint32_t index) const { return index % settings_.temporalSets; }
+  // Sets with a VPL invalidated or replaced since markSetRendered(set).
+  bool setDirty(uint32_t set) const { return setDirty_[set] != 0; }
+  void markSetRendered(uint32_t set) { setDirty_[set] = 0; }
+  uint32_t cursor() const { return cursor_; }
+  // How many times each VPL has been reshot (fairness checks).
+  const std::vector<uint32_t>& reshootCounts() const { return reshootCounts_; }
+
+ private:
+  struct LightState {
+    ecs::Entity entity{};
+    glm::vec3 position{0.0f}, direction{0.0f};
+    glm::vec3 radiant{0.0f};
+    float range = 0, inner = 0, outer = 0;
+    uint32_t type = 0;
+    bool operator==(const LightState&) const = default;
+  };
+  void invalidateIndex(uint32_t index);
+  bool shoot(uint32_t index, const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const class SceneSurfaces& surfaces);
+
+  VplPathSettings settings_;
+  uint32_t paths_ = 0;
+  std::vector<PathVpl> vpls_;
+  std::vector<LightState> pathLight_;   // per path: the light state its bounce-0 VPL was shot from
+  std::vector<uint8_t> setDirty_;
+  std::vector<uint32_t> reshootCounts_;
+  uint32_t cursor_ = 0;
+  uint64_t shotCounter_ = 0;
+  VplPathStats stats_;
+};
+
+}  // namespace dyngi::gi

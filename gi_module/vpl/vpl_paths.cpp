@@ -1,0 +1,254 @@
+#include "dyngi/gi/vpl_paths.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "dyngi/engine/scene/light_units.h"
+#include "dyngi/gi/scene_surfaces.h"
+
+namespace dyngi::gi {
+namespace {
+constexpr float kPi = 3.14159265358979f;
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+uint64_t mix64(uint64_t x) {
+  x ^= x >> 30;
+  x *= 0xbf58476d1ce4e5b9ULL;
+  x ^= x >> 27;
+  x *= 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+float uniform01(uint64_t& state) {
+  state = mix64(state + 0x9E3779B97F4A7C15ULL);
+  return float(state >> 40) * (1.0f / 16777216.0f);
+}
+void basis(const glm::vec3& n, glm::vec3& b1, glm::vec3& b2) {
+  glm::vec3 t = std::abs(n.x) > 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  b1 = glm::normalize(glm::cross(n, t));
+  b2 = glm::cross(n, b1);
+}
+float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+// Radiant power of a light (what picks which light a path starts from).
+float lightPower(const render::LightItem& l, const scene::Aabb& bounds) {
+  if (!l.light.enabled) return 0.0f;
+  float i = l.light.intensity * luminance(l.light.color);
+  switch (l.light.type) {
+    case scene::LightType::Point: return i * 4.0f * kPi;
+    case scene::LightType::Spot: return i * 2.0f * kPi * (1.0f - std::cos(std::clamp(l.light.outerConeAngle, 1e-3f, 1.5707f)));
+    case scene::LightType::Directional: {
+      float r = bounds.valid() ? 0.5f * glm::length(bounds.extent()) : 1.0f;
+      return i * kPi * r * r;
+    }
+  }
+  return 0.0f;
+}
+}  // namespace
+
+VplPaths::VplPaths(const VplPathSettings& s) : settings_(s) {
+  settings_.bounces = std::clamp(settings_.bounces, 1u, 3u);
+  settings_.temporalSets = std::max(1u, settings_.temporalSets);
+  paths_ = std::max(1u, settings_.count / settings_.bounces);
+  uint32_t n = paths_ * settings_.bounces;
+  settings_.count = n;
+  if (settings_.reshootBudget == 0) settings_.reshootBudget = std::max(1u, n / settings_.temporalSets);
+  vpls_.assign(n, PathVpl{});
+  pathLight_.assign(paths_, LightState{});
+  setDirty_.assign(settings_.temporalSets, 1);
+  reshootCounts_.assign(n, 0);
+  stats_.count = n;
+  stats_.reshootBudget = settings_.reshootBudget;
+}
+
+void VplPaths::update(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
+                      const std::unordered_set<ecs::Entity>& moved) {
+  invalidate(snapshot, bvh, moved);
+  replace(snapshot, bvh, assets);
+}
+
+void VplPaths::invalidateIndex(uint32_t index) {
+  uint32_t path = index / settings_.bounces;
+  for (uint32_t b = index % settings_.bounces; b < settings_.bounces; ++b) {
+    uint32_t i = path * settings_.bounces + b;
+    if (!vpls_[i].valid) continue;
+    vpls_[i].valid = false;
+    setDirty_[setOf(i)] = 1;
+    ++stats_.invalidatedThisFrame;
+  }
+}
+
+void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const std::unordered_set<ecs::Entity>& moved) {
+  auto t0 = Clock::now();
+  stats_.invalidatedThisFrame = 0;
+  const float scale = snapshot.sceneBounds.valid() ? std::max(glm::length(snapshot.sceneBounds.extent()), 1e-3f) : 1.0f;
+  const float eps = 1e-4f * scale;
+  for (uint32_t i = 0; i < vpls_.size(); ++i) {
+    PathVpl& v = vpls_[i];
+    if (!v.valid) continue;
+    uint32_t path = i / settings_.bounces, b = i % settings_.bounces;
+    const LightState& ls = pathLight_[path];
+    // The light it came from: gone, switched off, moved, turned or changed.
+    const render::LightItem* light = nullptr;
+    for (const auto& l : snapshot.lights)
+      if (l.entity == ls.entity) light = &l;
+    bool lightOk = light && light->light.enabled;
+    if (lightOk) {
+      LightState now{light->entity, light->position, light->direction, light->light.color * light->light.intensity,
+                     light->light.range, light->light.innerConeAngle, light->light.outerConeAngle, uint32_t(light->light.type)};
+      lightOk = now == ls;
+    }
+    if (!lightOk) {
+      invalidateIndex(path * settings_.bounces);  // the whole path
+      continue;
+    }
+    if (!v.placed) continue;  // escaped ray: nothing to see, valid while its parent is
+    if (!v.surface.isNull() && moved.count(v.surface)) {
+      invalidateIndex(i);
+      continue;
+    }
+    // The parent must still see it.
+    glm::vec3 from;
+    if (b == 0) {
+      if (light->light.type == scene::LightType::Directional) from = v.position - light->direction * (2.0f * scale);
+      else from = light->position;
+      if (light->light.type == scene::LightType::Spot) {
+        glm::vec3 w = glm::normalize(v.position - light->position);
+        if (glm::dot(w, light->direction) < std::cos(light->light.outerConeAngle)) {
+          invalidateIndex(i);
+          continue;
+        }
+      }
+    } else {
+      const PathVpl& parent = vpls_[i - 1];
+      from = parent.position + parent.normal * eps * 10.0f;
+    }
+    if (bvh.occluded(Segment{from, v.position + v.normal * eps * 10.0f}, eps)) invalidateIndex(i);
+  }
+  stats_.invalidatedTotal += stats_.invalidatedThisFrame;
+  uint32_t valid = 0;
+  for (const auto& v : vpls_) valid += v.valid;
+  stats_.valid = valid;
+  stats_.invalidateMs = msSince(t0);
+}
+
+bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const SceneSurfaces& surfaces) {
+  uint32_t path = index / settings_.bounces, b = index % settings_.bounces;
+  uint64_t rng = mix64(settings_.seed * 0x51ED27ULL + (++shotCounter_) * 0x2545F4914F6CDD1DULL + index);
+  const float scale = surfaces.sceneScale();
+  glm::vec3 origin, dir, throughput;
+  if (b == 0) {
+    // Pick a light in proportion to its power.
+    float total = 0.0f;
+    for (const auto& l : snapshot.lights) total += lightPower(l, snapshot.sceneBounds);
+    if (total <= 0.0f) return false;
+    float u = uniform01(rng) * total, acc = 0.0f;
+    const render::LightItem* light = nullptr;
+    for (const auto& l : snapshot.lights) {
+      float p = lightPower(l, snapshot.sceneBounds);
+      if (p <= 0.0f) continue;
+      light = &l;
+      acc += p;
+      if (u < acc) break;
+    }
+    float pLight = lightPower(*light, snapshot.sceneBounds) / total;
+    const scene::Light& L = light->light;
+    glm::vec3 radiant = L.color * L.intensity;
+    float u1 = uniform01(rng), u2 = uniform01(rng);
+    if (L.type == scene::LightType::Directional) {
+      float r = 0.5f * glm::length(snapshot.sceneBounds.extent()) + 1e-3f;
+      glm::vec3 b1, b2;
+      basis(light->direction, b1, b2);
+      float rr = r * std::sqrt(u1), phi = 2.0f * kPi * u2;
+      origin = snapshot.sceneBounds.center() - light->direction * (2.0f * r) + rr * (std::cos(phi) * b1 + std::sin(phi) * b2);
+      dir = light->direction;
+      throughput = radiant * (kPi * r * r) / pLight;  // E x disc area / p(light)
+    } else {
+      origin = light->position;
+      float pdf;
+      if (L.type == scene::LightType::Spot) {
+        float cosOuter = std::cos(std::clamp(L.outerConeAngle, 1e-3f, 1.5707f));
+        float ct = 1.0f - u1 * (1.0f - cosOuter), st = std::sqrt(std::max(0.0f, 1.0f - ct * ct));
+        glm::vec3 b1, b2;
+        basis(light->direction, b1, b2);
+        dir = glm::normalize(st * std::cos(2.0f * kPi * u2) * b1 + st * std::sin(2.0f * kPi * u2) * b2 + ct * light->direction);
+        pdf = 1.0f / (2.0f * kPi * (1.0f - cosOuter));
+        throughput = radiant * scene::spotFalloff(ct, L.innerConeAngle, L.outerConeAngle) / (pdf * pLight);
+      } else {
+        float z = 1.0f - 2.0f * u1, s = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        dir = {s * std::cos(2.0f * kPi * u2), s * std::sin(2.0f * kPi * u2), z};
+        pdf = 1.0f / (4.0f * kPi);
+        throughput = radiant / (pdf * pLight);
+      }
+    }
+    pathLight_[path] = LightState{light->entity, light->position, light->direction, radiant, L.range, L.innerConeAngle, L.outerConeAngle,
+                                  uint32_t(L.type)};
+    throughput /= float(paths_);
+  } else {
+    const PathVpl& parent = vpls_[index - 1];
+    if (!parent.valid) return false;
+    PathVpl child;
+    child.valid = true;
+    if (!parent.placed || luminance(parent.flux) <= 0.0f) {  // nothing to carry on
+      vpls_[index] = child;
+      return true;
+    }
+    glm::vec3 b1, b2;
+    basis(parent.normal, b1, b2);
+    float u1 = uniform01(rng), u2 = uniform01(rng), r = std::sqrt(u1), phi = 2.0f * kPi * u2;
+    dir = glm::normalize(r * std::cos(phi) * b1 + r * std::sin(phi) * b2 + std::sqrt(std::max(0.0f, 1.0f - u1)) * parent.normal);
+    origin = parent.position + parent.normal * (1e-4f * scale);
+    throughput = parent.flux;  // cosine sampling: the parent's whole reflected flux travels along the ray
+  }
+  PathVpl v;
+  v.valid = true;
+  RayHit h = bvh.intersect(origin, dir, 0.0f, 1e30f);
+  SurfaceHit sh;
+  if (h.hit && surfaces.at(h, origin, dir, sh)) {
+    if (b == 0) {
+      const render::LightItem* light = nullptr;
+      for (const auto& l : snapshot.lights)
+        if (l.entity == pathLight_[path].entity) light = &l;
+      if (light && light->light.type != scene::LightType::Directional)
+        throughput *= scene::rangeWindow(h.t, light->light.range);
+    }
+    v.placed = true;
+    v.position = sh.position;
+    v.normal = sh.shadingNormal;
+    v.flux = throughput * sh.diffuseAlbedo;
+    v.surface = sh.entity;
+  }
+  vpls_[index] = v;
+  return true;
+}
+
+void VplPaths::replace(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets) {
+  auto t0 = Clock::now();
+  stats_.replacedThisFrame = 0;
+  const uint32_t n = uint32_t(vpls_.size());
+  uint32_t budget = settings_.reshootBudget;
+  SceneSurfaces surfaces(snapshot, assets);
+  for (uint32_t visited = 0; visited < n && budget > 0; ++visited) {
+    uint32_t i = cursor_;
+    cursor_ = (cursor_ + 1) % n;
+    if (vpls_[i].valid) continue;
+    // A VPL is reshot only from a valid parent: start at the first invalid VPL of its path.
+    uint32_t first = i;
+    while (first % settings_.bounces > 0 && !vpls_[first - 1].valid) --first;
+    for (uint32_t j = first; j <= i && budget > 0; ++j) {
+      if (!shoot(j, snapshot, bvh, surfaces)) break;
+      --budget;
+      ++stats_.replacedThisFrame;
+      ++reshootCounts_[j];
+      setDirty_[setOf(j)] = 1;
+    }
+  }
+  stats_.replacedTotal += stats_.replacedThisFrame;
+  uint32_t valid = 0;
+  for (const auto& v : vpls_) valid += v.valid;
+  stats_.valid = valid;
+  stats_.replaceMs = msSince(t0);
+}
+
+}  // namespace dyngi::gi

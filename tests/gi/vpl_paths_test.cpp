@@ -1,0 +1,160 @@
+// Incremental VPL paths: invalidation against a brute-force oracle, the replacement budget and the
+// fairness of the round-robin cursor.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "dyngi/engine/scene/transform_system.h"
+#include "dyngi/gi/vpl_paths.h"
+#include "scenes/builtin_scenes.h"
+#include "support/scene_triangles.h"
+
+using namespace dyngi;
+using namespace dyngi::scene;
+
+namespace {
+struct Fixture {
+  ecs::World world;
+  AssetStore assets;
+  gi::EmbreeScene bvh;
+  ecs::Scheduler scheduler;
+  Fixture() {
+    sample::buildBuiltinScene("cornell", world, assets);
+    scheduler.add(ecs::Phase::PostUpdate, std::make_unique<TransformSystem>());
+  }
+  // Propagates transforms, syncs the BVH, returns the snapshot and the entities that moved.
+  render::RenderSnapshot frame(std::unordered_set<ecs::Entity>* moved = nullptr) {
+    // Everything written since the previous frame happened at the current tick or later.
+    ecs::Tick since = world.tick() - 1;
+    scheduler.runFrame(world, {});
+    if (moved) {
+      moved->clear();
+      world.forEachChanged<WorldTransform>(since, [&](ecs::Entity e) { moved->insert(e); });
+    }
+    bvh.sync(world, assets, since);
+    return render::extractSnapshot(world, assets, 0);
+  }
+};
+}  // namespace
+
+TEST(VplPaths, OccluderInvalidatesExactlyWhatItBlocksAndDescendants) {
+  Fixture f;
+  // An occluder parked far outside the room, where no light reaches.
+  Entity occ = f.world.create();
+  Transform ot;
+  ot.translation = {0, 50, 0};
+  f.world.add(occ, ot);
+  f.world.add(occ, MeshInstance{f.assets.addMesh(makeBox({0.12f, 0.02f, 0.12f})), true});
+  f.world.add(occ, Material{});
+  std::unordered_set<ecs::Entity> moved;
+  auto snap = f.frame(&moved);
+  gi::VplPaths paths(gi::VplPathSettings{.count = 3000, .bounces = 3, .reshootBudget = 100000});
+  paths.update(snap, f.bvh, f.assets, moved);
+  ASSERT_EQ(paths.stats().valid, 3000u);
+  std::vector<gi::PathVpl> before = paths.vpls();
+
+  // Move it just under the spot light.
+  f.world.write<Transform>(occ).translation = {0.3f, 1.2f, 0.1f};
+  snap = f.frame(&moved);
+  ASSERT_TRUE(moved.count(occ));
+  paths.invalidate(snap, f.bvh, moved);
+
+  // Oracle: brute-force segment tests against the occluder's triangles only.
+  std::vector<test::WorldTriangle> occTris;
+  for (auto& t : test::worldTriangles(f.world, f.assets))
+    if (t.entity == occ) occTris.push_back(t);
+  const float eps = 1e-4f * glm::length(snap.sceneBounds.extent());
+  const glm::vec3 lightPos = snap.lights[0].position;
+  std::vector<bool> expectInvalid(before.size(), false);
+  int blocked = 0, blockedAfterBounce = 0;
+  for (uint32_t i = 0; i < before.size(); ++i) {
+    const gi::PathVpl& v = before[i];
+    uint32_t b = i % 3;
+    if (b > 0 && expectInvalid[i - 1]) {  // descendant of an invalidated VPL
+      expectInvalid[i] = true;
+      continue;
+    }
+    if (!v.placed) continue;
+    glm::vec3 from = b == 0 ? lightPos : before[i - 1].position + before[i - 1].normal * eps * 10.0f;
+    glm::vec3 to = v.position + v.normal * eps * 10.0f;
+    float len = glm::length(to - from);
+    float t = test::bruteForceHit(occTris, from, (to - from) / len, eps, len - eps);
+    if (t > 0) expectInvalid[i] = true, ++blocked, blockedAfterBounce += b > 0;
+  }
+  ASSERT_GT(blocked, 30) << "the occluder must block a fair share of paths";
+  ASSERT_GT(blockedAfterBounce, 3) << "and some segments between VPLs";
+  int mismatches = 0, invalid = 0;
+  for (uint32_t i = 0; i < before.size(); ++i) {
+    bool isInvalid = !paths.vpls()[i].valid;
+    invalid += isInvalid;
+    mismatches += isInvalid != expectInvalid[i];
+  }
+  std::printf("occluder: %d VPLs blocked directly (%d from a parent VPL), %d invalid with descendants, %d mismatches\n", blocked,
+              blockedAfterBounce, invalid, mismatches);
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_EQ(paths.stats().invalidatedThisFrame, uint32_t(invalid));
+}
+
+TEST(VplPaths, BudgetIsRespectedRestoreIsTimelyAndCursorIsFair) {
+  Fixture f;
+  auto snap = f.frame();
+  const uint32_t budget = 37;
+  gi::VplPaths paths(gi::VplPathSettings{.count = 600, .bounces = 2, .reshootBudget = budget});
+  std::unordered_set<ecs::Entity> none;
+  // From empty: valid grows by exactly the budget per frame and is complete after ceil(600/37) frames.
+  uint32_t frames = 0;
+  while (paths.stats().valid < 600 && frames < 100) {
+    paths.update(snap, f.bvh, f.assets, none);
+    EXPECT_LE(paths.stats().replacedThisFrame, budget);
+    ++frames;
+  }
+  EXPECT_EQ(frames, (600 + budget - 1) / budget);
+
+  // Moving the light invalidates everything; each move is followed by a full restore in time.
+  Entity light{};
+  f.world.each<Light>([&](Entity e, const Light&) { light = e; });
+  for (int round = 0; round < 6; ++round) {
+    f.world.write<Transform>(light).translation.x = 0.1f * float(round + 1);
+    snap = f.frame();
+    paths.invalidate(snap, f.bvh, none);
+    uint32_t invalid = 600 - paths.stats().valid;
+    EXPECT_EQ(invalid, 600u);
+    paths.replace(snap, f.bvh, f.assets);
+    uint32_t n = 1;
+    while (paths.stats().valid < 600 && n < 100) {
+      paths.update(snap, f.bvh, f.assets, none);
+      EXPECT_LE(paths.stats().replacedThisFrame, budget);
+      ++n;
+    }
+    EXPECT_LE(n, (invalid + budget - 1) / budget) << "round " << round;
+  }
+  // Fairness: every VPL was reshot once per round (7 fills in all), none starved or favoured.
+  auto [mn, mx] = std::minmax_element(paths.reshootCounts().begin(), paths.reshootCounts().end());
+  EXPECT_EQ(*mn, 7u);
+  EXPECT_EQ(*mx, 7u);
+}
+
+TEST(VplPaths, TemporalSetsPartitionThePool) {
+  gi::VplPaths paths(gi::VplPathSettings{.count = 512, .bounces = 1, .temporalSets = 16});
+  std::vector<int> seen(512, 0);
+  for (uint32_t set = 0; set < 16; ++set)
+    for (uint32_t i = set; i < 512; i += 16) {
+      EXPECT_EQ(paths.setOf(i), set);
+      ++seen[i];
+    }
+  for (int s : seen) EXPECT_EQ(s, 1);
+}
+
+TEST(VplPaths, LightSwitchedOffLeavesNoValidVpl) {
+  Fixture f;
+  auto snap = f.frame();
+  gi::VplPaths paths(gi::VplPathSettings{.count = 256, .bounces = 2, .reshootBudget = 1000});
+  std::unordered_set<ecs::Entity> none;
+  paths.update(snap, f.bvh, f.assets, none);
+  ASSERT_EQ(paths.stats().valid, 256u);
+  f.world.each<Light>([&](Entity e, const Light&) { f.world.commands().run([e](ecs::World& w) { w.write<Light>(e).enabled = false; }); });
+  f.world.flushCommands();
+  snap = f.frame();
+  paths.update(snap, f.bvh, f.assets, none);
+  EXPECT_EQ(paths.stats().valid, 0u) << "no light: nothing to reshoot from";
+}
