@@ -21,6 +21,7 @@
 #include "dyngi/engine/scene/transform_system.h"
 #include "dyngi/gi/bvh_sync.h"
 #include "dyngi/gi/path_tracer.h"
+#include "dyngi/gi/gi_system.h"
 #include "dyngi/gi/many_lights.h"
 #include "dyngi/gi/voxel_scene.h"
 #include "scenes/builtin_scenes.h"
@@ -150,7 +151,14 @@ int runPathTracer(const Options& o, ecs::World& world, scene::AssetStore& assets
 int runApp(const Options& o) {
   ecs::World world;
   scene::AssetStore assets;
-  if (isBuiltinScene(o.scene)) {
+  std::string sceneName = o.animate.empty() ? o.scene : "animate:" + o.animate;
+  if (!o.animate.empty()) {
+    std::string err = buildAnimatedScene(o.animate, world, assets, DYNGI_SHARED_SCENES_DEFAULT);
+    if (!err.empty()) {
+      std::fprintf(stderr, "dyngi_sample: --animate %s: %s\n", o.animate.c_str(), err.c_str());
+      return 2;
+    }
+  } else if (isBuiltinScene(o.scene)) {
     buildBuiltinScene(o.scene, world, assets);
   } else {
     scene::ImportReport report;
@@ -179,7 +187,7 @@ int runApp(const Options& o) {
   if (o.gi == "path") {
     if (!o.headless) std::fprintf(stderr, "dyngi_sample: the path tracer renders offscreen; running headless\n");
     RunStats stats;
-    stats.scene = o.scene;
+    stats.scene = sceneName;
     stats.gi = o.gi;
     int status = runPathTracer(o, world, assets, stats);
     if (!o.stats.empty()) {
@@ -221,32 +229,46 @@ int runApp(const Options& o) {
   }
   renderer.resize(width, height);
 
-  // The voxel scene runs when something needs it: --gi svo, or its debug views.
-  std::unique_ptr<gi::VoxelScene> voxels;
-  std::unique_ptr<gi::ManyLights> manyLights;
+  // GI: one ECS system plus its render features.
   const bool voxelView = o.view == "voxels" || o.view == "svo-steps";
-  if (voxelView || o.gi == "svo") {
-    gi::VoxelSettings vs;
-    vs.resolution = o.voxelResolution;
-    if (voxelView) vs.debugView = o.view == "voxels" ? gi::VoxelDebugView::Voxels : gi::VoxelDebugView::SvoSteps;
-    voxels = std::make_unique<gi::VoxelScene>(ctx, vs);
-    renderer.addFeature(voxels.get());
+  const bool manyLightsView = o.view == "indirect" || o.view == "vpls" || o.view == "subimages";
+  const gi::VoxelDebugView voxelDebug = o.view == "voxels" ? gi::VoxelDebugView::Voxels : gi::VoxelDebugView::SvoSteps;
+  std::unique_ptr<gi::GiSystem> giOwned;
+  gi::GiSystem* gi = nullptr;
+  std::unique_ptr<gi::VoxelScene> standaloneVoxels;  // --view voxels without GI
+  if (o.gi == "svo" || o.gi == "bvh") {
+    gi::GiSettings gs;
+    gs.mode = o.vplSource == "rsm" ? gi::GiMode::ManyLightsRsm : gi::GiMode::Temporal;
+    if (gs.mode == gi::GiMode::ManyLightsRsm && o.gi == "bvh") {
+      std::fprintf(stderr, "dyngi_sample: --vpl-source rsm needs --gi svo\n");
+      return 2;
+    }
+    gs.visibility = o.gi == "bvh" ? gi::VisibilityBackend::Bvh : gi::VisibilityBackend::Svo;
+    gs.vplCount = o.vpls;
+    gs.bounces = std::clamp(o.bounces, 1u, 3u);
+    gs.temporalSets = o.temporal;
+    gs.reshootBudget = o.reshoot;
+    gs.interleave = o.interleave;
+    gs.distanceClamp = o.distanceClamp;
+    gs.svoResolution = o.voxelResolution;
+    giOwned = std::make_unique<gi::GiSystem>(ctx, assets, gs);
+    gi = giOwned.get();
+    gi->attach(renderer);
+    if (gi->manyLights() && manyLightsView)
+      gi->manyLights()->settings().view = o.view == "indirect" ? gi::ManyLightsView::Indirect
+                                          : o.view == "vpls"   ? gi::ManyLightsView::Vpls
+                                                               : gi::ManyLightsView::SubImages;
   }
-  if (o.gi == "svo") {
-    gi::ManyLightsSettings ms;
-    ms.vplCount = o.vpls;
-    ms.bounces = std::clamp(o.bounces, 1u, 3u);
-    ms.interleave = o.interleave;
-    ms.distanceClamp = o.distanceClamp;
-    ms.view = o.view == "indirect" ? gi::ManyLightsView::Indirect
-              : o.view == "vpls"   ? gi::ManyLightsView::Vpls
-              : o.view == "subimages" ? gi::ManyLightsView::SubImages
-                                      : gi::ManyLightsView::Final;
-    manyLights = std::make_unique<gi::ManyLights>(ctx, *voxels, ms);
-    renderer.addFeature(manyLights.get());
-  } else if (o.view == "indirect" || o.view == "vpls" || o.view == "subimages") {
-    std::fprintf(stderr, "dyngi_sample: --view %s needs --gi svo\n", o.view.c_str());
+  if (manyLightsView && !(gi && gi->manyLights())) {
+    std::fprintf(stderr, "dyngi_sample: --view %s needs --gi svo --vpl-source rsm\n", o.view.c_str());
     return 2;
+  }
+  gi::VoxelScene* voxels = gi ? gi->voxels() : nullptr;
+  if (voxelView && voxels) voxels->setDebugView(voxelDebug);
+  if (voxelView && !voxels) {
+    standaloneVoxels = std::make_unique<gi::VoxelScene>(ctx, gi::VoxelSettings{.resolution = o.voxelResolution, .debugView = voxelDebug});
+    renderer.addFeature(standaloneVoxels.get());
+    voxels = standaloneVoxels.get();
   }
 
   ecs::Scheduler scheduler;
@@ -255,10 +277,11 @@ int runApp(const Options& o) {
   scheduler.add(ecs::Phase::Update, std::make_unique<scene::AnimationSystem>());
   scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
   scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::SkinningSystem>(assets));
-  if (voxels) scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(*voxels, assets));
+  if (giOwned) scheduler.add(ecs::Phase::PostUpdate, std::move(giOwned));
+  else if (standaloneVoxels) scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(*standaloneVoxels, assets));
 
   RunStats stats;
-  stats.scene = o.scene;
+  stats.scene = sceneName;
   stats.gi = o.gi;
   stats.device = ctx.deviceName();
   stats.warmupFrames = kWarmupFrames;
@@ -304,6 +327,15 @@ int runApp(const Options& o) {
       stats.cpuStageMs["extract"].push_back(extractMs);
       stats.cpuStageMs["render_record"].push_back(fs.cpuRecordMs);
       stats.cpuStageMs["render_wait"].push_back(fs.cpuWaitMs);
+      if (gi) {
+        gi::GiStats g = gi->stats();
+        stats.cpuStageMs["gi_bvh_update"].push_back(g.bvh.updateMs);
+        if (gi->paths()) {
+          stats.cpuStageMs["gi_vpl_invalidate"].push_back(g.vpl.invalidateMs);
+          stats.cpuStageMs["gi_vpl_replace"].push_back(g.vpl.replaceMs);
+        }
+        if (o.gi == "bvh") stats.cpuStageMs["gi_bvh_visibility"].push_back(g.bvhVisibilityMs);
+      }
     }
   }
   stats.frames = rendered;
@@ -311,10 +343,19 @@ int runApp(const Options& o) {
   stats.height = renderer.height();
   stats.scalars["draws"] = double(render::extractSnapshot(world, assets, 0).draws.size());
   stats.scalars["validation_errors"] = ctx.validationErrorCount();
-  if (manyLights) {
+  if (gi) {
+    gi::GiStats g = gi->stats();
     stats.scalars["vpls"] = o.vpls;
     stats.scalars["interleave"] = o.interleave;
     stats.scalars["bounces"] = std::clamp(o.bounces, 1u, 3u);
+    if (gi->paths()) {
+      stats.scalars["temporal_sets"] = o.temporal;
+      stats.sections["vpl"] = {{"count", g.vpl.count},
+                               {"valid", g.vpl.valid},
+                               {"invalidated_total", double(g.vpl.invalidatedTotal)},
+                               {"replaced_total", double(g.vpl.replacedTotal)},
+                               {"reshoot_budget", g.vpl.reshootBudget}};
+    }
   }
   if (voxels) {
     const gi::VoxelStats& v = voxels->stats();

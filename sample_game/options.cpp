@@ -6,7 +6,7 @@
 
 namespace dyngi::sample {
 
-const char* const kGiModes[] = {"off", "path", "svo"};
+const char* const kGiModes[] = {"off", "svo", "bvh", "path"};
 
 std::string usage() {
   return "usage: dyngi_sample [options]\n"
@@ -14,8 +14,12 @@ std::string usage() {
          "  --headless                             render offscreen, no window\n"
          "  --size WxH                             render size (default 768x768)\n"
          "  --frames N                             frames to render (default: 60 headless, until closed windowed)\n"
-         "  --gi MODE                              global illumination: off | svo (many lights, SVO visibility) |\n"
-         "                                         path (CPU reference path tracer)\n"
+         "  --gi MODE                              global illumination: off | svo (VPLs, SVO visibility on the GPU) |\n"
+         "                                         bvh (VPLs, Embree visibility on the CPU) | path (reference path tracer)\n"
+         "  --temporal T                           temporal VPL sets for svo/bvh (default 16; 1 = all VPLs every frame)\n"
+         "  --reshoot N                            VPLs reshot per frame (default: VPLs / T)\n"
+         "  --vpl-source paths|rsm                 incremental light paths (default) or per-frame RSM sampling (svo)\n"
+         "  --animate NAME                         static | moving-spot | rotating-object | walking-fox (benchmark scenes)\n"
          "  --vpls N                               VPLs for --gi svo (default 512)\n"
          "  --interleave K                         K x K interleaved sub-images (default 4)\n"
          "  --clamp B                              distance clamp B in world units^2 (default 0.01)\n"
@@ -95,6 +99,27 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
         return std::nullopt;
       }
       o.frames = int(n);
+    } else if (a == "--temporal" || a == "--reshoot") {
+      uint32_t n;
+      if (!value(v)) return std::nullopt;
+      bool isT = a == "--temporal";
+      if (!parseUint(v, n) || (isT ? (n < 1 || n > 32) : n > 1000000)) {
+        error = a + (isT ? " wants 1..32" : " wants 0..1000000") + ", got '" + v + "'";
+        return std::nullopt;
+      }
+      (isT ? o.temporal : o.reshoot) = n;
+    } else if (a == "--vpl-source") {
+      if (!value(o.vplSource)) return std::nullopt;
+      if (o.vplSource != "paths" && o.vplSource != "rsm") {
+        error = "unknown --vpl-source '" + o.vplSource + "' (available: paths, rsm)";
+        return std::nullopt;
+      }
+    } else if (a == "--animate") {
+      if (!value(o.animate)) return std::nullopt;
+      if (o.animate != "static" && o.animate != "moving-spot" && o.animate != "rotating-object" && o.animate != "walking-fox") {
+        error = "unknown --animate '" + o.animate + "' (available: static, moving-spot, rotating-object, walking-fox)";
+        return std::nullopt;
+      }
     } else if (a == "--vpls" || a == "--interleave") {
       uint32_t n;
       if (!value(v)) return std::nullopt;
@@ -136,7 +161,7 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
       bool known = false;
       for (const char* m : kGiModes) known |= o.gi == m;
       if (!known) {
-        error = "unknown --gi mode '" + o.gi + "' (available: off, svo, path)";
+        error = "unknown --gi mode '" + o.gi + "' (available: off, svo, bvh, path)";
         return std::nullopt;
       }
     } else {

@@ -11,7 +11,11 @@ struct Options {
   bool headless = false;
   uint32_t width = 768, height = 768;
   int frames = -1;                          // -1: headless 60, windowed until closed
-  std::string gi = "off";                   // off | path | svo
+  std::string gi = "off";                   // off | svo | bvh | path
+  uint32_t temporal = 16;                   // T temporal VPL sets (svo/bvh with path VPLs)
+  uint32_t reshoot = 0;                     // VPLs reshot per frame (0: vpls / T)
+  std::string vplSource = "paths";          // paths (incremental, temporal) | rsm (per frame, svo only)
+  std::string animate;                      // static | moving-spot | rotating-object | walking-fox
   uint32_t vpls = 512;                      // many-lights VPL count
   uint32_t interleave = 4;                  // many-lights K (K x K sub-images)
   float distanceClamp = 0.01f;              // many-lights B (world units^2)

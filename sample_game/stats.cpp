@@ -63,7 +63,17 @@ std::string RunStats::toJson() const {
     j << (first ? "" : ", ") << "\"" << escape(name) << "\": " << num(v);
     first = false;
   }
-  j << "}\n}\n";
+  j << "}";
+  for (auto& [key, values] : sections) {
+    j << ",\n  \"" << escape(key) << "\": {";
+    bool firstValue = true;
+    for (auto& [name, v] : values) {
+      j << (firstValue ? "" : ", ") << "\"" << escape(name) << "\": " << num(v);
+      firstValue = false;
+    }
+    j << "}";
+  }
+  j << "\n}\n";
   return j.str();
 }
 

@@ -16,6 +16,7 @@ struct RunStats {
   std::map<std::string, std::vector<double>> gpuStageMs;  // pass name -> per frame
   std::map<std::string, std::vector<double>> cpuStageMs;  // system / CPU step -> per frame
   std::map<std::string, double> scalars;                  // counts and sizes
+  std::map<std::string, std::map<std::string, double>> sections;  // extra objects, e.g. "vpl": {...}
 
   std::string toJson() const;
   std::string table() const;  // human-readable per-stage medians

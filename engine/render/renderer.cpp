@@ -165,7 +165,22 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   DYNGI_VK(vkBeginCommandBuffer(cmd_, &bi));
   if (timer_) timer_->beginFrame(cmd_);
-  FrameContext frame{ctx_, cmd_, timer_.get(), snapshot, targets_, frameUniforms_, meshes, linearSampler_, nearestSampler_, textures};
+  auto submitAndWait = [this] {
+    DYNGI_VK(vkEndCommandBuffer(cmd_));
+    VkCommandBufferSubmitInfo part{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+    part.commandBuffer = cmd_;
+    VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    si.commandBufferInfoCount = 1;
+    si.pCommandBufferInfos = &part;
+    DYNGI_VK(vkResetFences(ctx_.device(), 1, &fence_));
+    DYNGI_VK(vkQueueSubmit2(ctx_.queue(), 1, &si, fence_));
+    DYNGI_VK(vkWaitForFences(ctx_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
+    VkCommandBufferBeginInfo again{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    again.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    DYNGI_VK(vkBeginCommandBuffer(cmd_, &again));
+  };
+  FrameContext frame{ctx_, cmd_, timer_.get(), snapshot, targets_, frameUniforms_, meshes, linearSampler_, nearestSampler_, textures,
+                     submitAndWait};
 
   if (!settings_.featuresOnly) {
     shadow_->execute(frame);
@@ -269,51 +284,8 @@ Image& Renderer::target(TargetId id) {
   return targets_.hdr;
 }
 
-namespace {
-Buffer copyToHost(VulkanContext& ctx, Image& img) {
-  size_t bpp = formatBytesPerPixel(img.desc().format);
-  VkDeviceSize bytes = VkDeviceSize(img.desc().width) * img.desc().height * bpp;
-  Buffer out(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "readback");
-  ctx.immediate([&](VkCommandBuffer cmd) {
-    img.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {img.desc().width, img.desc().height, 1};
-    vkCmdCopyImageToBuffer(cmd, img.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, out.handle(), 1, &region);
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-  });
-  out.invalidateForRead();
-  return out;
-}
-}  // namespace
+std::vector<glm::vec4> Renderer::readback(TargetId id) { return readbackImage(ctx_, target(id)); }
 
-std::vector<glm::vec4> Renderer::readback(TargetId id) {
-  Image& img = target(id);
-  Buffer buf = copyToHost(ctx_, img);
-  size_t n = size_t(img.desc().width) * img.desc().height;
-  std::vector<glm::vec4> out(n);
-  const uint8_t* src = static_cast<const uint8_t*>(buf.mapped());
-  switch (img.desc().format) {
-    case VK_FORMAT_R32G32B32A32_SFLOAT: std::memcpy(out.data(), src, n * 16); break;
-    case VK_FORMAT_R16G16B16A16_SFLOAT:
-      for (size_t i = 0; i < n; ++i) {
-        uint16_t h[4];
-        std::memcpy(h, src + i * 8, 8);
-        out[i] = glm::vec4(glm::unpackHalf1x16(h[0]), glm::unpackHalf1x16(h[1]), glm::unpackHalf1x16(h[2]), glm::unpackHalf1x16(h[3]));
-      }
-      break;
-    case VK_FORMAT_R8G8B8A8_UNORM:
-      for (size_t i = 0; i < n; ++i) out[i] = glm::vec4(src[i * 4], src[i * 4 + 1], src[i * 4 + 2], src[i * 4 + 3]) / 255.0f;
-      break;
-    default: throw VulkanError("readback: unsupported format");
-  }
-  return out;
-}
-
-std::vector<uint8_t> Renderer::readbackLdr() {
-  Buffer buf = copyToHost(ctx_, targets_.ldr);
-  const uint8_t* src = static_cast<const uint8_t*>(buf.mapped());
-  return std::vector<uint8_t>(src, src + size_t(targets_.width) * targets_.height * 4);
-}
+std::vector<uint8_t> Renderer::readbackLdr() { return readbackImageBytes(ctx_, targets_.ldr); }
 
 }  // namespace dyngi::render

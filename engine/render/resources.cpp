@@ -1,6 +1,9 @@
 #include "dyngi/engine/render/resources.h"
 
+#include <cstring>
 #include <utility>
+
+#include <glm/gtc/packing.hpp>
 
 namespace dyngi::render {
 
@@ -248,6 +251,53 @@ size_t formatBytesPerPixel(VkFormat format) {
     case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
     default: return 0;
   }
+}
+
+namespace {
+Buffer copyToHost(VulkanContext& ctx, Image& img) {
+  size_t bpp = formatBytesPerPixel(img.desc().format);
+  if (bpp == 0) throw VulkanError("readback: unsupported format");
+  VkDeviceSize bytes = VkDeviceSize(img.desc().width) * img.desc().height * bpp;
+  Buffer out(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "readback");
+  ctx.immediate([&](VkCommandBuffer cmd) {
+    img.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {img.desc().width, img.desc().height, 1};
+    vkCmdCopyImageToBuffer(cmd, img.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, out.handle(), 1, &region);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+  });
+  out.invalidateForRead();
+  return out;
+}
+}  // namespace
+
+std::vector<glm::vec4> readbackImage(VulkanContext& ctx, Image& img) {
+  Buffer buf = copyToHost(ctx, img);
+  size_t n = size_t(img.desc().width) * img.desc().height;
+  std::vector<glm::vec4> out(n);
+  const uint8_t* src = static_cast<const uint8_t*>(buf.mapped());
+  switch (img.desc().format) {
+    case VK_FORMAT_R32G32B32A32_SFLOAT: std::memcpy(out.data(), src, n * 16); break;
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+      for (size_t i = 0; i < n; ++i) {
+        uint16_t h[4];
+        std::memcpy(h, src + i * 8, 8);
+        out[i] = glm::vec4(glm::unpackHalf1x16(h[0]), glm::unpackHalf1x16(h[1]), glm::unpackHalf1x16(h[2]), glm::unpackHalf1x16(h[3]));
+      }
+      break;
+    case VK_FORMAT_R8G8B8A8_UNORM:
+      for (size_t i = 0; i < n; ++i) out[i] = glm::vec4(src[i * 4], src[i * 4 + 1], src[i * 4 + 2], src[i * 4 + 3]) / 255.0f;
+      break;
+    default: throw VulkanError("readback: unsupported format");
+  }
+  return out;
+}
+
+std::vector<uint8_t> readbackImageBytes(VulkanContext& ctx, Image& img) {
+  Buffer buf = copyToHost(ctx, img);
+  const uint8_t* src = static_cast<const uint8_t*>(buf.mapped());
+  return std::vector<uint8_t>(src, src + buf.size());
 }
 
 }  // namespace dyngi::render

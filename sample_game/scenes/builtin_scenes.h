@@ -22,6 +22,15 @@ bool isBuiltinScene(const std::string& name);
 // Builds `name` ("cornell" or "cornell-dynamic") into the world; adds a camera.
 void buildBuiltinScene(const std::string& name, ecs::World& world, scene::AssetStore& assets);
 
+// Scripted benchmark scenes (--animate): the Cornell box with
+//  static           nothing moving;
+//  moving-spot      the spot sliding back and forth over the floor;
+//  rotating-object  a two-coloured object (red and blue halves) turning under the spot;
+//  walking-fox      the glTF fox walking on the floor (needs `sharedScenesDir`/Fox.glb).
+// Returns an empty string on success, else the problem.
+std::string buildAnimatedScene(const std::string& name, ecs::World& world, scene::AssetStore& assets,
+                               const std::string& sharedScenesDir);
+
 // When a loaded scene has neither punctual lights nor emissive surfaces it would render black; add a
 // directional "default sun" instead (and say so). Returns true when a light was added.
 bool addDefaultLightIfUnlit(ecs::World& world);

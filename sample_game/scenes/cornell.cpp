@@ -1,6 +1,8 @@
 #include <glm/gtc/quaternion.hpp>
+#include <unordered_set>
 
 #include "dyngi/engine/scene/components.h"
+#include "dyngi/engine/scene/gltf_import.h"
 #include "dyngi/engine/scene/scripted_motion.h"
 #include "scenes/builtin_scenes.h"
 
@@ -91,6 +93,78 @@ void buildBuiltinScene(const std::string& name, ecs::World& w, AssetStore& asset
   w.add(cam, Camera{.yfov = glm::radians(40.0f), .znear = 0.05f, .zfar = 50.0f});
   w.add(cam, ActiveCamera{});
   w.add(cam, Name{"camera"});
+}
+
+std::string buildAnimatedScene(const std::string& name, ecs::World& w, AssetStore& assets, const std::string& sharedScenesDir) {
+  buildBuiltinScene("cornell", w, assets);
+  if (name == "static") return {};
+  if (name == "moving-spot") {
+    w.each<Light, Transform>([&](Entity e, const Light&, const Transform& t) {
+      ScriptedMotion m;
+      m.origin = t.translation;
+      m.baseRotation = t.rotation;
+      m.oscillation = {0.6f, 0.0f, 0.0f};
+      m.oscillationHz = 0.25f;
+      w.commands().add(e, m);
+    });
+    w.flushCommands();
+    return {};
+  }
+  if (name == "rotating-object") {
+    Entity pivot = w.create();
+    Transform pt;
+    pt.translation = {0.1f, 1.05f, 0.25f};
+    w.add(pivot, pt);
+    ScriptedMotion spin;
+    spin.origin = pt.translation;
+    spin.spinAxis = {0.3f, 1.0f, 0.2f};
+    spin.spinSpeed = 1.2f;
+    w.add(pivot, spin);
+    w.add(pivot, Name{"rotating_object"});
+    const glm::vec3 colours[2] = {{0.8f, 0.1f, 0.1f}, {0.1f, 0.2f, 0.85f}};
+    for (int i = 0; i < 2; ++i) {
+      Transform ht;
+      ht.translation = {i == 0 ? -0.13f : 0.13f, 0.0f, 0.0f};
+      ht.parent = pivot;
+      addMesh(w, assets, makeBox({0.13f, 0.2f, 0.2f}), colours[i], ht, true, i == 0 ? "rotating_red" : "rotating_blue");
+    }
+    return {};
+  }
+  if (name == "walking-fox") {
+    std::string path = sharedScenesDir + "/Fox.glb";
+    std::vector<Entity> existing;
+    w.each<Transform>([&](Entity e, const Transform&) { existing.push_back(e); });
+    ImportOptions io;
+    io.clip = "Walk";
+    io.markStatic = false;
+    std::string err = importGltf(path, w, assets, nullptr, io);
+    if (!err.empty()) return err;
+    // Put the fox's roots under a pivot that scales it to the room (~1 m long) and walks it in a circle.
+    Entity pivot = w.create();
+    Transform pt;
+    pt.scale = glm::vec3(0.0065f);
+    w.add(pivot, pt);
+    ScriptedMotion circle;
+    circle.orbitRadius = 0.45f;
+    circle.orbitSpeed = 0.5f;
+    circle.spinSpeed = 0.5f;
+    w.add(pivot, circle);
+    w.add(pivot, Name{"fox_pivot"});
+    std::unordered_set<Entity> old(existing.begin(), existing.end());
+    std::vector<Entity> roots;
+    w.each<Transform>([&](Entity e, const Transform& t) {
+      if (!old.count(e) && e != pivot && t.parent.isNull()) roots.push_back(e);
+    });
+    for (Entity e : roots) w.write<Transform>(e).parent = pivot;
+    // The boxes would be in its way.
+    std::vector<Entity> boxes;
+    w.each<Name>([&](Entity e, const Name& n) {
+      if (n.value == "short_box" || n.value == "tall_box") boxes.push_back(e);
+    });
+    for (Entity e : boxes) w.destroy(e);
+    return {};
+  }
+  return "unknown animated scene '" + name + "'";
 }
 
 bool addDefaultLightIfUnlit(ecs::World& w) {

@@ -95,7 +95,8 @@ struct GatherPush {
 #endif
   vec4 worldToVoxel;    // xyz origin, w 1 / voxel size
   vec4 params;          // x distance clamp B (world units^2), y luminance threshold, z lift (world units), w voxel resolution
-  uvec4 info;           // x VPL count, y interleave K, z visibility (0 SVO, 1 none), w SVO depth
+  uvec4 info;           // x VPL count, y interleave K, z visibility (0 SVO, 1 none, 2 precomputed bits), w SVO depth
+  uvec4 range;          // x first VPL, y bits per pixel (visibility 2)
 };
 
 #define DYNGI_MAX_RSM_LAYERS 24
@@ -104,7 +105,7 @@ struct GatherPush {
 static_assert(sizeof(VoxelizePush) == 112);
 static_assert(sizeof(GpuVpl) == 48);
 static_assert(sizeof(RsmPush) == 96);
-static_assert(sizeof(GatherPush) == 48);
+static_assert(sizeof(GatherPush) == 64);
 static_assert(sizeof(SvoLevel) == 32);
 static_assert(sizeof(SvoCounters) == 48);
 }  // namespace dyngi::gi::gpu

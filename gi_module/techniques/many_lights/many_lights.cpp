@@ -66,7 +66,7 @@ ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const Man
   const Binding bounceB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}};
   bounce_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_bounce_comp), bounceB, 40, "vpl_bounce");
   const Binding gatherB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSampled, kCS}, {2, kSampled, kCS},
-                             {3, kSSBO, kCS}, {4, kSSBO, kCS}, {5, kStorageImage, kCS}};
+                              {3, kSSBO, kCS}, {4, kSSBO, kCS}, {5, kStorageImage, kCS}, {6, kSSBO, kCS}};
   gather_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_gather_comp), gatherB, sizeof(gpu::GatherPush), "indirect_gather");
   const Binding filterB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSampled, kCS}, {2, kSampled, kCS},
                              {3, kStorageImage, kCS}, {4, kStorageImage, kCS}};
@@ -285,11 +285,13 @@ bool ManyLights::record(render::FrameContext& frame) {
         .storageBuffer(3, vpls_.handle())
         .storageBuffer(4, voxels_.nodes().handle())
         .storageImage(5, raw_.view())
+        .storageBuffer(6, vpls_.handle())  // unused (visibility mode 0/1)
         .push(ctx_, cmd, gather_);
     gpu::GatherPush pc;
     pc.worldToVoxel = glm::vec4(vol.origin, 1.0f / vol.voxelSize);
     pc.params = glm::vec4(settings_.distanceClamp, settings_.luminanceThreshold, settings_.liftVoxels, float(vol.resolution));
     pc.info = glm::uvec4(vplTotal, K, settings_.visibility ? 0u : 1u, vol.depth());
+    pc.range = glm::uvec4(0u);
     vkCmdPushConstants(cmd, gather_.layout(), kCS, 0, sizeof(pc), &pc);
     vkCmdDispatch(cmd, groups(groups(t.width, K), 8), groups(groups(t.height, K), 8), K * K);
   }

@@ -59,6 +59,7 @@ class VoxelScene final : public render::RenderFeature {
   void markAllDirty() { allDirty_ = true; }
   // Fixes the volume (otherwise the first snapshot's bounds decide it). Re-voxelizes everything.
   void setVolume(const VoxelVolume& v);
+  void setDebugView(VoxelDebugView v) { settings_.debugView = v; }
 
   const VoxelVolume& volume() const { return volume_; }
   bool hasVolume() const { return haveVolume_; }

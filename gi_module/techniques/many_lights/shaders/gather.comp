@@ -14,6 +14,7 @@ layout(set = 0, binding = 2) uniform sampler2D gNormal;
 layout(set = 0, binding = 3) readonly buffer Vpls { GpuVpl vpls[]; };
 layout(set = 0, binding = 4) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D outRaw;
+layout(set = 0, binding = 6) readonly buffer VisibilityBits { uint visibleBits[]; };  // visibility mode 2
 #include "svo_traverse.glsl"
 layout(push_constant) uniform Push { GatherPush pc; };
 
@@ -32,9 +33,11 @@ void main() {
   vec3 e = vec3(0.0);
   uint K2 = K * K;
   // Importance sampling gives every first-bounce VPL the same luminance; the threshold is relative to it.
-  float threshold = pc.params.y * vpls[0].flux.w;
-  for (uint i = s; i < pc.info.x; i += K2) {
-    GpuVpl v = vpls[i];
+  float threshold = pc.params.y * vpls[pc.range.x].flux.w;
+  uint bitBase = (uint(px.y) * frame.sizeAndCount.x + uint(px.x)) * pc.range.y;
+  uint m = 0u;
+  for (uint i = s; i < pc.info.x; i += K2, ++m) {
+    GpuVpl v = vpls[pc.range.x + i];
     if (v.position.w < 0.0 || v.flux.w <= threshold) continue;
     vec3 d = v.position.xyz - x;
     float d2 = dot(d, d);
@@ -43,7 +46,10 @@ void main() {
     float cx = dot(nx, w), cy = -dot(v.normal.xyz, w);
     if (cx <= 0.0 || cy <= 0.0) continue;
     float g = cx * cy / max(pc.params.x, d2);
-    if (pc.info.z == 0u) {
+    if (pc.info.z == 2u) {
+      uint bit = bitBase + m;
+      if ((visibleBits[bit >> 5] & (1u << (bit & 31u))) == 0u) continue;
+    } else if (pc.info.z == 0u) {
       vec3 yv = (v.position.xyz - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + v.normal.xyz * pc.params.z;
       uint steps;
       if (svoOccluded(xv, yv, 1e-3, pc.info.w, pc.params.w, steps)) continue;

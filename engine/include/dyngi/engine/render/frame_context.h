@@ -52,6 +52,9 @@ struct FrameContext {
   VkSampler nearestSampler;
   // The view of a scene texture (a 1x1 white texture for kNoTexture or a missing one).
   std::function<VkImageView(scene::TextureId)> textureView;
+  // Submits what was recorded so far, waits for it, and reopens `cmd` for the rest of the frame. For a
+  // feature that needs this frame's G-buffer on the CPU (ray-traced visibility); costs the overlap.
+  std::function<void()> submitAndWait;
 };
 
 }  // namespace dyngi::render

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "dyngi/engine/render/context.h"
 
 namespace dyngi::render {
@@ -96,5 +98,10 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccess
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
 size_t formatBytesPerPixel(VkFormat format);
+
+// Copies a 2D color image (RGBA32F, RGBA16F or RGBA8) to the CPU as RGBA floats (8-bit as 0..1).
+// Synchronous; leaves the image in TRANSFER_SRC layout (the next transition moves it on).
+std::vector<glm::vec4> readbackImage(VulkanContext& ctx, Image& image);
+std::vector<uint8_t> readbackImageBytes(VulkanContext& ctx, Image& image);
 
 }  // namespace dyngi::render

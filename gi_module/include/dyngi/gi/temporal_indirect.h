@@ -1,0 +1,74 @@
+#pragma once
+// Temporal indirect light from incremental VPL paths (the render side of VplPaths).
+//
+// Each frame one temporal set is gathered (a set whose VPLs changed first, else the one rendered
+// longest ago) with K x K interleaving and the chosen visibility: the SVO march on the GPU, or Embree
+// on the CPU (this frame's G-buffer is read back mid-frame and the results are uploaded as bits). The
+// result is kept per set with its depth and camera; every frame all sets are reprojected into the
+// current view (samples whose surface moved more than the cut-off are dropped) and summed, then the
+// geometry-aware filter (the discontinuity buffer) removes the interleaving pattern.
+// Stages: indirect (+ visibility_bvh), temporal_store, reproject, filter.
+#include <vector>
+
+#include "dyngi/engine/render/pipeline.h"
+#include "dyngi/engine/render/render_feature.h"
+#include "dyngi/gi/bvh.h"
+#include "dyngi/gi/voxel_scene.h"
+#include "dyngi/gi/vpl_paths.h"
+
+namespace dyngi::gi {
+
+enum class VisibilityBackend { Svo, Bvh, None };
+
+struct TemporalSettings {
+  uint32_t interleave = 4;
+  float distanceClamp = 0.01f;
+  float luminanceThreshold = 0.01f;
+  float liftVoxels = 1.5f;              // SVO: segment ends leave their surface by this many voxels
+  float reprojectionCutoff = 0.02f;     // relative to the view distance
+  float filterPlaneTolerance = 0.02f;
+  VisibilityBackend visibility = VisibilityBackend::Svo;
+};
+
+struct TemporalVpl {
+  glm::vec3 position, normal;
+  bool valid;
+};
+
+class TemporalIndirect final : public render::RenderFeature {
+ public:
+  // `voxels` is needed for Svo visibility, `bvh` for Bvh visibility.
+  TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, VoxelScene* voxels, const EmbreeScene* bvh,
+                   const TemporalSettings& settings = {});
+  ~TemporalIndirect() override;
+
+  const char* name() const override { return "temporal_indirect"; }
+  void prepare(render::VulkanContext& ctx, const render::RenderSnapshot& snapshot) override;
+  bool record(render::FrameContext& frame) override;
+  void resize(render::VulkanContext& ctx, uint32_t width, uint32_t height) override;
+
+  TemporalSettings& settings() { return settings_; }
+  uint32_t lastRenderedSet() const { return currentSet_; }
+  uint32_t setsRendered() const;  // sets rendered at least once
+  double lastBvhVisibilityMs() const { return bvhMs_; }
+
+ private:
+  void computeBvhVisibility(render::FrameContext& frame, uint32_t perPixel);
+
+  render::VulkanContext& ctx_;
+  VplPaths& paths_;
+  VoxelScene* voxels_;
+  const EmbreeScene* bvh_;
+  TemporalSettings settings_;
+  uint32_t sets_ = 1, perSet_ = 1;
+  uint32_t currentSet_ = 0;
+  uint64_t frameCounter_ = 0;
+  std::vector<int64_t> lastRendered_;   // frame each set was last gathered (-1: never)
+  std::vector<TemporalVpl> setVpls_;  // CPU copy of the VPLs uploaded this frame
+  render::Buffer vpls_, cameras_, bits_;
+  render::Image raw_, accumulated_, setIndirect_, setDepth_;
+  render::Pipeline gather_, store_, reproject_, filter_;
+  double bvhMs_ = 0.0;
+};
+
+}  // namespace dyngi::gi

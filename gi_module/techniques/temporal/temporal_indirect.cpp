@@ -1,0 +1,286 @@
+#include "dyngi/gi/temporal_indirect.h"
+
+#include <algorithm>
+#include <chrono>
+#include <thread>
+
+#include "shaders/shared/gi_gpu_types.h"
+#include "spirv/filter.comp.spv.h"
+#include "spirv/gather.comp.spv.h"
+#include "spirv/reproject.comp.spv.h"
+#include "spirv/set_store.comp.spv.h"
+
+namespace dyngi::gi {
+
+using render::Binding;
+using render::Buffer;
+using render::DescriptorWrites;
+using render::Image;
+using render::MemoryUsage;
+using render::Pipeline;
+
+namespace {
+constexpr VkShaderStageFlags kCS = VK_SHADER_STAGE_COMPUTE_BIT;
+constexpr VkDescriptorType kSSBO = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+constexpr VkDescriptorType kStorageImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+constexpr VkDescriptorType kUBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+uint32_t groups(uint32_t n, uint32_t local) { return (n + local - 1) / local; }
+struct SetCamera {
+  glm::mat4 viewProj, invViewProj;
+};
+}  // namespace
+
+TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, VoxelScene* voxels, const EmbreeScene* bvh,
+                                   const TemporalSettings& settings)
+    : ctx_(ctx), paths_(paths), voxels_(voxels), bvh_(bvh), settings_(settings) {
+  if (settings.visibility == VisibilityBackend::Svo && !voxels) throw std::invalid_argument("SVO visibility needs a VoxelScene");
+  if (settings.visibility == VisibilityBackend::Bvh && !bvh) throw std::invalid_argument("BVH visibility needs an EmbreeScene");
+  sets_ = std::min(paths.settings().temporalSets, 32u);
+  perSet_ = (paths.settings().count + sets_ - 1) / sets_;
+  lastRendered_.assign(sets_, -1);
+  const Binding gatherB[] = {{0, kUBO, kCS}, {1, kSampled, kCS}, {2, kSampled, kCS}, {3, kSSBO, kCS},
+                             {4, kSSBO, kCS}, {5, kStorageImage, kCS}, {6, kSSBO, kCS}};
+  gather_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_gather_comp), gatherB, sizeof(gpu::GatherPush), "temporal_gather");
+  const Binding storeB[] = {{0, kUBO, kCS}, {1, kSampled, kCS}, {2, kStorageImage, kCS}, {3, kStorageImage, kCS}, {4, kStorageImage, kCS}};
+  store_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_set_store_comp), storeB, 4, "temporal_store");
+  const Binding reprojectB[] = {{0, kUBO, kCS}, {1, kSampled, kCS}, {2, kStorageImage, kCS}, {3, kStorageImage, kCS},
+                                {4, kSSBO, kCS}, {5, kStorageImage, kCS}};
+  reproject_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_reproject_comp), reprojectB, 12, "temporal_reproject");
+  const Binding filterB[] = {{0, kUBO, kCS}, {1, kSampled, kCS}, {2, kSampled, kCS}, {3, kStorageImage, kCS}, {4, kStorageImage, kCS}};
+  filter_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_filter_comp), filterB, 8, "temporal_filter");
+  vpls_ = Buffer(ctx, VkDeviceSize(perSet_) * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "temporal vpls");
+  cameras_ = Buffer(ctx, VkDeviceSize(sets_) * sizeof(SetCamera), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "set cameras");
+  bits_ = Buffer(ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "visibility bits");
+}
+
+TemporalIndirect::~TemporalIndirect() = default;
+
+uint32_t TemporalIndirect::setsRendered() const {
+  uint32_t n = 0;
+  for (int64_t f : lastRendered_) n += f >= 0;
+  return n;
+}
+
+void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t width, uint32_t height) {
+  auto make = [&](VkFormat f, uint32_t layers, const char* name) {
+    render::ImageDesc d;
+    d.width = width;
+    d.height = height;
+    d.layers = layers;
+    d.format = f;
+    d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    d.viewType = layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+    d.name = name;
+    return Image(ctx, d);
+  };
+  raw_ = make(VK_FORMAT_R32G32B32A32_SFLOAT, 1, "temporal raw");
+  accumulated_ = make(VK_FORMAT_R32G32B32A32_SFLOAT, 1, "temporal accumulated");
+  // Arrays even for T = 1, so the shaders' image2DArray bindings always fit.
+  auto makeArray = [&](VkFormat f, const char* name) {
+    render::ImageDesc d;
+    d.width = width;
+    d.height = height;
+    d.layers = sets_;
+    d.format = f;
+    d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+    d.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+    d.name = name;
+    return Image(ctx, d);
+  };
+  setIndirect_ = makeArray(VK_FORMAT_R32G32B32A32_SFLOAT, "temporal set indirect");
+  setDepth_ = makeArray(VK_FORMAT_R32_SFLOAT, "temporal set depth");
+  std::fill(lastRendered_.begin(), lastRendered_.end(), -1);  // stored buffers are gone
+}
+
+void TemporalIndirect::prepare(render::VulkanContext&, const render::RenderSnapshot&) {
+  // Which set: a set whose VPLs changed, else the one gathered longest ago.
+  int best = -1;
+  for (int pass = 0; pass < 2 && best < 0; ++pass)
+    for (uint32_t s = 0; s < sets_; ++s) {
+      if (pass == 0 && !paths_.setDirty(s) && lastRendered_[s] >= 0) continue;
+      if (best < 0 || lastRendered_[s] < lastRendered_[size_t(best)]) best = int(s);
+    }
+  currentSet_ = uint32_t(best);
+  // Upload that set's VPLs (VPLs[T i + k]).
+  std::vector<gpu::GpuVpl> gpuVpls(perSet_);
+  setVpls_.assign(perSet_, TemporalVpl{{}, {}, false});
+  const auto& all = paths_.vpls();
+  for (uint32_t i = 0; i < perSet_; ++i) {
+    uint32_t index = i * sets_ + currentSet_;
+    gpu::GpuVpl g{};
+    g.position = glm::vec4(0, 0, 0, -1);
+    if (index < all.size() && all[index].valid && all[index].placed) {
+      const PathVpl& v = all[index];
+      float lum = 0.2126f * v.flux.r + 0.7152f * v.flux.g + 0.0722f * v.flux.b;
+      g.position = glm::vec4(v.position, float(index % paths_.bounces()));
+      g.normal = glm::vec4(v.normal, float(index / paths_.bounces()));
+      g.flux = glm::vec4(v.flux, lum);
+      setVpls_[i] = {v.position, v.normal, lum > 0.0f};
+    }
+    gpuVpls[i] = g;
+  }
+  vpls_.upload(gpuVpls.data(), gpuVpls.size() * sizeof(gpu::GpuVpl));
+}
+
+void TemporalIndirect::computeBvhVisibility(render::FrameContext& frame, uint32_t perPixel) {
+  auto t0 = std::chrono::steady_clock::now();
+  frame.submitAndWait();  // this frame's G-buffer, on the CPU
+  std::vector<glm::vec4> pos = render::readbackImage(ctx_, frame.targets.position);
+  std::vector<glm::vec4> nrm = render::readbackImage(ctx_, frame.targets.normal);
+  const uint32_t W = frame.targets.width, H = frame.targets.height, K = settings_.interleave, K2 = K * K;
+  size_t words = (size_t(W) * H * perPixel + 31) / 32;
+  std::vector<uint32_t> bits(words, 0);
+  const float scale = frame.snapshot.sceneBounds.valid() ? glm::length(frame.snapshot.sceneBounds.extent()) : 1.0f;
+  const float lift = 2e-3f * scale;
+  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> pool;
+  std::vector<std::vector<uint32_t>> partial(threads, std::vector<uint32_t>(words, 0));
+  for (unsigned t = 0; t < threads; ++t)
+    pool.emplace_back([&, t] {
+      std::vector<Segment> segs;
+      std::vector<uint64_t> bitIndex;
+      std::vector<uint8_t> occ;
+      for (uint32_t y = t; y < H; y += threads) {
+        segs.clear();
+        bitIndex.clear();
+        for (uint32_t x = 0; x < W; ++x) {
+          size_t p = size_t(y) * W + x;
+          if (pos[p].w == 0.0f) continue;
+          glm::vec3 n = glm::normalize(glm::vec3(nrm[p]));
+          glm::vec3 from = glm::vec3(pos[p]) + n * lift;
+          uint32_t s = (x % K) + K * (y % K);
+          for (uint32_t m = 0, i = s; i < perSet_; i += K2, ++m) {
+            if (!setVpls_[i].valid) continue;
+            segs.push_back({from, setVpls_[i].position + setVpls_[i].normal * lift});
+            bitIndex.push_back(p * perPixel + m);
+          }
+        }
+        occ.resize(segs.size());
+        bvh_->occluded(segs.data(), segs.size(), occ.data(), 1e-5f * scale);
+        for (size_t k = 0; k < segs.size(); ++k)
+          if (!occ[k]) partial[t][bitIndex[k] >> 5] |= 1u << (bitIndex[k] & 31u);
+      }
+    });
+  for (auto& th : pool) th.join();
+  for (auto& part : partial)
+    for (size_t w = 0; w < words; ++w) bits[w] |= part[w];
+  VkDeviceSize bytes = std::max<VkDeviceSize>(words * 4, 16);
+  if (bits_.size() < bytes) bits_ = Buffer(ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "visibility bits");
+  bits_.upload(bits.data(), words * 4);
+  bvhMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+bool TemporalIndirect::record(render::FrameContext& frame) {
+  if (!raw_.valid()) return false;
+  if (settings_.visibility == VisibilityBackend::Svo && !voxels_->hasVolume()) return false;
+  render::RenderTargets& t = frame.targets;
+  const uint32_t K = std::clamp(settings_.interleave, 1u, 8u), K2 = K * K;
+  const uint32_t perPixel = (perSet_ + K2 - 1) / K2;
+  // (No ScopedPass here: the mid-frame submit would split a debug label across command buffers; the
+  // CPU time is reported as lastBvhVisibilityMs.)
+  if (settings_.visibility == VisibilityBackend::Bvh) computeBvhVisibility(frame, perPixel);
+  VkCommandBuffer cmd = frame.cmd;
+  // This frame's camera for the set about to be gathered.
+  SetCamera cam;
+  float aspect = float(t.width) / float(t.height);
+  cam.viewProj = frame.snapshot.camera.projection(aspect) * frame.snapshot.camera.view;
+  cam.invViewProj = glm::inverse(cam.viewProj);
+  cameras_.upload(&cam, sizeof(cam), VkDeviceSize(currentSet_) * sizeof(SetCamera));
+  {
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "indirect");
+    for (Image* in : {&t.position, &t.normal})
+      in->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    raw_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, gather_.handle());
+    VkBuffer nodes = voxels_ ? voxels_->nodes().handle() : vpls_.handle();
+    DescriptorWrites()
+        .uniformBuffer(0, frame.frameUniforms.handle())
+        .sampledImage(1, t.position.view(), frame.nearestSampler)
+        .sampledImage(2, t.normal.view(), frame.nearestSampler)
+        .storageBuffer(3, vpls_.handle())
+        .storageBuffer(4, nodes)
+        .storageImage(5, raw_.view())
+        .storageBuffer(6, bits_.handle())
+        .push(ctx_, cmd, gather_);
+    gpu::GatherPush pc{};
+    if (voxels_ && voxels_->hasVolume()) {
+      const VoxelVolume& vol = voxels_->volume();
+      pc.worldToVoxel = glm::vec4(vol.origin, 1.0f / vol.voxelSize);
+      pc.params = glm::vec4(settings_.distanceClamp, settings_.luminanceThreshold, settings_.liftVoxels, float(vol.resolution));
+      pc.info = glm::uvec4(perSet_, K, 0u, vol.depth());
+    } else {
+      pc.params = glm::vec4(settings_.distanceClamp, settings_.luminanceThreshold, 0.0f, 1.0f);
+      pc.info = glm::uvec4(perSet_, K, 1u, 0u);
+    }
+    if (settings_.visibility == VisibilityBackend::Bvh) pc.info.z = 2u;
+    if (settings_.visibility == VisibilityBackend::None) pc.info.z = 1u;
+    pc.range = glm::uvec4(0u, perPixel, 0u, 0u);
+    vkCmdPushConstants(cmd, gather_.layout(), kCS, 0, sizeof(pc), &pc);
+    vkCmdDispatch(cmd, groups(groups(t.width, K), 8), groups(groups(t.height, K), 8), K2);
+  }
+  {
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "temporal_store");
+    raw_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    setIndirect_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    setDepth_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, store_.handle());
+    DescriptorWrites()
+        .uniformBuffer(0, frame.frameUniforms.handle())
+        .sampledImage(1, t.position.view(), frame.nearestSampler)
+        .storageImage(2, raw_.view())
+        .storageImage(3, setIndirect_.view())
+        .storageImage(4, setDepth_.view())
+        .push(ctx_, cmd, store_);
+    vkCmdPushConstants(cmd, store_.layout(), kCS, 0, 4, &currentSet_);
+    vkCmdDispatch(cmd, groups(t.width, 8), groups(t.height, 8), 1);
+  }
+  lastRendered_[currentSet_] = int64_t(frameCounter_++);
+  paths_.markSetRendered(currentSet_);
+  uint32_t validMask = 0;
+  for (uint32_t s = 0; s < sets_; ++s)
+    if (lastRendered_[s] >= 0) validMask |= 1u << s;
+  {
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "reproject");
+    setIndirect_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    setDepth_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    accumulated_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, reproject_.handle());
+    DescriptorWrites()
+        .uniformBuffer(0, frame.frameUniforms.handle())
+        .sampledImage(1, t.position.view(), frame.nearestSampler)
+        .storageImage(2, setIndirect_.view())
+        .storageImage(3, setDepth_.view())
+        .storageBuffer(4, cameras_.handle())
+        .storageImage(5, accumulated_.view())
+        .push(ctx_, cmd, reproject_);
+    struct {
+      uint32_t sets, mask;
+      float cutoff;
+    } pc{sets_, validMask, settings_.reprojectionCutoff};
+    vkCmdPushConstants(cmd, reproject_.layout(), kCS, 0, sizeof(pc), &pc);
+    vkCmdDispatch(cmd, groups(t.width, 8), groups(t.height, 8), 1);
+  }
+  {
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "filter");
+    accumulated_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    t.indirect.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, filter_.handle());
+    DescriptorWrites()
+        .uniformBuffer(0, frame.frameUniforms.handle())
+        .sampledImage(1, t.position.view(), frame.nearestSampler)
+        .sampledImage(2, t.normal.view(), frame.nearestSampler)
+        .storageImage(3, accumulated_.view())
+        .storageImage(4, t.indirect.view())
+        .push(ctx_, cmd, filter_);
+    struct {
+      uint32_t K;
+      float tol;
+    } fp{K, settings_.filterPlaneTolerance};
+    vkCmdPushConstants(cmd, filter_.layout(), kCS, 0, sizeof(fp), &fp);
+    vkCmdDispatch(cmd, groups(t.width, 8), groups(t.height, 8), 1);
+  }
+  return true;
+}
+
+}  // namespace dyngi::gi
