@@ -1,0 +1,192 @@
+// The GI system's temporal VPL technique on automated dynamic scenes.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "dyngi/engine/render/image_metrics.h"
+#include "dyngi/engine/scene/transform_system.h"
+#include "dyngi/gi/gi_system.h"
+#include "dyngi/gi/path_tracer.h"
+#include "render/render_fixture.h"
+#include "scenes/builtin_scenes.h"
+
+using namespace dyngi;
+using namespace dyngi::test;
+
+namespace {
+constexpr uint32_t kSize = 128;
+
+struct GiRun {
+  ecs::World world;
+  scene::AssetStore assets;
+  ecs::Scheduler scheduler;
+  gi::GiSystem* gi = nullptr;
+  std::unique_ptr<render::Renderer> renderer;
+  uint64_t frame = 0;
+
+  GiRun(render::VulkanContext& ctx, const gi::GiSettings& s, const std::string& sceneName = "cornell") {
+    sample::buildBuiltinScene(sceneName, world, assets);
+    renderer = std::make_unique<render::Renderer>(ctx);
+    renderer->resize(kSize, kSize);
+    scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
+    auto g = std::make_unique<gi::GiSystem>(ctx, assets, s);
+    gi = g.get();
+    gi->attach(*renderer);
+    scheduler.add(ecs::Phase::PostUpdate, std::move(g));
+  }
+  void step(int n = 1) {
+    for (int i = 0; i < n; ++i) {
+      scheduler.runFrame(world, ecs::FrameTime{1.0 / 60, double(frame) / 60, frame});
+      renderer->render(render::extractSnapshot(world, assets, frame));
+      ++frame;
+    }
+  }
+  render::ImageRgba hdr() { return renderer->readback(render::TargetId::Hdr); }
+  render::ImageRgba indirect() { return renderer->readback(render::TargetId::Indirect); }
+  ecs::Entity named(const std::string& n) {
+    ecs::Entity found{};
+    world.each<scene::Name>([&](ecs::Entity e, const scene::Name& nm) { if (nm.value == n) found = e; });
+    return found;
+  }
+};
+
+gi::GiSettings settings(uint32_t T, gi::VisibilityBackend vis = gi::VisibilityBackend::Svo) {
+  gi::GiSettings s;
+  s.mode = gi::GiMode::Temporal;
+  s.visibility = vis;
+  s.vplCount = 512;
+  s.temporalSets = T;
+  s.reshootBudget = 512;  // fill the pool in the first frame; the sets then take T frames to render
+  return s;
+}
+double meanLum(const render::ImageRgba& img) {
+  glm::dvec3 m = render::meanOver(img);
+  return 0.2126 * m.r + 0.7152 * m.g + 0.0722 * m.b;
+}
+}  // namespace
+
+TEST_F(RenderTest, TemporalAccumulationEqualsAllVplsInOneFrame) {
+  GiRun all(context(), settings(1));
+  all.step(2);
+  render::ImageRgba reference = all.hdr();
+  GiRun temporal(context(), settings(16));
+  temporal.step(16);
+  double rel = render::relativeMse(temporal.hdr(), reference);
+  std::printf("T = 16 after 16 frames vs all 512 VPLs in one frame: relMSE %.5f\n", rel);
+  EXPECT_LE(rel, 0.01);
+  EXPECT_EQ(temporal.gi->temporal()->setsRendered(), 16u);
+}
+
+TEST_F(RenderTest, CameraMotionStaysCloseAndNeverLeavesHoles) {
+  GiRun run(context(), settings(8));
+  run.step(10);
+  ecs::Entity cam{};
+  run.world.each<scene::ActiveCamera>([&](ecs::Entity e, const scene::ActiveCamera&) { cam = e; });
+  double worst = 0;
+  for (int f = 0; f < 8; ++f) {
+    auto& t = run.world.write<scene::Transform>(cam);
+    t.translation.x += 0.06f;
+    t.rotation = glm::angleAxis(-0.025f * float(f + 1), glm::vec3(0, 1, 0));
+    run.step();
+    render::ImageRgba moving = run.hdr(), movingIndirect = run.indirect();
+    // The converged image at this camera: all VPLs at once, same pool (same seed, filled at once).
+    GiRun ref(context(), settings(1));
+    ref.world.write<scene::Transform>(ref.named("camera")) = run.world.get<scene::Transform>(cam);
+    ref.step(2);
+    render::ImageRgba converged = ref.hdr(), convergedIndirect = ref.indirect();
+    double rel = render::relativeMse(moving, converged);
+    worst = std::max(worst, rel);
+    int holes = 0;
+    for (size_t i = 0; i < converged.size(); ++i)
+      holes += convergedIndirect[i].r + convergedIndirect[i].g > 0.01f && movingIndirect[i].r + movingIndirect[i].g == 0.0f;
+    EXPECT_EQ(holes, 0) << "frame " << f << ": indirect light never drops to black where it exists";
+  }
+  std::printf("camera motion: worst relMSE against the converged image %.4f\n", worst);
+  EXPECT_LT(worst, 0.03);
+}
+
+TEST_F(RenderTest, LightOffDrivesIndirectToZeroAndBack) {
+  const uint32_t T = 8;
+  GiRun run(context(), settings(T));
+  run.step(T + 2);
+  double on = meanLum(run.indirect());
+  ASSERT_GT(on, 0.0);
+  ecs::Entity light = run.named("spot");
+  run.world.write<scene::Light>(light).enabled = false;
+  run.step(int(T));
+  double off = meanLum(run.indirect());
+  std::printf("mean indirect: on %.5f, %u frames after switching off %.6f\n", on, T, off);
+  EXPECT_EQ(off, 0.0);
+  run.world.write<scene::Light>(light).enabled = true;
+  run.step(int(T) + 1);
+  double back = meanLum(run.indirect());
+  std::printf("back on after %u frames: %.5f\n", T + 1, back);
+  // Fresh VPLs are a new Monte Carlo sample of the same light: equal within the noise of 512 VPLs.
+  EXPECT_NEAR(back / on, 1.0, 0.10);
+}
+
+TEST_F(RenderTest, MovedObjectChangesIndirectWherePathTracerSays) {
+  const uint32_t T = 4;
+  gi::GiSettings s = settings(T);
+  s.vplCount = 2048;
+  GiRun run(context(), s);
+  run.step(T + 1);
+  render::ImageRgba before = run.indirect();
+  gi::EmbreeScene bvh;
+  auto pathTraced = [&] {
+    bvh.sync(run.world, run.assets, 0);
+    gi::PathTracerSettings pts;
+    pts.spp = 256;
+    pts.bounces = 1;
+    pts.pixelJitter = false;
+    return gi::pathTrace(render::extractSnapshot(run.world, run.assets, 0), bvh, run.assets, kSize, kSize, pts);
+  };
+  render::ImageRgba ptBefore = pathTraced();
+  render::ImageRgba hdrBefore = run.hdr();
+  // Slide the tall box to the middle of the room.
+  ecs::Entity box = run.named("tall_box");
+  run.world.write<scene::Transform>(box).translation = {0.15f, 0.6f, -0.1f};
+  run.step(T + 1);
+  render::ImageRgba hdrAfter = run.hdr();
+  render::ImageRgba ptAfter = pathTraced();
+  // Compare the change in 8x8 blocks (means), where the path tracer's noise averages out.
+  std::vector<double> ours, truth;
+  for (uint32_t by = 0; by < kSize; by += 8)
+    for (uint32_t bx = 0; bx < kSize; bx += 8) {
+      double a = 0, b = 0;
+      for (uint32_t y = by; y < by + 8; ++y)
+        for (uint32_t x = bx; x < bx + 8; ++x) {
+          size_t i = size_t(y) * kSize + x;
+          a += double(hdrAfter[i].g - hdrBefore[i].g);
+          b += double(ptAfter[i].g - ptBefore[i].g);
+        }
+      ours.push_back(a / 64), truth.push_back(b / 64);
+    }
+  double ma = 0, mb = 0;
+  for (size_t i = 0; i < ours.size(); ++i) ma += ours[i], mb += truth[i];
+  ma /= double(ours.size()), mb /= double(ours.size());
+  double cov = 0, va = 0, vb = 0;
+  for (size_t i = 0; i < ours.size(); ++i) {
+    cov += (ours[i] - ma) * (truth[i] - mb);
+    va += (ours[i] - ma) * (ours[i] - ma);
+    vb += (truth[i] - mb) * (truth[i] - mb);
+  }
+  double corr = cov / std::sqrt(va * vb);
+  std::printf("moved box: correlation of the image change with the path tracer's change: %.3f\n", corr);
+  EXPECT_GT(corr, 0.9);
+  // And the indirect light itself changed (not just the direct light of the moved box).
+  render::ImageRgba after = run.indirect();
+  double changed = 0;
+  for (size_t i = 0; i < after.size(); ++i) changed += std::abs(double(after[i].g - before[i].g));
+  EXPECT_GT(changed / double(after.size()), 1e-3);
+}
+
+TEST_F(RenderTest, SvoAndBvhVisibilityGiveTheSameImage) {
+  GiRun svo(context(), settings(4, gi::VisibilityBackend::Svo));
+  GiRun bvh(context(), settings(4, gi::VisibilityBackend::Bvh));
+  svo.step(5);
+  bvh.step(5);
+  double rel = render::relativeMse(svo.hdr(), bvh.hdr());
+  std::printf("svo vs bvh visibility: relMSE %.5f\n", rel);
+  EXPECT_LT(rel, 0.005);
+}
