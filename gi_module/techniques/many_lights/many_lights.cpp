@@ -5,8 +5,7 @@
 
 #include "dyngi/engine/render/light_views.h"
 #include "shaders/shared/gi_gpu_types.h"
-#include "spirv/filter.comp.spv.h"
-#include "spirv/gather.comp.spv.h"
+#include "techniques/many_lights/indirect_passes.h"
 #include "spirv/many_lights_debug.comp.spv.h"
 #include "spirv/rsm.frag.spv.h"
 #include "spirv/rsm.vert.spv.h"
@@ -65,12 +64,8 @@ ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const Man
   sample_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_sample_comp), sampleB, 16, "vpl_sample");
   const Binding bounceB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}};
   bounce_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_bounce_comp), bounceB, 40, "vpl_bounce");
-  const Binding gatherB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSampled, kCS}, {2, kSampled, kCS},
-                              {3, kSSBO, kCS}, {4, kSSBO, kCS}, {5, kStorageImage, kCS}, {6, kSSBO, kCS}};
-  gather_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_gather_comp), gatherB, sizeof(gpu::GatherPush), "indirect_gather");
-  const Binding filterB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSampled, kCS}, {2, kSampled, kCS},
-                             {3, kStorageImage, kCS}, {4, kStorageImage, kCS}};
-  filter_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_filter_comp), filterB, 8, "indirect_filter");
+  gatherPass_ = std::make_unique<IndirectGatherPass>(ctx);
+  filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
   const Binding debugB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSampled, kCS}, {2, kStorageImage, kCS},
                             {3, kStorageImage, kCS}, {4, kSSBO, kCS}, {5, kStorageImage, kCS}};
   debug_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_many_lights_debug_comp), debugB, 12, "many_lights_debug");
@@ -270,49 +265,15 @@ bool ManyLights::record(render::FrameContext& frame) {
     }
   }
 
-  render::RenderTargets& t = frame.targets;
   const uint32_t K = settings_.interleave;
-  {  // 4. interleaved gather with SVO visibility
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "indirect");
-    for (Image* in : {&t.position, &t.normal})
-      in->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    raw_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, gather_.handle());
-    DescriptorWrites()
-        .uniformBuffer(0, frame.frameUniforms.handle())
-        .sampledImage(1, t.position.view(), frame.nearestSampler)
-        .sampledImage(2, t.normal.view(), frame.nearestSampler)
-        .storageBuffer(3, vpls_.handle())
-        .storageBuffer(4, voxels_.nodes().handle())
-        .storageImage(5, raw_.view())
-        .storageBuffer(6, vpls_.handle())  // unused (visibility mode 0/1)
-        .push(ctx_, cmd, gather_);
+  {  // 4. interleaved gather with SVO visibility, 5. merge + geometry-aware filter
     gpu::GatherPush pc;
     pc.worldToVoxel = glm::vec4(vol.origin, 1.0f / vol.voxelSize);
     pc.params = glm::vec4(settings_.distanceClamp, settings_.luminanceThreshold, settings_.liftVoxels, float(vol.resolution));
     pc.info = glm::uvec4(vplTotal, K, settings_.visibility ? 0u : 1u, vol.depth());
     pc.range = glm::uvec4(0u);
-    vkCmdPushConstants(cmd, gather_.layout(), kCS, 0, sizeof(pc), &pc);
-    vkCmdDispatch(cmd, groups(groups(t.width, K), 8), groups(groups(t.height, K), 8), K * K);
-  }
-  {  // 5. merge + geometry-aware filter
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "filter");
-    raw_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    t.indirect.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, filter_.handle());
-    DescriptorWrites()
-        .uniformBuffer(0, frame.frameUniforms.handle())
-        .sampledImage(1, t.position.view(), frame.nearestSampler)
-        .sampledImage(2, t.normal.view(), frame.nearestSampler)
-        .storageImage(3, raw_.view())
-        .storageImage(4, t.indirect.view())
-        .push(ctx_, cmd, filter_);
-    struct {
-      uint32_t K;
-      float tol;
-    } fp{K, settings_.filterPlaneTolerance};
-    vkCmdPushConstants(cmd, filter_.layout(), kCS, 0, sizeof(fp), &fp);
-    vkCmdDispatch(cmd, groups(t.width, 8), groups(t.height, 8), 1);
+    gatherPass_->record(frame, vpls_.handle(), voxels_.nodes().handle(), vpls_.handle(), raw_, pc);
+    filterPass_->record(frame, raw_, K, settings_.filterPlaneTolerance);
   }
   return true;
 }

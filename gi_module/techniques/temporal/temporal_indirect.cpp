@@ -5,8 +5,7 @@
 #include <thread>
 
 #include "shaders/shared/gi_gpu_types.h"
-#include "spirv/filter.comp.spv.h"
-#include "spirv/gather.comp.spv.h"
+#include "techniques/many_lights/indirect_passes.h"
 #include "spirv/reproject.comp.spv.h"
 #include "spirv/set_store.comp.spv.h"
 
@@ -39,16 +38,13 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
   sets_ = std::min(paths.settings().temporalSets, 32u);
   perSet_ = (paths.settings().count + sets_ - 1) / sets_;
   lastRendered_.assign(sets_, -1);
-  const Binding gatherB[] = {{0, kUBO, kCS}, {1, kSampled, kCS}, {2, kSampled, kCS}, {3, kSSBO, kCS},
-                             {4, kSSBO, kCS}, {5, kStorageImage, kCS}, {6, kSSBO, kCS}};
-  gather_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_gather_comp), gatherB, sizeof(gpu::GatherPush), "temporal_gather");
-  const Binding storeB[] = {{0, kUBO, kCS}, {1, kSampled, kCS}, {2, kStorageImage, kCS}, {3, kStorageImage, kCS}, {4, kStorageImage, kCS}};
+  gatherPass_ = std::make_unique<IndirectGatherPass>(ctx);
+  filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
+  const Binding storeB[] = {{0, kUBO, kCS}, {1, kSampled, kCS}, {2, kStorageImage, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS}};
   store_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_set_store_comp), storeB, 4, "temporal_store");
-  const Binding reprojectB[] = {{0, kUBO, kCS}, {1, kSampled, kCS}, {2, kStorageImage, kCS}, {3, kStorageImage, kCS},
+  const Binding reprojectB[] = {{0, kUBO, kCS}, {1, kSampled, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS},
                                 {4, kSSBO, kCS}, {5, kStorageImage, kCS}};
-  reproject_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_reproject_comp), reprojectB, 12, "temporal_reproject");
-  const Binding filterB[] = {{0, kUBO, kCS}, {1, kSampled, kCS}, {2, kSampled, kCS}, {3, kStorageImage, kCS}, {4, kStorageImage, kCS}};
-  filter_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_filter_comp), filterB, 8, "temporal_filter");
+  reproject_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_reproject_comp), reprojectB, 16, "temporal_reproject");
   vpls_ = Buffer(ctx, VkDeviceSize(perSet_) * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "temporal vpls");
   cameras_ = Buffer(ctx, VkDeviceSize(sets_) * sizeof(SetCamera), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "set cameras");
   bits_ = Buffer(ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "visibility bits");
@@ -76,20 +72,10 @@ void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t width, uint32
   };
   raw_ = make(VK_FORMAT_R32G32B32A32_SFLOAT, 1, "temporal raw");
   accumulated_ = make(VK_FORMAT_R32G32B32A32_SFLOAT, 1, "temporal accumulated");
-  // Arrays even for T = 1, so the shaders' image2DArray bindings always fit.
-  auto makeArray = [&](VkFormat f, const char* name) {
-    render::ImageDesc d;
-    d.width = width;
-    d.height = height;
-    d.layers = sets_;
-    d.format = f;
-    d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-    d.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
-    d.name = name;
-    return Image(ctx, d);
-  };
-  setIndirect_ = makeArray(VK_FORMAT_R32G32B32A32_SFLOAT, "temporal set indirect");
-  setDepth_ = makeArray(VK_FORMAT_R32_SFLOAT, "temporal set depth");
+  VkDeviceSize pixels = VkDeviceSize(width) * height * sets_;
+  setIndirect_ = Buffer(ctx, pixels * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set indirect");
+  setDepth_ = Buffer(ctx, pixels * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set depth");
+  setCameras_.assign(sets_, glm::mat4(0.0f));
   std::fill(lastRendered_.begin(), lastRendered_.end(), -1);  // stored buffers are gone
 }
 
@@ -188,21 +174,6 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
   cam.invViewProj = glm::inverse(cam.viewProj);
   cameras_.upload(&cam, sizeof(cam), VkDeviceSize(currentSet_) * sizeof(SetCamera));
   {
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "indirect");
-    for (Image* in : {&t.position, &t.normal})
-      in->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    raw_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, gather_.handle());
-    VkBuffer nodes = voxels_ ? voxels_->nodes().handle() : vpls_.handle();
-    DescriptorWrites()
-        .uniformBuffer(0, frame.frameUniforms.handle())
-        .sampledImage(1, t.position.view(), frame.nearestSampler)
-        .sampledImage(2, t.normal.view(), frame.nearestSampler)
-        .storageBuffer(3, vpls_.handle())
-        .storageBuffer(4, nodes)
-        .storageImage(5, raw_.view())
-        .storageBuffer(6, bits_.handle())
-        .push(ctx_, cmd, gather_);
     gpu::GatherPush pc{};
     if (voxels_ && voxels_->hasVolume()) {
       const VoxelVolume& vol = voxels_->volume();
@@ -216,70 +187,53 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     if (settings_.visibility == VisibilityBackend::Bvh) pc.info.z = 2u;
     if (settings_.visibility == VisibilityBackend::None) pc.info.z = 1u;
     pc.range = glm::uvec4(0u, perPixel, 0u, 0u);
-    vkCmdPushConstants(cmd, gather_.layout(), kCS, 0, sizeof(pc), &pc);
-    vkCmdDispatch(cmd, groups(groups(t.width, K), 8), groups(groups(t.height, K), 8), K2);
+    gatherPass_->record(frame, vpls_.handle(), voxels_ ? voxels_->nodes().handle() : vpls_.handle(), bits_.handle(), raw_, pc);
   }
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "temporal_store");
     raw_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    setIndirect_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    setDepth_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, store_.handle());
     DescriptorWrites()
         .uniformBuffer(0, frame.frameUniforms.handle())
         .sampledImage(1, t.position.view(), frame.nearestSampler)
         .storageImage(2, raw_.view())
-        .storageImage(3, setIndirect_.view())
-        .storageImage(4, setDepth_.view())
+        .storageBuffer(3, setIndirect_.handle())
+        .storageBuffer(4, setDepth_.handle())
         .push(ctx_, cmd, store_);
     vkCmdPushConstants(cmd, store_.layout(), kCS, 0, 4, &currentSet_);
     vkCmdDispatch(cmd, groups(t.width, 8), groups(t.height, 8), 1);
   }
   lastRendered_[currentSet_] = int64_t(frameCounter_++);
   paths_.markSetRendered(currentSet_);
-  uint32_t validMask = 0;
-  for (uint32_t s = 0; s < sets_; ++s)
+  setCameras_[currentSet_] = cam.viewProj;
+  uint32_t validMask = 0, sameCamera = 0;
+  for (uint32_t s = 0; s < sets_; ++s) {
     if (lastRendered_[s] >= 0) validMask |= 1u << s;
+    if (setCameras_[s] == cam.viewProj) sameCamera |= 1u << s;
+  }
+  render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "reproject");
-    setIndirect_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    setDepth_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     accumulated_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, reproject_.handle());
     DescriptorWrites()
         .uniformBuffer(0, frame.frameUniforms.handle())
         .sampledImage(1, t.position.view(), frame.nearestSampler)
-        .storageImage(2, setIndirect_.view())
-        .storageImage(3, setDepth_.view())
+        .storageBuffer(2, setIndirect_.handle())
+        .storageBuffer(3, setDepth_.handle())
         .storageBuffer(4, cameras_.handle())
         .storageImage(5, accumulated_.view())
         .push(ctx_, cmd, reproject_);
     struct {
       uint32_t sets, mask;
       float cutoff;
-    } pc{sets_, validMask, settings_.reprojectionCutoff};
+      uint32_t sameCamera;
+    } pc{sets_, validMask, settings_.reprojectionCutoff, sameCamera};
     vkCmdPushConstants(cmd, reproject_.layout(), kCS, 0, sizeof(pc), &pc);
     vkCmdDispatch(cmd, groups(t.width, 8), groups(t.height, 8), 1);
   }
-  {
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "filter");
-    accumulated_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    t.indirect.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, filter_.handle());
-    DescriptorWrites()
-        .uniformBuffer(0, frame.frameUniforms.handle())
-        .sampledImage(1, t.position.view(), frame.nearestSampler)
-        .sampledImage(2, t.normal.view(), frame.nearestSampler)
-        .storageImage(3, accumulated_.view())
-        .storageImage(4, t.indirect.view())
-        .push(ctx_, cmd, filter_);
-    struct {
-      uint32_t K;
-      float tol;
-    } fp{K, settings_.filterPlaneTolerance};
-    vkCmdPushConstants(cmd, filter_.layout(), kCS, 0, sizeof(fp), &fp);
-    vkCmdDispatch(cmd, groups(t.width, 8), groups(t.height, 8), 1);
-  }
+  filterPass_->record(frame, accumulated_, K, settings_.filterPlaneTolerance);
   return true;
 }
 

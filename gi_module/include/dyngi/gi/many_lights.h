@@ -60,7 +60,9 @@ class ManyLights final : public render::RenderFeature {
   render::Image rsmPosition_, rsmNormal_, rsmFlux_, rsmDepth_;
   render::Buffer layers_, lights_, rowPrefix_, rowCdf_, vpls_;
   render::Image raw_;
-  render::Pipeline rsm_, cdfRows_, cdfTotal_, sample_, bounce_, gather_, filter_, debug_;
+  render::Pipeline rsm_, cdfRows_, cdfTotal_, sample_, bounce_, debug_;
+  std::unique_ptr<class IndirectGatherPass> gatherPass_;
+  std::unique_ptr<class IndirectFilterPass> filterPass_;
 };
 
 }  // namespace dyngi::gi

@@ -8,6 +8,7 @@
 // current view (samples whose surface moved more than the cut-off are dropped) and summed, then the
 // geometry-aware filter (the discontinuity buffer) removes the interleaving pattern.
 // Stages: indirect (+ visibility_bvh), temporal_store, reproject, filter.
+#include <memory>
 #include <vector>
 
 #include "dyngi/engine/render/pipeline.h"
@@ -65,9 +66,12 @@ class TemporalIndirect final : public render::RenderFeature {
   uint64_t frameCounter_ = 0;
   std::vector<int64_t> lastRendered_;   // frame each set was last gathered (-1: never)
   std::vector<TemporalVpl> setVpls_;  // CPU copy of the VPLs uploaded this frame
-  render::Buffer vpls_, cameras_, bits_;
-  render::Image raw_, accumulated_, setIndirect_, setDepth_;
-  render::Pipeline gather_, store_, reproject_, filter_;
+  render::Buffer vpls_, cameras_, bits_, setIndirect_, setDepth_;
+  render::Image raw_, accumulated_;
+  std::vector<glm::mat4> setCameras_;   // CPU copy: which sets were stored from the current camera
+  render::Pipeline store_, reproject_;
+  std::unique_ptr<class IndirectGatherPass> gatherPass_;
+  std::unique_ptr<class IndirectFilterPass> filterPass_;
   double bvhMs_ = 0.0;
 };
 

@@ -1,0 +1,78 @@
+#include "techniques/many_lights/indirect_passes.h"
+
+#include "spirv/filter.comp.spv.h"
+#include "spirv/gather.comp.spv.h"
+
+namespace dyngi::gi {
+
+using render::Binding;
+using render::DescriptorWrites;
+
+namespace {
+constexpr VkShaderStageFlags kCS = VK_SHADER_STAGE_COMPUTE_BIT;
+uint32_t groups(uint32_t n, uint32_t local) { return (n + local - 1) / local; }
+}  // namespace
+
+IndirectGatherPass::IndirectGatherPass(render::VulkanContext& ctx) : ctx_(ctx) {
+  const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS},
+                       {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS}, {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},
+                       {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},         {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
+                       {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS}};
+  pipeline_ = render::Pipeline::compute(ctx, DYNGI_SHADER(spv_gather_comp), b, sizeof(gpu::GatherPush), "indirect_gather");
+}
+
+void IndirectGatherPass::record(render::FrameContext& frame, VkBuffer vpls, VkBuffer nodes, VkBuffer bits, render::Image& raw,
+                                const gpu::GatherPush& pc) {
+  render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "indirect");
+  VkCommandBuffer cmd = frame.cmd;
+  render::RenderTargets& t = frame.targets;
+  for (render::Image* in : {&t.position, &t.normal})
+    in->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  raw.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
+  DescriptorWrites()
+      .uniformBuffer(0, frame.frameUniforms.handle())
+      .sampledImage(1, t.position.view(), frame.nearestSampler)
+      .sampledImage(2, t.normal.view(), frame.nearestSampler)
+      .storageBuffer(3, vpls)
+      .storageBuffer(4, nodes)
+      .storageImage(5, raw.view())
+      .storageBuffer(6, bits)
+      .push(ctx_, cmd, pipeline_);
+  vkCmdPushConstants(cmd, pipeline_.layout(), kCS, 0, sizeof(pc), &pc);
+  const uint32_t K = pc.info.y;
+  vkCmdDispatch(cmd, groups(groups(t.width, K), 8), groups(groups(t.height, K), 8), K * K);
+}
+
+IndirectFilterPass::IndirectFilterPass(render::VulkanContext& ctx) : ctx_(ctx) {
+  const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
+                       {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS},
+                       {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS},
+                       {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
+                       {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
+  pipeline_ = render::Pipeline::compute(ctx, DYNGI_SHADER(spv_filter_comp), b, 8, "indirect_filter");
+}
+
+void IndirectFilterPass::record(render::FrameContext& frame, render::Image& input, uint32_t K, float planeTolerance) {
+  render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "filter");
+  VkCommandBuffer cmd = frame.cmd;
+  render::RenderTargets& t = frame.targets;
+  input.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  t.indirect.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
+  DescriptorWrites()
+      .uniformBuffer(0, frame.frameUniforms.handle())
+      .sampledImage(1, t.position.view(), frame.nearestSampler)
+      .sampledImage(2, t.normal.view(), frame.nearestSampler)
+      .storageImage(3, input.view())
+      .storageImage(4, t.indirect.view())
+      .push(ctx_, cmd, pipeline_);
+  struct {
+    uint32_t K;
+    float tol;
+  } fp{K, planeTolerance};
+  vkCmdPushConstants(cmd, pipeline_.layout(), kCS, 0, sizeof(fp), &fp);
+  vkCmdDispatch(cmd, groups(t.width, 8), groups(t.height, 8), 1);
+}
+
+}  // namespace dyngi::gi

@@ -1,0 +1,33 @@
+#pragma once
+// The two passes both VPL techniques share: the interleaved gather (gather.comp) and the
+// geometry-aware merge filter (filter.comp).
+#include "dyngi/engine/render/frame_context.h"
+#include "dyngi/engine/render/pipeline.h"
+#include "shaders/shared/gi_gpu_types.h"
+
+namespace dyngi::gi {
+
+class IndirectGatherPass {
+ public:
+  explicit IndirectGatherPass(render::VulkanContext& ctx);
+  // Gathers `vpls` into `raw` ("indirect" in stats). `nodes` is the SVO (visibility 0), `bits` the
+  // precomputed visibility (visibility 2); pass any valid buffer when unused.
+  void record(render::FrameContext& frame, VkBuffer vpls, VkBuffer nodes, VkBuffer bits, render::Image& raw, const gpu::GatherPush& pc);
+
+ private:
+  render::VulkanContext& ctx_;
+  render::Pipeline pipeline_;
+};
+
+class IndirectFilterPass {
+ public:
+  explicit IndirectFilterPass(render::VulkanContext& ctx);
+  // Filters `input` (interleaved) into frame.targets.indirect ("filter" in stats).
+  void record(render::FrameContext& frame, render::Image& input, uint32_t K, float planeTolerance);
+
+ private:
+  render::VulkanContext& ctx_;
+  render::Pipeline pipeline_;
+};
+
+}  // namespace dyngi::gi
