@@ -108,6 +108,7 @@ int runPathTracer(const Options& o, ecs::World& world, scene::AssetStore& assets
   gi::PathTracerSettings pts;
   pts.spp = o.spp;
   pts.bounces = o.bounces;
+  pts.seed = o.seed;
   gi::PathTracerStats pstats;
   auto start = Clock::now();
   auto lastReport = start;
@@ -251,6 +252,7 @@ int runApp(const Options& o) {
     gs.interleave = o.interleave;
     gs.distanceClamp = o.distanceClamp;
     gs.svoResolution = o.voxelResolution;
+    gs.seed = o.seed;
     giOwned = std::make_unique<gi::GiSystem>(ctx, assets, gs);
     gi = giOwned.get();
     gi->attach(renderer);

@@ -31,6 +31,7 @@ std::string usage() {
          "  --view NAME                            final | voxels | svo-steps | indirect | vpls | subimages\n"
          "  --voxel-res N                          voxel resolution, a power of two in 64..512 (default 128)\n"
          "  --clip NAME                            glTF animation clip to play (default: the first)\n"
+         "  --seed N                               seed of the path tracer's and the VPLs' random numbers (default 1)\n"
          "  --exposure X                           linear exposure multiplier (default 1)\n"
          "  --validation                           enable Vulkan validation layers\n"
          "  --help                                 this text\n"
@@ -99,6 +100,12 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
         return std::nullopt;
       }
       o.frames = int(n);
+    } else if (a == "--seed") {
+      if (!value(v)) return std::nullopt;
+      if (!parseUint(v, o.seed)) {
+        error = "--seed wants a non-negative integer, got '" + v + "'";
+        return std::nullopt;
+      }
     } else if (a == "--temporal" || a == "--reshoot") {
       uint32_t n;
       if (!value(v)) return std::nullopt;

@@ -27,6 +27,7 @@ struct Options {
   std::string view = "final";               // final | voxels | svo-steps | indirect | vpls | subimages
   uint32_t voxelResolution = 128;           // voxel volume resolution (power of two, 64..512)
   std::string clip;                         // animation clip of a glTF scene (default: the first)
+  uint32_t seed = 1;                        // random sequences (path tracer, VPLs)
   float exposure = 1.0f;
   bool validation = false;
   bool help = false;

@@ -28,7 +28,8 @@ PY
 
 # Equal quality: the technique's image vs the path tracer's time to reach the same relative MSE.
 S=256x256
-$BIN/dyngi_sample --headless --scene cornell --gi path --bounces 1 --spp 2048 --size $S --hdr-out out/bench/ref.exr >/dev/null
+# The reference uses another seed, so the path tracer's images below are independent of it.
+$BIN/dyngi_sample --headless --scene cornell --gi path --bounces 1 --spp 2048 --seed 99 --size $S --hdr-out out/bench/ref.exr >/dev/null
 $BIN/dyngi_sample --headless --scene cornell --gi svo --vpl-source rsm --vpls 1024 --frames 12 --size $S \
   --hdr-out out/bench/svo_eq.exr --stats out/bench/svo_eq.json >/dev/null
 svo_err=$($BIN/dyngi_imgcmp out/bench/ref.exr out/bench/svo_eq.exr)
@@ -39,7 +40,7 @@ echo
 echo "| renderer | time (ms) | relMSE vs 2048-spp reference |"
 echo "| --- | ---: | ---: |"
 echo "| many lights, 1024 VPLs (frame median) | $svo_ms | $(python3 -c "import json,sys; print(json.loads(sys.argv[1])['rel_mse'])" "$svo_err") |"
-for spp in 1 2 4 8 16 32 64; do
+for spp in 1 4 16 64 128 256 512; do
   $BIN/dyngi_sample --headless --scene cornell --gi path --bounces 1 --spp $spp --size $S \
     --hdr-out out/bench/pt_$spp.exr --stats out/bench/pt_$spp.json >/dev/null
   e=$($BIN/dyngi_imgcmp out/bench/ref.exr out/bench/pt_$spp.exr)
