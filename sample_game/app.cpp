@@ -240,10 +240,6 @@ int runApp(const Options& o) {
   if (o.gi == "svo" || o.gi == "bvh") {
     gi::GiSettings gs;
     gs.mode = o.vplSource == "rsm" ? gi::GiMode::ManyLightsRsm : gi::GiMode::Temporal;
-    if (gs.mode == gi::GiMode::ManyLightsRsm && o.gi == "bvh") {
-      std::fprintf(stderr, "dyngi_sample: --vpl-source rsm needs --gi svo\n");
-      return 2;
-    }
     gs.visibility = o.gi == "bvh" ? gi::VisibilityBackend::Bvh : gi::VisibilityBackend::Svo;
     gs.vplCount = o.vpls;
     gs.bounces = std::clamp(o.bounces, 1u, 3u);
@@ -260,10 +256,6 @@ int runApp(const Options& o) {
       gi->manyLights()->settings().view = o.view == "indirect" ? gi::ManyLightsView::Indirect
                                           : o.view == "vpls"   ? gi::ManyLightsView::Vpls
                                                                : gi::ManyLightsView::SubImages;
-  }
-  if (manyLightsView && !(gi && gi->manyLights())) {
-    std::fprintf(stderr, "dyngi_sample: --view %s needs --gi svo --vpl-source rsm\n", o.view.c_str());
-    return 2;
   }
   gi::VoxelScene* voxels = gi ? gi->voxels() : nullptr;
   if (voxelView && voxels) voxels->setDebugView(voxelDebug);

@@ -176,6 +176,16 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
       return std::nullopt;
     }
   }
+  // Combinations, checked here so bad input is refused before any device is created.
+  const bool manyLightsView = o.view == "indirect" || o.view == "vpls" || o.view == "subimages";
+  if (o.vplSource == "rsm" && o.gi == "bvh") {
+    error = "--vpl-source rsm needs --gi svo";
+    return std::nullopt;
+  }
+  if (manyLightsView && !(o.gi == "svo" && o.vplSource == "rsm")) {
+    error = "--view " + o.view + " needs --gi svo --vpl-source rsm";
+    return std::nullopt;
+  }
   return o;
 }
 

@@ -97,7 +97,7 @@ struct EmbreeScene::Impl {
         writeVertices(b.geometry, m, false);
         rtcUpdateGeometryBuffer(b.geometry, RTC_BUFFER_TYPE_VERTEX, 0);
         rtcCommitGeometry(b.geometry);
-        rtcCommitScene(b.scene);  // REFIT quality: refits the existing tree
+        rtcCommitScene(b.scene);  // REFIT geometry quality: refits the existing tree
         b.version = m.version;
         ++st.meshesRefit;
         return b;
@@ -109,7 +109,8 @@ struct EmbreeScene::Impl {
     Blas b;
     b.scene = rtcNewScene(device);
     b.refittable = deforming;
-    rtcSetSceneBuildQuality(b.scene, deforming ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
+    // Scenes take LOW/MEDIUM/HIGH; REFIT is a geometry quality (it makes commits refit the tree).
+    rtcSetSceneBuildQuality(b.scene, deforming ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
     if (deforming) rtcSetSceneFlags(b.scene, RTC_SCENE_FLAG_DYNAMIC);
     b.geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetGeometryBuildQuality(b.geometry, deforming ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);

@@ -39,10 +39,31 @@ TEST(Options, ParsesEverything) {
   EXPECT_FLOAT_EQ(o->exposure, 2.5f);
 }
 
+TEST(Options, ParsesGiOptions) {
+  std::string err;
+  auto o = parse({"--gi", "bvh", "--temporal", "8", "--reshoot", "20", "--vpls", "1024", "--interleave", "2", "--clamp", "0.05",
+                  "--animate", "moving-spot", "--vpl-source", "paths", "--voxel-res", "256", "--view", "voxels", "--seed", "7"},
+                 err);
+  ASSERT_TRUE(o) << err;
+  EXPECT_EQ(o->gi, "bvh");
+  EXPECT_EQ(o->temporal, 8u);
+  EXPECT_EQ(o->reshoot, 20u);
+  EXPECT_EQ(o->vpls, 1024u);
+  EXPECT_EQ(o->interleave, 2u);
+  EXPECT_FLOAT_EQ(o->distanceClamp, 0.05f);
+  EXPECT_EQ(o->animate, "moving-spot");
+  EXPECT_EQ(o->voxelResolution, 256u);
+  EXPECT_EQ(o->view, "voxels");
+  EXPECT_EQ(o->seed, 7u);
+}
+
 TEST(Options, RejectsBadValuesClearly) {
   const std::vector<std::vector<const char*>> bad = {
       {"--gi", "magic"}, {"--size", "0x0"}, {"--size", "12"}, {"--size", "axb"}, {"--frames", "-3"},
-      {"--frames"},      {"--bogus"},       {"--exposure", "nan"}, {"--exposure", "-1"}};
+      {"--frames"},      {"--bogus"},       {"--exposure", "nan"}, {"--exposure", "-1"},
+      {"--temporal", "0"}, {"--temporal", "33"}, {"--animate", "dance"}, {"--vpl-source", "magic"},
+      {"--vpls", "3"},   {"--interleave", "9"}, {"--clamp", "-1"}, {"--voxel-res", "100"}, {"--view", "xray"},
+      {"--seed", "-4"}};
   for (auto& args : bad) {
     std::string err;
     EXPECT_FALSE(parse(args, err)) << args[0];

@@ -41,6 +41,8 @@ TEST(SampleCli, BadInputExitsWithCode2AndOneLine) {
       {"--gi unknown-mode", "unknown --gi mode"},
       {"--size 0x0", "--size"},
       {"--no-such-flag", "unknown option"},
+      {"--headless --view vpls", "needs --gi svo --vpl-source rsm"},
+      {"--headless --gi bvh --vpl-source rsm", "needs --gi svo"},
   };
   for (const Case& c : cases) {
     SampleRun r = runSample(c.args, dir);
