@@ -116,7 +116,7 @@ TEST_F(RenderTest, LightOffDrivesIndirectToZeroAndBack) {
   run.step(int(T));
   double off = meanLum(run.indirect());
   std::printf("mean indirect: on %.5f, %u frames after switching off %.6f\n", on, T, off);
-  EXPECT_EQ(off, 0.0);
+  EXPECT_LT(off, 1e-6 * on) << "zero up to the float rounding of the running sums";
   run.world.write<scene::Light>(light).enabled = true;
   run.step(int(T) + 1);
   double back = meanLum(run.indirect());

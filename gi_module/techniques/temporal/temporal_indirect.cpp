@@ -6,8 +6,7 @@
 
 #include "shaders/shared/gi_gpu_types.h"
 #include "techniques/many_lights/indirect_passes.h"
-#include "spirv/reproject.comp.spv.h"
-#include "spirv/set_store.comp.spv.h"
+#include "spirv/accumulate.comp.spv.h"
 
 namespace dyngi::gi {
 
@@ -40,11 +39,9 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
   lastRendered_.assign(sets_, -1);
   gatherPass_ = std::make_unique<IndirectGatherPass>(ctx);
   filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
-  const Binding storeB[] = {{0, kUBO, kCS}, {1, kSampled, kCS}, {2, kStorageImage, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS}};
-  store_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_set_store_comp), storeB, 4, "temporal_store");
-  const Binding reprojectB[] = {{0, kUBO, kCS}, {1, kSampled, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS},
-                                {4, kSSBO, kCS}, {5, kStorageImage, kCS}};
-  reproject_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_reproject_comp), reprojectB, 16, "temporal_reproject");
+  const Binding accumulateB[] = {{0, kUBO, kCS},  {1, kSampled, kCS}, {2, kStorageImage, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS},
+                                 {5, kSSBO, kCS}, {6, kSSBO, kCS},    {7, kSSBO, kCS},         {8, kStorageImage, kCS}};
+  accumulate_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_accumulate_comp), accumulateB, 24, "temporal_accumulate");
   vpls_ = Buffer(ctx, VkDeviceSize(perSet_) * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "temporal vpls");
   cameras_ = Buffer(ctx, VkDeviceSize(sets_) * sizeof(SetCamera), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "set cameras");
   bits_ = Buffer(ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "visibility bits");
@@ -75,7 +72,10 @@ void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t width, uint32
   VkDeviceSize pixels = VkDeviceSize(width) * height * sets_;
   setIndirect_ = Buffer(ctx, pixels * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set indirect");
   setDepth_ = Buffer(ctx, pixels * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set depth");
+  sums_ = Buffer(ctx, VkDeviceSize(width) * height * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sums");
+  sumDepths_ = Buffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sum depths");
   setCameras_.assign(sets_, glm::mat4(0.0f));
+  lastCamera_ = glm::mat4(0.0f);
   std::fill(lastRendered_.begin(), lastRendered_.end(), -1);  // stored buffers are gone
 }
 
@@ -189,48 +189,40 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     pc.range = glm::uvec4(0u, perPixel, 0u, 0u);
     gatherPass_->record(frame, vpls_.handle(), voxels_ ? voxels_->nodes().handle() : vpls_.handle(), bits_.handle(), raw_, pc);
   }
+  // Incremental accumulation when nothing but this set changed for this camera (see accumulate.comp);
+  // a full reprojection otherwise, and every 256 frames to wash out float drift in the running sums.
+  const bool setWasStored = lastRendered_[currentSet_] >= 0;
+  const bool incremental = cam.viewProj == lastCamera_ && setWasStored && setCameras_[currentSet_] == cam.viewProj &&
+                           frameCounter_ % 256 != 0;
+  lastRendered_[currentSet_] = int64_t(frameCounter_++);
+  paths_.markSetRendered(currentSet_);
+  setCameras_[currentSet_] = cam.viewProj;
+  lastCamera_ = cam.viewProj;
+  uint32_t validMask = 0;
+  for (uint32_t s = 0; s < sets_; ++s)
+    if (lastRendered_[s] >= 0) validMask |= 1u << s;
   {
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "temporal_store");
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "temporal_accumulate");
     raw_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, store_.handle());
+    accumulated_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, accumulate_.handle());
     DescriptorWrites()
         .uniformBuffer(0, frame.frameUniforms.handle())
         .sampledImage(1, t.position.view(), frame.nearestSampler)
         .storageImage(2, raw_.view())
         .storageBuffer(3, setIndirect_.handle())
         .storageBuffer(4, setDepth_.handle())
-        .push(ctx_, cmd, store_);
-    vkCmdPushConstants(cmd, store_.layout(), kCS, 0, 4, &currentSet_);
-    vkCmdDispatch(cmd, groups(t.width, 8), groups(t.height, 8), 1);
-  }
-  lastRendered_[currentSet_] = int64_t(frameCounter_++);
-  paths_.markSetRendered(currentSet_);
-  setCameras_[currentSet_] = cam.viewProj;
-  uint32_t validMask = 0, sameCamera = 0;
-  for (uint32_t s = 0; s < sets_; ++s) {
-    if (lastRendered_[s] >= 0) validMask |= 1u << s;
-    if (setCameras_[s] == cam.viewProj) sameCamera |= 1u << s;
-  }
-  render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-  {
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "reproject");
-    accumulated_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, reproject_.handle());
-    DescriptorWrites()
-        .uniformBuffer(0, frame.frameUniforms.handle())
-        .sampledImage(1, t.position.view(), frame.nearestSampler)
-        .storageBuffer(2, setIndirect_.handle())
-        .storageBuffer(3, setDepth_.handle())
-        .storageBuffer(4, cameras_.handle())
-        .storageImage(5, accumulated_.view())
-        .push(ctx_, cmd, reproject_);
+        .storageBuffer(5, cameras_.handle())
+        .storageBuffer(6, sums_.handle())
+        .storageBuffer(7, sumDepths_.handle())
+        .storageImage(8, accumulated_.view())
+        .push(ctx_, cmd, accumulate_);
     struct {
-      uint32_t sets, mask;
+      uint32_t sets, set, mask, incremental;
       float cutoff;
-      uint32_t sameCamera;
-    } pc{sets_, validMask, settings_.reprojectionCutoff, sameCamera};
-    vkCmdPushConstants(cmd, reproject_.layout(), kCS, 0, sizeof(pc), &pc);
+      uint32_t setWasStored;
+    } pc{sets_, currentSet_, validMask, incremental ? 1u : 0u, settings_.reprojectionCutoff, setWasStored ? 1u : 0u};
+    vkCmdPushConstants(cmd, accumulate_.layout(), kCS, 0, sizeof(pc), &pc);
     vkCmdDispatch(cmd, groups(t.width, 8), groups(t.height, 8), 1);
   }
   filterPass_->record(frame, accumulated_, K, settings_.filterPlaneTolerance);

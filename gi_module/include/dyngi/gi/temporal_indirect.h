@@ -7,7 +7,8 @@
 // result is kept per set with its depth and camera; every frame all sets are reprojected into the
 // current view (samples whose surface moved more than the cut-off are dropped) and summed, then the
 // geometry-aware filter (the discontinuity buffer) removes the interleaving pattern.
-// Stages: indirect (+ visibility_bvh), temporal_store, reproject, filter.
+// Stages: indirect, temporal_accumulate (store + reprojection, O(1) per pixel for a still camera), filter;
+// the Embree visibility's CPU time is reported separately.
 #include <memory>
 #include <vector>
 
@@ -66,10 +67,11 @@ class TemporalIndirect final : public render::RenderFeature {
   uint64_t frameCounter_ = 0;
   std::vector<int64_t> lastRendered_;   // frame each set was last gathered (-1: never)
   std::vector<TemporalVpl> setVpls_;  // CPU copy of the VPLs uploaded this frame
-  render::Buffer vpls_, cameras_, bits_, setIndirect_, setDepth_;
+  render::Buffer vpls_, cameras_, bits_, setIndirect_, setDepth_, sums_, sumDepths_;
+  glm::mat4 lastCamera_{0.0f};
   render::Image raw_, accumulated_;
   std::vector<glm::mat4> setCameras_;   // CPU copy: which sets were stored from the current camera
-  render::Pipeline store_, reproject_;
+  render::Pipeline accumulate_;
   std::unique_ptr<class IndirectGatherPass> gatherPass_;
   std::unique_ptr<class IndirectFilterPass> filterPass_;
   double bvhMs_ = 0.0;
