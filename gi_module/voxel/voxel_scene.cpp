@@ -260,11 +260,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
             .push(ctx_, cmd, voxelize_);
         vkCmdPushConstants(cmd, voxelize_.layout(),
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
-        VkDeviceSize off = 0;
-        VkBuffer vb = mesh->vertices.handle();
-        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &off);
-        vkCmdBindIndexBuffer(cmd, mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(cmd, mesh->indexCount, 1, 0, 0, 0);
+        render::drawMesh(cmd, *mesh);
       }
       vkCmdEndRendering(cmd);
     }

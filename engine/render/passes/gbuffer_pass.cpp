@@ -79,11 +79,7 @@ void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
         .sampledImage(2, textures(m.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
         .push(ctx_, cmd, pipeline_);
     vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
-    VkDeviceSize off = 0;
-    VkBuffer vb = mesh->vertices.handle();
-    vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &off);
-    vkCmdBindIndexBuffer(cmd, mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, mesh->indexCount, 1, 0, 0, 0);
+    drawMesh(cmd, *mesh);
   }
   vkCmdEndRendering(cmd);
   for (Image* c : colors)

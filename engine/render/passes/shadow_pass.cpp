@@ -102,11 +102,7 @@ void ShadowPass::execute(FrameContext& frame) {
       if (!d.castShadows || !mesh || mesh->indexCount == 0) continue;
       glm::mat4 m = layerMatrices_[layer] * d.model;
       vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(m), &m);
-      VkDeviceSize off = 0;
-      VkBuffer vb = mesh->vertices.handle();
-      vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &off);
-      vkCmdBindIndexBuffer(cmd, mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-      vkCmdDrawIndexed(cmd, mesh->indexCount, 1, 0, 0, 0);
+      drawMesh(cmd, *mesh);
     }
     vkCmdEndRendering(cmd);
   }

@@ -201,11 +201,7 @@ bool ManyLights::record(render::FrameContext& frame) {
               .sampledImage(2, frame.textureView(dr.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
               .push(ctx_, cmd, rsm_);
           vkCmdPushConstants(cmd, rsm_.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
-          VkDeviceSize off = 0;
-          VkBuffer vb = mesh->vertices.handle();
-          vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &off);
-          vkCmdBindIndexBuffer(cmd, mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-          vkCmdDrawIndexed(cmd, mesh->indexCount, 1, 0, 0, 0);
+          render::drawMesh(cmd, *mesh);
         }
       }
       vkCmdEndRendering(cmd);

@@ -40,6 +40,15 @@ struct GpuMesh {
   uint32_t version = 0;
 };
 
+// Binds a mesh's vertex and index buffers and draws it (one instance).
+inline void drawMesh(VkCommandBuffer cmd, const GpuMesh& mesh) {
+  VkDeviceSize offset = 0;
+  VkBuffer vertices = mesh.vertices.handle();
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
+  vkCmdBindIndexBuffer(cmd, mesh.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+  vkCmdDrawIndexed(cmd, mesh.indexCount, 1, 0, 0, 0);
+}
+
 struct FrameContext {
   VulkanContext& ctx;
   VkCommandBuffer cmd;
