@@ -24,7 +24,8 @@ GiSystem::GiSystem(render::VulkanContext& ctx, const scene::AssetStore& assets, 
     manyLights_ = std::make_unique<ManyLights>(ctx, *voxels_, ms);
   } else {
     paths_ = std::make_unique<VplPaths>(VplPathSettings{.count = s.vplCount, .bounces = s.bounces, .reshootBudget = s.reshootBudget,
-                                                        .temporalSets = s.temporalSets, .seed = s.seed});
+                                                        .temporalSets = s.temporalSets, .seed = s.seed,
+                                                        .lightMoveTolerance = s.lightMoveTolerance});
     TemporalSettings ts;
     ts.interleave = s.interleave;
     ts.distanceClamp = s.distanceClamp;

@@ -95,9 +95,15 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
       if (l.entity == ls.entity) light = &l;
     bool lightOk = light && light->light.enabled;
     if (lightOk) {
-      LightState now{light->entity, light->position, light->direction, light->light.color * light->light.intensity,
+      // Power, cone and type must be exactly what the path was shot with; position and direction
+      // within the tolerances.
+      LightState now{light->entity, ls.position, ls.direction, light->light.color * light->light.intensity,
                      light->light.range, light->light.innerConeAngle, light->light.outerConeAngle, uint32_t(light->light.type)};
-      lightOk = now == ls;
+      bool lightMoved = settings_.lightMoveTolerance > 0.0f ? glm::distance(light->position, ls.position) > settings_.lightMoveTolerance * scale
+                                                        : light->position != ls.position;
+      bool turned = settings_.lightTurnTolerance > 0.0f ? glm::dot(light->direction, ls.direction) < std::cos(settings_.lightTurnTolerance)
+                                                        : light->direction != ls.direction;
+      lightOk = now == ls && !lightMoved && !turned;
     }
     if (!lightOk) {
       invalidateIndex(path * settings_.bounces);  // the whole path

@@ -37,6 +37,7 @@ struct GiSettings {
   float distanceClamp = 0.01f;    // B (world units^2)
   uint32_t svoResolution = 128;
   float reprojectionCutoff = 0.02f;
+  float lightMoveTolerance = 0.02f;  // see VplPathSettings
   uint64_t seed = 1;
 };
 

@@ -31,6 +31,11 @@ struct VplPathSettings {
   uint32_t reshootBudget = 0;   // per frame; 0: count / temporalSets (one set's worth)
   uint32_t temporalSets = 16;   // T
   uint64_t seed = 1;
+  // A light counts as moved/turned once it is this far (fraction of the scene diagonal) or this many
+  // radians from where its VPLs were shot. 0 invalidates on any motion; the default keeps VPLs of a
+  // slowly moving light alive for a few frames, which bounds the bias and keeps the pool full.
+  float lightMoveTolerance = 0.02f;
+  float lightTurnTolerance = 0.03f;
 };
 
 struct PathVpl {
