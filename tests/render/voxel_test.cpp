@@ -196,3 +196,23 @@ TEST_F(VoxelTest, MovingObjectsReVoxelizeOnlyThemselvesAndMatchARebuild) {
   EXPECT_EQ(voxels->stats().entitiesVoxelized, 0u);
   EXPECT_FALSE(voxels->stats().rebuilt);
 }
+
+TEST_F(VoxelTest, ObjectLeavingTheVolumeIsClippedNotFatal) {
+  run("cornell", 64, 1);
+  ecs::Entity box{};
+  world.each<scene::Name>([&](ecs::Entity e, const scene::Name& n) {
+    if (n.value == "short_box") box = e;
+  });
+  // Half in, half out through the right wall, then far away.
+  for (glm::vec3 at : {glm::vec3(1.05f, 0.3f, 0.0f), glm::vec3(40.0f, 0.3f, 0.0f)}) {
+    world.write<scene::Transform>(box).translation = at;
+    step();
+    gi::DenseVoxelGrid gpu = voxels->readbackFragmentGrid();
+    gi::DenseVoxelGrid brute = gi::voxelizeBruteForce(voxelSpaceTriangles(snapshot, voxels->volume()), 64);
+    GridDiff d = diff(gpu, brute);
+    EXPECT_EQ(d.missing, 0u) << "inside the volume nothing is lost";
+    EXPECT_LE(d.extra, d.reference / 100);
+    GridDiff l = diff(gi::SvoCpu(voxels->readbackNodes(), 64).leaves(), gpu);
+    EXPECT_EQ(l.missing + l.extra, 0u);
+  }
+}

@@ -38,7 +38,7 @@ struct VoxelStats {
   uint64_t totalBytes = 0;           // fragments + nodes + attributes, allocated
   uint32_t overflowedEntities = 0;   // re-voxelized next frame with a larger range
   bool poolOverflow = false;         // SVO pool too small (occupancy then conservative)
-  uint64_t clippedFragments = 0;     // geometry outside the volume is not voxelized (reported, not an error)
+  // Geometry outside the volume is clipped (not voxelized): no error, and no count either.
   bool rebuilt = false;              // the SVO was rebuilt this frame
 };
 
