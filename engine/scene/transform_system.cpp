@@ -19,14 +19,12 @@ glm::mat4 Transform::matrix() const {
   return m;
 }
 
-namespace {
-bool finiteMatrix(const glm::mat4& m) {
+bool isFinite(const glm::mat4& m) {
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
       if (!std::isfinite(m[c][r])) return false;
   return true;
 }
-}  // namespace
 
 void TransformSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {
   updatedLastRun_ = 0;
@@ -49,7 +47,7 @@ void TransformSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {
       if (const auto* pw = world.tryGet<WorldTransform>(t.parent)) parentWorld = pw->matrix;
     }
     glm::mat4 m = parentWorld * t.matrix();
-    if (!finiteMatrix(m)) {
+    if (!isFinite(m)) {
       if (++rejectedNonFinite_ <= 8)
         std::fprintf(stderr, "dyngi: warning: entity %u has a non-finite transform; keeping its last good one\n", e.index);
       return;  // children keep their last world too

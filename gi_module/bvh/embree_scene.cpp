@@ -19,12 +19,6 @@ namespace {
 void onEmbreeError(void*, RTCError code, const char* msg) {
   std::fprintf(stderr, "dyngi: embree error %d: %s\n", int(code), msg ? msg : "");
 }
-bool finiteMatrix(const glm::mat4& m) {
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r)
-      if (!std::isfinite(m[c][r])) return false;
-  return true;
-}
 }  // namespace
 
 struct EmbreeScene::Impl {
@@ -203,7 +197,7 @@ const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetSto
     const auto* wt = world.tryGet<scene::WorldTransform>(e);
     if (!mi || !wt || mi->mesh >= assets.meshCount()) return;
     const scene::MeshData& mesh = assets.mesh(mi->mesh);
-    if (mesh.indices.empty() || !finiteMatrix(wt->matrix)) return;
+    if (mesh.indices.empty() || !scene::isFinite(wt->matrix)) return;
     auto it = im.instances.find(e);
     if (it == im.instances.end()) {
       Impl::Blas& b = im.ensureBlas(mesh, mi->mesh, deforming.count(mi->mesh) > 0, st);

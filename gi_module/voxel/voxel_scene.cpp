@@ -20,25 +20,12 @@
 #include "spirv/voxelize.geom.spv.h"
 #include "spirv/voxelize.vert.spv.h"
 
+#include "gpu_aliases.h"
+
 namespace dyngi::gi {
 
-using render::Binding;
-using render::Buffer;
-using render::DescriptorWrites;
-using render::MemoryUsage;
-using render::Pipeline;
-
 namespace {
-constexpr VkShaderStageFlags kCS = VK_SHADER_STAGE_COMPUTE_BIT;
-constexpr VkDescriptorType kSSBO = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-constexpr uint32_t kAttributeInts = 8;
-
-void computeBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT) {
-  render::memoryBarrier(cmd, src | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
-}
-uint32_t groups64(uint64_t n) { return uint32_t((n + 63) / 64); }
+constexpr uint32_t kAttributeInts = 8;  // ints per leaf in the attribute buffer
 }  // namespace
 
 VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings) : ctx_(ctx), settings_(settings) {
@@ -264,7 +251,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
       }
       vkCmdEndRendering(cmd);
     }
-    computeBarrier(cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT);
+    render::computeWriteBarrier(cmd);
   }
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "svo_build");
@@ -273,36 +260,36 @@ bool VoxelScene::record(render::FrameContext& frame) {
     init.fragments = glm::uvec4(0, uint32_t(std::min<uint64_t>(stats_.fragmentCapacity, 0xFFFFFFFFu)), 0, 0);
     vkCmdUpdateBuffer(cmd, svoCounters_.handle(), 0, sizeof(init), &init);
     vkCmdFillBuffer(cmd, nodes_.handle(), 0, 32, 0);  // the root group
-    computeBarrier(cmd);
+    render::computeWriteBarrier(cmd);
     const uint32_t slots = uint32_t(highWater_);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, gather_.handle());
     DescriptorWrites().storageBuffer(0, fragments_.handle()).storageBuffer(1, dense_.handle()).storageBuffer(2, svoCounters_.handle()).push(ctx_, cmd, gather_);
     vkCmdPushConstants(cmd, gather_.layout(), kCS, 0, 4, &slots);
-    vkCmdDispatch(cmd, groups64(slots), 1, 1);
-    computeBarrier(cmd);
+    vkCmdDispatch(cmd, dispatchGroups(uint32_t(slots), 64), 1, 1);
+    render::computeWriteBarrier(cmd);
     const VkDeviceSize fragmentDispatch = offsetof(gpu::SvoCounters, fragmentDispatch);
     for (uint32_t l = 0; l <= depth; ++l) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, level_.handle());
       DescriptorWrites().storageBuffer(0, levels_.handle()).storageBuffer(1, svoCounters_.handle()).push(ctx_, cmd, level_);
       vkCmdPushConstants(cmd, level_.layout(), kCS, 0, 4, &l);
       vkCmdDispatch(cmd, 1, 1, 1);
-      computeBarrier(cmd);
+      render::computeWriteBarrier(cmd);
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, flag_.handle());
       DescriptorWrites().storageBuffer(0, dense_.handle()).storageBuffer(1, nodes_.handle()).storageBuffer(2, svoCounters_.handle()).push(ctx_, cmd, flag_);
       uint32_t fp[2] = {l, depth};
       vkCmdPushConstants(cmd, flag_.layout(), kCS, 0, sizeof(fp), fp);
       vkCmdDispatchIndirect(cmd, svoCounters_.handle(), fragmentDispatch);
-      computeBarrier(cmd);
+      render::computeWriteBarrier(cmd);
       if (l == depth) break;  // leaves: flagged, never subdivided
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, alloc_.handle());
       DescriptorWrites().storageBuffer(0, nodes_.handle()).storageBuffer(1, levels_.handle()).storageBuffer(2, svoCounters_.handle()).push(ctx_, cmd, alloc_);
       vkCmdPushConstants(cmd, alloc_.layout(), kCS, 0, 4, &l);
       vkCmdDispatchIndirect(cmd, levels_.handle(), VkDeviceSize(l) * sizeof(gpu::SvoLevel) + offsetof(gpu::SvoLevel, dispatch));
-      computeBarrier(cmd);
+      render::computeWriteBarrier(cmd);
     }
     // Leaf attributes, kept apart from the nodes.
     vkCmdFillBuffer(cmd, attributes_.handle(), 0, VK_WHOLE_SIZE, 0);
-    computeBarrier(cmd);
+    render::computeWriteBarrier(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, leafAttributes_.handle());
     DescriptorWrites()
         .storageBuffer(0, dense_.handle())
@@ -314,7 +301,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
     uint32_t ap[2] = {depth, uint32_t(stats_.fragmentCapacity)};
     vkCmdPushConstants(cmd, leafAttributes_.layout(), kCS, 0, sizeof(ap), ap);
     vkCmdDispatchIndirect(cmd, svoCounters_.handle(), fragmentDispatch);
-    computeBarrier(cmd);
+    render::computeWriteBarrier(cmd);
   }
   stats_.rebuilt = true;
   return false;  // the voxel scene feeds other stages; it does not write indirect light
@@ -429,7 +416,7 @@ double VoxelScene::marchSegments(const std::vector<Segment>& segments, std::vect
       float res, eps;
     } pc{glm::vec4(volume_.origin, 1.0f / volume_.voxelSize), uint32_t(segments.size()), volume_.depth(), float(volume_.resolution), epsVoxels};
     vkCmdPushConstants(cmd, march_.layout(), kCS, 0, sizeof(pc), &pc);
-    vkCmdDispatch(cmd, groups64(segments.size()), 1, 1);
+    vkCmdDispatch(cmd, dispatchGroups(uint32_t(segments.size()), 64), 1, 1);
     timer.end(cmd, s);
     render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                           VK_ACCESS_2_HOST_READ_BIT);

@@ -91,6 +91,6 @@ class TonemapPass {
   Pipeline pipeline_;
 };
 
-inline uint32_t groupsFor(uint32_t n, uint32_t local) { return (n + local - 1) / local; }
+
 
 }  // namespace dyngi::render

@@ -46,7 +46,7 @@ void DirectLightingPass::execute(FrameContext& frame, ShadowPass& shadows) {
       .sampledImage(7, shadows.shadowMap().view(), shadows.compareSampler(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
       .storageImage(8, t.direct.view())
       .push(ctx_, cmd, pipeline_);
-  vkCmdDispatch(cmd, groupsFor(t.width, 8), groupsFor(t.height, 8), 1);
+  vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
 }
 
 CompositePass::CompositePass(VulkanContext& ctx) : ctx_(ctx) {
@@ -74,7 +74,7 @@ void CompositePass::execute(FrameContext& frame) {
       .push(ctx_, cmd, pipeline_);
   uint32_t size[2] = {t.width, t.height};
   vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(size), size);
-  vkCmdDispatch(cmd, groupsFor(t.width, 8), groupsFor(t.height, 8), 1);
+  vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
 }
 
 TonemapPass::TonemapPass(VulkanContext& ctx) : ctx_(ctx) {
@@ -96,7 +96,7 @@ void TonemapPass::execute(FrameContext& frame) {
       .storageImage(1, t.hdr.view())
       .storageImage(2, t.ldr.view())
       .push(ctx_, cmd, pipeline_);
-  vkCmdDispatch(cmd, groupsFor(t.width, 8), groupsFor(t.height, 8), 1);
+  vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
 }
 
 }  // namespace dyngi::render

@@ -3,15 +3,9 @@
 #include "spirv/filter.comp.spv.h"
 #include "spirv/gather.comp.spv.h"
 
+#include "gpu_aliases.h"
+
 namespace dyngi::gi {
-
-using render::Binding;
-using render::DescriptorWrites;
-
-namespace {
-constexpr VkShaderStageFlags kCS = VK_SHADER_STAGE_COMPUTE_BIT;
-uint32_t groups(uint32_t n, uint32_t local) { return (n + local - 1) / local; }
-}  // namespace
 
 IndirectGatherPass::IndirectGatherPass(render::VulkanContext& ctx) : ctx_(ctx) {
   const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS},
@@ -41,7 +35,7 @@ void IndirectGatherPass::record(render::FrameContext& frame, VkBuffer vpls, VkBu
       .push(ctx_, cmd, pipeline_);
   vkCmdPushConstants(cmd, pipeline_.layout(), kCS, 0, sizeof(pc), &pc);
   const uint32_t K = pc.info.y;
-  vkCmdDispatch(cmd, groups(groups(t.width, K), 8), groups(groups(t.height, K), 8), K * K);
+  vkCmdDispatch(cmd, dispatchGroups(dispatchGroups(t.width, K), 8), dispatchGroups(dispatchGroups(t.height, K), 8), K * K);
 }
 
 IndirectFilterPass::IndirectFilterPass(render::VulkanContext& ctx) : ctx_(ctx) {
@@ -72,7 +66,7 @@ void IndirectFilterPass::record(render::FrameContext& frame, render::Image& inpu
     float tol;
   } fp{K, planeTolerance};
   vkCmdPushConstants(cmd, pipeline_.layout(), kCS, 0, sizeof(fp), &fp);
-  vkCmdDispatch(cmd, groups(t.width, 8), groups(t.height, 8), 1);
+  vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
 }
 
 }  // namespace dyngi::gi

@@ -14,28 +14,9 @@
 #include "spirv/vpl_cdf_total.comp.spv.h"
 #include "spirv/vpl_sample.comp.spv.h"
 
+#include "gpu_aliases.h"
+
 namespace dyngi::gi {
-
-using render::Binding;
-using render::Buffer;
-using render::DescriptorWrites;
-using render::Image;
-using render::MemoryUsage;
-using render::Pipeline;
-
-namespace {
-constexpr VkShaderStageFlags kCS = VK_SHADER_STAGE_COMPUTE_BIT;
-constexpr VkDescriptorType kSSBO = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-constexpr VkDescriptorType kStorageImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-
-void computeToCompute(VkCommandBuffer cmd) {
-  render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-}
-uint32_t groups(uint32_t n, uint32_t local) { return (n + local - 1) / local; }
-}  // namespace
 
 ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const ManyLightsSettings& settings)
     : ctx_(ctx), voxels_(voxels), settings_(settings) {
@@ -218,13 +199,13 @@ bool ManyLights::record(render::FrameContext& frame) {
     DescriptorWrites().sampledImage(0, rsmFlux_.view(), frame.nearestSampler, ro).storageBuffer(1, rowPrefix_.handle()).storageBuffer(2, rowCdf_.handle()).push(ctx_, cmd, cdfRows_);
     uint32_t rp[2] = {res, rsmLayers_};
     vkCmdPushConstants(cmd, cdfRows_.layout(), kCS, 0, sizeof(rp), rp);
-    vkCmdDispatch(cmd, groups(rows, 64), 1, 1);
-    computeToCompute(cmd);
+    vkCmdDispatch(cmd, dispatchGroups(rows, 64), 1, 1);
+    render::computeWriteBarrier(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cdfTotal_.handle());
     DescriptorWrites().storageBuffer(0, rowCdf_.handle()).push(ctx_, cmd, cdfTotal_);
     vkCmdPushConstants(cmd, cdfTotal_.layout(), kCS, 0, 4, &rows);
     vkCmdDispatch(cmd, 1, 1, 1);
-    computeToCompute(cmd);
+    render::computeWriteBarrier(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, sample_.handle());
     DescriptorWrites()
         .sampledImage(0, rsmPosition_.view(), frame.nearestSampler, ro)
@@ -236,8 +217,8 @@ bool ManyLights::record(render::FrameContext& frame) {
         .push(ctx_, cmd, sample_);
     uint32_t sp[4] = {res, rsmLayers_, perBounce_, settings_.seed * 7919u};
     vkCmdPushConstants(cmd, sample_.layout(), kCS, 0, sizeof(sp), sp);
-    vkCmdDispatch(cmd, groups(perBounce_, 64), 1, 1);
-    computeToCompute(cmd);
+    vkCmdDispatch(cmd, dispatchGroups(perBounce_, 64), 1, 1);
+    render::computeWriteBarrier(cmd);
   }
 
   if (settings_.bounces > 1) {  // 3. further bounces through the voxel scene
@@ -256,8 +237,8 @@ bool ManyLights::record(render::FrameContext& frame) {
         float res, lift;
       } pc{glm::vec4(vol.origin, 1.0f / vol.voxelSize), (b - 1) * perBounce_, perBounce_, b, vol.depth(), float(vol.resolution), settings_.liftVoxels};
       vkCmdPushConstants(cmd, bounce_.layout(), kCS, 0, sizeof(pc), &pc);
-      vkCmdDispatch(cmd, groups(perBounce_, 64), 1, 1);
-      computeToCompute(cmd);
+      vkCmdDispatch(cmd, dispatchGroups(perBounce_, 64), 1, 1);
+      render::computeWriteBarrier(cmd);
     }
   }
 
@@ -296,7 +277,7 @@ void ManyLights::recordAfterComposite(render::FrameContext& frame) {
   uint32_t pc[3] = {mode, settings_.interleave, vplTotal};
   vkCmdPushConstants(frame.cmd, debug_.layout(), kCS, 0, sizeof(pc), pc);
   uint32_t n = mode == 1 ? vplTotal : t.width * t.height;
-  vkCmdDispatch(frame.cmd, groups(n, 64), 1, 1);
+  vkCmdDispatch(frame.cmd, dispatchGroups(n, 64), 1, 1);
 }
 
 std::vector<VplReadback> ManyLights::readbackVpls() {

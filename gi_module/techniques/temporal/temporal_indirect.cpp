@@ -8,22 +8,11 @@
 #include "techniques/many_lights/indirect_passes.h"
 #include "spirv/accumulate.comp.spv.h"
 
+#include "gpu_aliases.h"
+
 namespace dyngi::gi {
 
-using render::Binding;
-using render::Buffer;
-using render::DescriptorWrites;
-using render::Image;
-using render::MemoryUsage;
-using render::Pipeline;
-
 namespace {
-constexpr VkShaderStageFlags kCS = VK_SHADER_STAGE_COMPUTE_BIT;
-constexpr VkDescriptorType kSSBO = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-constexpr VkDescriptorType kStorageImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-constexpr VkDescriptorType kUBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-uint32_t groups(uint32_t n, uint32_t local) { return (n + local - 1) / local; }
 struct SetCamera {
   glm::mat4 viewProj, invViewProj;
 };
@@ -223,7 +212,7 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
       uint32_t setWasStored;
     } pc{sets_, currentSet_, validMask, incremental ? 1u : 0u, settings_.reprojectionCutoff, setWasStored ? 1u : 0u};
     vkCmdPushConstants(cmd, accumulate_.layout(), kCS, 0, sizeof(pc), &pc);
-    vkCmdDispatch(cmd, groups(t.width, 8), groups(t.height, 8), 1);
+    vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
   }
   filterPass_->record(frame, accumulated_, K, settings_.filterPlaneTolerance);
   return true;

@@ -21,6 +21,9 @@ struct ShaderCode {
 };
 #define DYNGI_SHADER(array) ::dyngi::render::ShaderCode{array, sizeof(array)}
 
+// Workgroups needed to cover n items with `local` items per group.
+inline uint32_t dispatchGroups(uint32_t n, uint32_t local) { return (n + local - 1) / local; }
+
 class Pipeline {
  public:
   Pipeline() = default;

@@ -97,6 +97,10 @@ Image createTexture(VulkanContext& ctx, uint32_t width, uint32_t height, const u
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
+// Compute-shader and transfer writes made visible to later compute reads/writes, indirect-argument
+// reads and fragment-shader reads: the barrier between chained compute passes.
+void computeWriteBarrier(VkCommandBuffer cmd);
+
 size_t formatBytesPerPixel(VkFormat format);
 
 // Copies a 2D color image (RGBA32F, RGBA16F or RGBA8) to the CPU as RGBA floats (8-bit as 0..1).

@@ -22,6 +22,9 @@ struct Transform {
   glm::mat4 matrix() const;
 };
 
+// True when every element is finite (no NaN, no infinity).
+bool isFinite(const glm::mat4& m);
+
 // Written only by the transform propagation system. Its change tick tells GI what moved.
 struct WorldTransform {
   glm::mat4 matrix{1.0f};
