@@ -1,7 +1,8 @@
 #version 460
 // Debug views of the many-lights technique, written over the HDR image.
 // mode 0: indirect light only (albedo x indirect); 1: VPL positions as dots over the final image
-// (white: lit directly, orange: second bounce, red: third); 2: the K x K sub-images side by side.
+// (white: lit directly, orange: second bounce, red: third); 2: the K x K sub-images side by side, each
+// an estimate of the whole indirect light from its own VPL subset.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 #include "shared/gi_gpu_types.h"
@@ -42,6 +43,8 @@ void main() {
     ivec2 sub = min(px / max(tile, ivec2(1)), ivec2(int(K) - 1));
     ivec2 src = (px - sub * tile) * int(K) + sub;
     src = clamp(src, ivec2(0), size - 1);
-    imageStore(hdr, px, vec4(imageLoad(raw, src).rgb / float(K * K) * albedo + 0.0, 1.0));
+    // Each sub-image alone is a (noisier) estimate of the whole indirect light: shown at full scale.
+    vec4 srcAlbedo = texelFetch(gAlbedo, src, 0);
+    imageStore(hdr, px, vec4(imageLoad(raw, src).rgb * srcAlbedo.rgb * (1.0 - srcAlbedo.a), 1.0));
   }
 }
