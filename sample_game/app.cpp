@@ -249,6 +249,8 @@ int runApp(const Options& o) {
     gs.distanceClamp = o.distanceClamp;
     gs.svoResolution = o.voxelResolution;
     gs.seed = o.seed;
+    if (world.count<scene::Light>() == 0)
+      std::fprintf(stderr, "dyngi_sample: note: VPLs come from punctual lights only; this scene has none, so no indirect light\n");
     giOwned = std::make_unique<gi::GiSystem>(ctx, assets, gs);
     gi = giOwned.get();
     gi->attach(renderer);
