@@ -6,6 +6,7 @@
 
 #include "dyngi/engine/scene/light_units.h"
 #include "dyngi/gi/scene_surfaces.h"
+#include "sampling.h"
 
 namespace dyngi::gi {
 namespace {
@@ -13,21 +14,9 @@ constexpr float kPi = 3.14159265358979f;
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
-uint64_t mix64(uint64_t x) {
-  x ^= x >> 30;
-  x *= 0xbf58476d1ce4e5b9ULL;
-  x ^= x >> 27;
-  x *= 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
 float uniform01(uint64_t& state) {
   state = mix64(state + 0x9E3779B97F4A7C15ULL);
   return float(state >> 40) * (1.0f / 16777216.0f);
-}
-void basis(const glm::vec3& n, glm::vec3& b1, glm::vec3& b2) {
-  glm::vec3 t = std::abs(n.x) > 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-  b1 = glm::normalize(glm::cross(n, t));
-  b2 = glm::cross(n, b1);
 }
 float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 
@@ -165,7 +154,7 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
     if (L.type == scene::LightType::Directional) {
       float r = 0.5f * glm::length(snapshot.sceneBounds.extent()) + 1e-3f;
       glm::vec3 b1, b2;
-      basis(light->direction, b1, b2);
+      orthonormalBasis(light->direction, b1, b2);
       float rr = r * std::sqrt(u1), phi = 2.0f * kPi * u2;
       origin = snapshot.sceneBounds.center() - light->direction * (2.0f * r) + rr * (std::cos(phi) * b1 + std::sin(phi) * b2);
       dir = light->direction;
@@ -177,7 +166,7 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
         float cosOuter = std::cos(std::clamp(L.outerConeAngle, 1e-3f, 1.5707f));
         float ct = 1.0f - u1 * (1.0f - cosOuter), st = std::sqrt(std::max(0.0f, 1.0f - ct * ct));
         glm::vec3 b1, b2;
-        basis(light->direction, b1, b2);
+        orthonormalBasis(light->direction, b1, b2);
         dir = glm::normalize(st * std::cos(2.0f * kPi * u2) * b1 + st * std::sin(2.0f * kPi * u2) * b2 + ct * light->direction);
         pdf = 1.0f / (2.0f * kPi * (1.0f - cosOuter));
         throughput = radiant * scene::spotFalloff(ct, L.innerConeAngle, L.outerConeAngle) / (pdf * pLight);
@@ -200,10 +189,8 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
       vpls_[index] = child;
       return true;
     }
-    glm::vec3 b1, b2;
-    basis(parent.normal, b1, b2);
-    float u1 = uniform01(rng), u2 = uniform01(rng), r = std::sqrt(u1), phi = 2.0f * kPi * u2;
-    dir = glm::normalize(r * std::cos(phi) * b1 + r * std::sin(phi) * b2 + std::sqrt(std::max(0.0f, 1.0f - u1)) * parent.normal);
+    float u1 = uniform01(rng), u2 = uniform01(rng);
+    dir = cosineDirection(parent.normal, u1, u2);
     origin = parent.position + parent.normal * (1e-4f * scale);
     throughput = parent.flux;  // cosine sampling: the parent's whole reflected flux travels along the ray
   }

@@ -9,6 +9,7 @@
 
 #include "dyngi/engine/scene/light_units.h"
 #include "dyngi/gi/scene_surfaces.h"
+#include "sampling.h"
 
 namespace dyngi::gi {
 namespace {
@@ -34,13 +35,6 @@ struct Rng {
   float uniform() { return float(next() >> 8) * (1.0f / 16777216.0f); }
 };
 
-uint64_t mix64(uint64_t x) {
-  x ^= x >> 30;
-  x *= 0xbf58476d1ce4e5b9ULL;
-  x ^= x >> 27;
-  x *= 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
 
 
 class Tracer {
@@ -81,10 +75,7 @@ class Tracer {
 
   static glm::vec3 cosineSample(const glm::vec3& n, Rng& rng) {
     float u1 = rng.uniform(), u2 = rng.uniform();
-    float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
-    glm::vec3 t = std::abs(n.x) > 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-    glm::vec3 b1 = glm::normalize(glm::cross(n, t)), b2 = glm::cross(n, b1);
-    return glm::normalize(r * std::cos(phi) * b1 + r * std::sin(phi) * b2 + std::sqrt(std::max(0.0f, 1.0f - u1)) * n);
+    return cosineDirection(n, u1, u2);
   }
 
   glm::vec3 directLight(const SurfaceHit& sh) const {

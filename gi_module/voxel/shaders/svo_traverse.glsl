@@ -13,50 +13,10 @@ uint childOf(vec3 p, vec3 mid, vec3 dir) {
   return c;
 }
 
-// True when the segment a -> b (voxel units), shrunk by `eps` at both ends, passes through an occupied
-// leaf. Descend from the root to the leaf holding the current point; an empty node is left through its
-// box (t = exit + a tiny step) and the descent restarts from the root.
-bool svoOccluded(vec3 a, vec3 b, float eps, uint depth, float res, out uint steps) {
-  steps = 0u;
-  vec3 d = b - a;
-  float len = length(d);
-  if (len <= 2.0 * eps) return false;
-  vec3 dir = d / len;
-  vec3 invDir = vec3(dir.x != 0.0 ? 1.0 / dir.x : 1e30, dir.y != 0.0 ? 1.0 / dir.y : 1e30, dir.z != 0.0 ? 1.0 / dir.z : 1e30);
-  // Clip to the volume.
-  vec3 t0 = (vec3(0.0) - a) * invDir, t1 = (vec3(res) - a) * invDir;
-  vec3 tn = min(t0, t1), tf = max(t0, t1);
-  float t = max(eps, max(tn.x, max(tn.y, tn.z)));
-  float tEnd = min(len - eps, min(tf.x, min(tf.y, tf.z)));
-  for (uint iter = 0u; iter < 4096u && t < tEnd; ++iter) {
-    ++steps;
-    vec3 p = a + dir * t;
-    uint node = 0u;
-    vec3 lo = vec3(0.0);
-    float size = res;
-    for (uint level = 0u;; ++level) {
-      uint w = nodes[node];
-      if ((w & DYNGI_SVO_FLAG) == 0u) break;            // empty: leave this box
-      if (level == depth) return true;                   // occupied leaf
-      uint g = w & DYNGI_SVO_GROUP_MASK;
-      if (g == 0u) return true;                          // flagged but never subdivided (pool overflow): conservative
-      size *= 0.5;
-      uint c = childOf(p, lo + size, dir);
-      lo += vec3(c & 1u, (c >> 1) & 1u, (c >> 2) & 1u) * size;
-      node = 8u * g + c;
-    }
-    vec3 far = vec3(dir.x >= 0.0 ? lo.x + size : lo.x, dir.y >= 0.0 ? lo.y + size : lo.y, dir.z >= 0.0 ? lo.z + size : lo.z);
-    vec3 te = (far - a) * invDir;
-    float tExit = min(te.x, min(te.y, te.z));
-    // Step just past the exit. The step grows with t: a fixed 1e-5 is below float precision once t is a
-    // few hundred voxels (camera rays from outside the volume), and the march would stall.
-    t = max(tExit, t) + max(1e-5, t * 4e-7);
-  }
-  return false;
-}
-
-// First occupied leaf along the ray o + t dir (dir unit, voxel units) for t in [tMin, tMax].
+// First occupied leaf along the ray o + t dir (dir unit, voxel units) for t in [tMin, tMax).
 // Returns the leaf's node index or 0xFFFFFFFF; `tHit` is where the ray enters that leaf.
+// SVO-restart: descend from the root to the leaf holding the current point; an empty node is left
+// through its box (a point on a face belongs to the cell the ray moves into) and the descent restarts.
 uint svoFirstHit(vec3 o, vec3 dir, float tMin, float tMax, uint depth, float res, out float tHit, out uint steps) {
   steps = 0u;
   tHit = 0.0;
@@ -88,6 +48,17 @@ uint svoFirstHit(vec3 o, vec3 dir, float tMin, float tMax, uint depth, float res
     t = max(min(te.x, min(te.y, te.z)), t) + max(1e-5, t * 4e-7);
   }
   return 0xFFFFFFFFu;
+}
+
+// True when the segment a -> b (voxel units), shrunk by `eps` at both ends, passes through an occupied
+// leaf (or a node that could not be subdivided: conservative): the first-hit march over that interval.
+bool svoOccluded(vec3 a, vec3 b, float eps, uint depth, float res, out uint steps) {
+  steps = 0u;
+  vec3 d = b - a;
+  float len = length(d);
+  if (len <= 2.0 * eps) return false;
+  float tHit;
+  return svoFirstHit(a, d / len, eps, len - eps, depth, res, tHit, steps) != 0xFFFFFFFFu;
 }
 
 #endif
