@@ -56,14 +56,18 @@ void Pipeline::createLayout(std::span<const Binding> bindings, VkShaderStageFlag
 }
 
 Pipeline Pipeline::compute(VulkanContext& ctx, ShaderCode code, std::span<const Binding> bindings, uint32_t pushConstantBytes,
-                           const char* name) {
+                           const char* name, std::span<const uint32_t> specialization) {
   Pipeline p;
   p.ctx_ = &ctx;
   p.bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
   p.createLayout(bindings, VK_SHADER_STAGE_COMPUTE_BIT, pushConstantBytes);
   VkShaderModule module = makeModule(ctx.device(), code);
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main", nullptr};
+  std::vector<VkSpecializationMapEntry> entries(specialization.size());
+  for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, i * 4u, 4u};
+  VkSpecializationInfo spec{uint32_t(entries.size()), entries.data(), specialization.size_bytes(), specialization.data()};
+  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main",
+              specialization.empty() ? nullptr : &spec};
   ci.layout = p.layout_;
   VkResult r = vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline_);
   vkDestroyShaderModule(ctx.device(), module, nullptr);

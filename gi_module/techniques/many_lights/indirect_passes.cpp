@@ -1,11 +1,18 @@
 #include "techniques/many_lights/indirect_passes.h"
 
+#include <algorithm>
+
 #include "spirv/filter.comp.spv.h"
 #include "spirv/gather.comp.spv.h"
 
 #include "gpu_aliases.h"
 
 namespace dyngi::gi {
+
+namespace {
+// filter.comp: workgroup tile edge and the largest interleave its shared-memory halo covers.
+constexpr uint32_t kFilterTile = 8, kFilterMaxK = 8;
+}  // namespace
 
 IndirectGatherPass::IndirectGatherPass(render::VulkanContext& ctx) : ctx_(ctx) {
   const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS},
@@ -38,34 +45,34 @@ void IndirectGatherPass::record(render::FrameContext& frame, VkBuffer vpls, VkBu
   vkCmdDispatch(cmd, dispatchGroups(dispatchGroups(t.width, K), 8), dispatchGroups(dispatchGroups(t.height, K), 8), K * K);
 }
 
-IndirectFilterPass::IndirectFilterPass(render::VulkanContext& ctx) : ctx_(ctx) {
-  const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
-                       {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS},
-                       {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS},
-                       {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
-                       {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
-  pipeline_ = render::Pipeline::compute(ctx, DYNGI_SHADER(spv_filter_comp), b, 8, "indirect_filter");
-}
+IndirectFilterPass::IndirectFilterPass(render::VulkanContext& ctx) : ctx_(ctx) {}
 
 void IndirectFilterPass::record(render::FrameContext& frame, render::Image& input, uint32_t K, float planeTolerance) {
+  K = std::clamp(K, 1u, 8u);
+  render::Pipeline& pipeline = pipelines_[K - 1];
+  if (!pipeline.handle()) {
+    const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
+                         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS},
+                         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS},
+                         {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
+                         {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
+    const uint32_t spec[] = {K};
+    pipeline = render::Pipeline::compute(ctx_, DYNGI_SHADER(spv_filter_comp), b, 4, "indirect_filter", spec);
+  }
   render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "filter");
   VkCommandBuffer cmd = frame.cmd;
   render::RenderTargets& t = frame.targets;
   input.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   t.indirect.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
   DescriptorWrites()
       .uniformBuffer(0, frame.frameUniforms.handle())
       .sampledImage(1, t.position.view(), frame.nearestSampler)
       .sampledImage(2, t.normal.view(), frame.nearestSampler)
       .storageImage(3, input.view())
       .storageImage(4, t.indirect.view())
-      .push(ctx_, cmd, pipeline_);
-  struct {
-    uint32_t K;
-    float tol;
-  } fp{K, planeTolerance};
-  vkCmdPushConstants(cmd, pipeline_.layout(), kCS, 0, sizeof(fp), &fp);
+      .push(ctx_, cmd, pipeline);
+  vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(float), &planeTolerance);
   vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
 }
 

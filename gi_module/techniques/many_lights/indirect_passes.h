@@ -22,12 +22,12 @@ class IndirectGatherPass {
 class IndirectFilterPass {
  public:
   explicit IndirectFilterPass(render::VulkanContext& ctx);
-  // Filters `input` (interleaved) into frame.targets.indirect ("filter" in stats).
+  // Filters `input` (interleaved K x K, K in 1..8) into frame.targets.indirect ("filter" in stats).
   void record(render::FrameContext& frame, render::Image& input, uint32_t K, float planeTolerance);
 
  private:
   render::VulkanContext& ctx_;
-  render::Pipeline pipeline_;
+  render::Pipeline pipelines_[8];  // per K, made on first use: K is a specialization constant
 };
 
 }  // namespace dyngi::gi

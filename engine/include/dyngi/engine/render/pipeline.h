@@ -34,8 +34,10 @@ class Pipeline {
   Pipeline& operator=(const Pipeline&) = delete;
   void reset();
 
+  // `specialization[i]` sets the shader's `layout(constant_id = i) const uint` (a loop bound known when
+  // the pipeline is made lets the driver unroll it).
   static Pipeline compute(VulkanContext& ctx, ShaderCode code, std::span<const Binding> bindings, uint32_t pushConstantBytes,
-                          const char* name);
+                          const char* name, std::span<const uint32_t> specialization = {});
 
   struct GraphicsDesc {
     ShaderCode vertex{};
