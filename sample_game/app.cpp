@@ -31,7 +31,6 @@ namespace dyngi::sample {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr int kWarmupFrames = 2;  // Mesa compiles pipelines on first use: keep them out of the medians
 
 // WASD + right-mouse look on the active camera's Transform.
 class FlyCameraSystem final : public ecs::System {
@@ -280,7 +279,7 @@ int runApp(const Options& o) {
   stats.scene = sceneName;
   stats.gi = o.gi;
   stats.device = ctx.deviceName();
-  stats.warmupFrames = kWarmupFrames;
+  stats.warmupFrames = int(o.warmup);  // Mesa compiles pipelines on first use: keep them out of the medians
   ecs::FrameTime time;
   auto start = Clock::now(), last = start;
   int rendered = 0;
@@ -316,7 +315,7 @@ int runApp(const Options& o) {
     if (swapchain && !fs.presented) swapchain->recreate(renderer.width(), renderer.height());
     double frameMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     ++rendered;
-    if (rendered > kWarmupFrames) {
+    if (rendered > int(o.warmup)) {
       stats.frameMs.push_back(frameMs);
       for (auto& [name, ms] : fs.gpuMs) stats.gpuStageMs[name].push_back(ms);
       for (auto& t : scheduler.lastTimings()) stats.cpuStageMs[t.name].push_back(t.cpuMs);

@@ -28,6 +28,8 @@ std::string usage() {
          "  --out FILE.png                         write the last frame (tone-mapped, sRGB)\n"
          "  --hdr-out FILE.exr                     write the last frame's linear radiance before exposure\n"
          "  --stats FILE.json                      write timings (medians over frames after warm-up)\n"
+         "  --warmup N                             frames left out of the medians (default 2; e.g. T + 2 to time\n"
+         "                                         the steady state once every temporal set is filled)\n"
          "  --view NAME                            final | voxels | svo-steps | indirect | vpls | subimages\n"
          "  --voxel-res N                          voxel resolution, a power of two in 64..512 (default 128)\n"
          "  --clip NAME                            glTF animation clip to play (default: the first)\n"
@@ -100,6 +102,12 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
         return std::nullopt;
       }
       o.frames = int(n);
+    } else if (a == "--warmup") {
+      if (!value(v)) return std::nullopt;
+      if (!parseUint(v, o.warmup) || o.warmup > 1000000) {
+        error = "--warmup wants a frame count, got '" + v + "'";
+        return std::nullopt;
+      }
     } else if (a == "--seed") {
       if (!value(v)) return std::nullopt;
       if (!parseUint(v, o.seed)) {
@@ -184,6 +192,10 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
   }
   if (manyLightsView && !(o.gi == "svo" && o.vplSource == "rsm")) {
     error = "--view " + o.view + " needs --gi svo --vpl-source rsm";
+    return std::nullopt;
+  }
+  if (o.frames > 0 && int64_t(o.warmup) >= o.frames) {
+    error = "--warmup " + std::to_string(o.warmup) + " leaves no frame of --frames " + std::to_string(o.frames) + " to time";
     return std::nullopt;
   }
   return o;

@@ -11,6 +11,7 @@ struct Options {
   bool headless = false;
   uint32_t width = 768, height = 768;
   int frames = -1;                          // -1: headless 60, windowed until closed
+  uint32_t warmup = 2;                      // frames left out of the --stats medians (pipeline compiles, filling)
   std::string gi = "off";                   // off | svo | bvh | path
   uint32_t temporal = 16;                   // T temporal VPL sets (svo/bvh with path VPLs)
   uint32_t reshoot = 0;                     // VPLs reshot per frame (0: vpls / T)

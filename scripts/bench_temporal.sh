@@ -18,9 +18,9 @@ echo "| --- | ---: | ---: | ---: | ---: | ---: |"
 for scene in static moving-spot rotating-object; do
   row="| $scene |"
   for T in 1 4 8 16 32; do
-    # Warm-up covers filling the pool and rendering every set once.
+    # Warm-up (left out of the medians) covers filling the pool and rendering every set once.
     warm=$((T + 2))
-    $BIN/dyngi_sample --headless --animate $scene --gi svo --vpls 512 --temporal $T --frames $((warm + FRAMES)) \
+    $BIN/dyngi_sample --headless --animate $scene --gi svo --vpls 512 --temporal $T --frames $((warm + FRAMES)) --warmup $warm \
       --size $SIZE --stats out/bench/temporal_${scene}_$T.json >/dev/null
     ms=$(python3 -c "import json; print(round(json.load(open('out/bench/temporal_${scene}_$T.json'))['frame_ms']['median'], 1))")
     row="$row $ms |"

@@ -50,7 +50,7 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
 
   const Binding gatherB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
   gather_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_gather_comp), gatherB, 4, "svo_gather");
-  const Binding flagB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
+  const Binding flagB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}};
   flag_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_flag_comp), flagB, 8, "svo_flag");
   const Binding levelB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}};
   level_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_level_comp), levelB, 4, "svo_level");
@@ -87,6 +87,7 @@ void VoxelScene::ensureCapacity(uint64_t fragments) {
   vkDeviceWaitIdle(ctx_.device());
   fragments_ = Buffer(ctx_, cap * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragments");
   dense_ = Buffer(ctx_, cap * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragments (dense)");
+  fragmentNodes_ = Buffer(ctx_, cap * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragment nodes");
   attributes_ = Buffer(ctx_, cap * kAttributeInts * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel leaf attributes");
   stats_.fragmentCapacity = cap;
   allDirty_ = true;  // contents are gone: everything is voxelized again
@@ -265,7 +266,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, gather_.handle());
     DescriptorWrites().storageBuffer(0, fragments_.handle()).storageBuffer(1, dense_.handle()).storageBuffer(2, svoCounters_.handle()).push(ctx_, cmd, gather_);
     vkCmdPushConstants(cmd, gather_.layout(), kCS, 0, 4, &slots);
-    vkCmdDispatch(cmd, dispatchGroups(uint32_t(slots), 64), 1, 1);
+    vkCmdDispatch(cmd, std::max(dispatchGroups(slots, 64 * DYNGI_SVO_ITEMS_PER_INVOCATION), 1u), 1, 1);
     render::computeWriteBarrier(cmd);
     const VkDeviceSize fragmentDispatch = offsetof(gpu::SvoCounters, fragmentDispatch);
     for (uint32_t l = 0; l <= depth; ++l) {
@@ -275,7 +276,12 @@ bool VoxelScene::record(render::FrameContext& frame) {
       vkCmdDispatch(cmd, 1, 1, 1);
       render::computeWriteBarrier(cmd);
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, flag_.handle());
-      DescriptorWrites().storageBuffer(0, dense_.handle()).storageBuffer(1, nodes_.handle()).storageBuffer(2, svoCounters_.handle()).push(ctx_, cmd, flag_);
+      DescriptorWrites()
+          .storageBuffer(0, dense_.handle())
+          .storageBuffer(1, nodes_.handle())
+          .storageBuffer(2, svoCounters_.handle())
+          .storageBuffer(3, fragmentNodes_.handle())
+          .push(ctx_, cmd, flag_);
       uint32_t fp[2] = {l, depth};
       vkCmdPushConstants(cmd, flag_.layout(), kCS, 0, sizeof(fp), fp);
       vkCmdDispatchIndirect(cmd, svoCounters_.handle(), fragmentDispatch);
@@ -293,7 +299,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, leafAttributes_.handle());
     DescriptorWrites()
         .storageBuffer(0, dense_.handle())
-        .storageBuffer(1, nodes_.handle())
+        .storageBuffer(1, fragmentNodes_.handle())
         .storageBuffer(2, levels_.handle())
         .storageBuffer(3, attributes_.handle())
         .storageBuffer(4, svoCounters_.handle())
@@ -354,7 +360,7 @@ void VoxelScene::frameFinished(render::VulkanContext&) {
   stats_.leaves = c->groups.w;
   stats_.poolOverflow = c->groups.z != 0;
   stats_.svoBytes = stats_.nodes * 4;
-  stats_.totalBytes = fragments_.size() + dense_.size() + nodes_.size() + attributes_.size();
+  stats_.totalBytes = fragments_.size() + dense_.size() + fragmentNodes_.size() + nodes_.size() + attributes_.size();
   if (stats_.poolOverflow) std::fprintf(stderr, "dyngi: warning: SVO node pool overflow (%u groups); raise maxNodeGroups\n", settings_.maxNodeGroups);
 }
 

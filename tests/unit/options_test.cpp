@@ -57,13 +57,21 @@ TEST(Options, ParsesGiOptions) {
   EXPECT_EQ(o->seed, 7u);
 }
 
+TEST(Options, WarmupFramesAreLeftOutOfTheMedians) {
+  std::string err;
+  auto o = parse({"--frames", "40", "--warmup", "18"}, err);
+  ASSERT_TRUE(o) << err;
+  EXPECT_EQ(o->warmup, 18u);
+  EXPECT_EQ(parse({}, err)->warmup, 2u);
+}
+
 TEST(Options, RejectsBadValuesClearly) {
   const std::vector<std::vector<const char*>> bad = {
       {"--gi", "magic"}, {"--size", "0x0"}, {"--size", "12"}, {"--size", "axb"}, {"--frames", "-3"},
       {"--frames"},      {"--bogus"},       {"--exposure", "nan"}, {"--exposure", "-1"},
       {"--temporal", "0"}, {"--temporal", "33"}, {"--animate", "dance"}, {"--vpl-source", "magic"},
       {"--vpls", "3"},   {"--interleave", "9"}, {"--clamp", "-1"}, {"--voxel-res", "100"}, {"--view", "xray"},
-      {"--seed", "-4"}};
+      {"--seed", "-4"},  {"--warmup", "x"},    {"--frames", "5", "--warmup", "5"}};
   for (auto& args : bad) {
     std::string err;
     EXPECT_FALSE(parse(args, err)) << args[0];

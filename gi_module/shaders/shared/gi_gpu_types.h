@@ -42,6 +42,10 @@ struct SvoLevel {
   uvec4 dispatch;       // indirect dispatch args for this level's alloc pass (x groups, 1, 1)
 };
 
+// SVO build passes over fragments and nodes run 64-wide workgroups in which each invocation takes
+// this many items (grid-stride): lavapipe pays a fixed cost per invocation that dwarfs one step.
+#define DYNGI_SVO_ITEMS_PER_INVOCATION 16u
+
 // Global SVO counters.
 #ifdef __cplusplus
 struct alignas(16) SvoCounters {
@@ -50,7 +54,7 @@ struct SvoCounters {
 #endif
   uvec4 groups;         // x groups allocated (incl. root group), y group capacity, z overflowed (0/1), w leaves
   uvec4 fragments;      // x valid fragments gathered into the dense list, y its capacity
-  uvec4 fragmentDispatch;  // indirect dispatch args over the dense list (x groups, 1, 1)
+  uvec4 fragmentDispatch;  // indirect dispatch args over the dense list (x groups, 1, 1; see ITEMS_PER_INVOCATION)
 };
 
 // A virtual point light: a point on a surface that reflects `flux` (watts, reflected: rho * E * A)

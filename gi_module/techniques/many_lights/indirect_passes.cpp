@@ -9,11 +9,6 @@
 
 namespace dyngi::gi {
 
-namespace {
-// filter.comp: workgroup tile edge and the largest interleave its shared-memory halo covers.
-constexpr uint32_t kFilterTile = 8, kFilterMaxK = 8;
-}  // namespace
-
 IndirectGatherPass::IndirectGatherPass(render::VulkanContext& ctx) : ctx_(ctx) {
   const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS},
                        {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS}, {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},

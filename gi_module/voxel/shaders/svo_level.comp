@@ -13,10 +13,10 @@ void main() {
   if (level == 0u) {
     levels[0].range = uvec4(0u, 1u, used, 0u);
     uint n = min(counters.fragments.x, counters.fragments.y);
-    counters.fragmentDispatch = uvec4((n + 63u) / 64u, 1u, 1u, 0u);
+    counters.fragmentDispatch = uvec4(max((n + 64u * DYNGI_SVO_ITEMS_PER_INVOCATION - 1u) / (64u * DYNGI_SVO_ITEMS_PER_INVOCATION), 1u), 1u, 1u, 0u);
   } else {
     uint before = levels[level - 1u].range.z;
     levels[level].range = uvec4(8u * before, 8u * (used - before), used, 0u);
   }
-  levels[level].dispatch = uvec4((levels[level].range.y + 63u) / 64u, 1u, 1u, 0u);
+  levels[level].dispatch = uvec4((levels[level].range.y + 64u * DYNGI_SVO_ITEMS_PER_INVOCATION - 1u) / (64u * DYNGI_SVO_ITEMS_PER_INVOCATION), 1u, 1u, 0u);
 }

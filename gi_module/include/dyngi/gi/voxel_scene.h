@@ -109,6 +109,7 @@ class VoxelScene final : public render::RenderFeature {
   std::vector<ecs::Entity> voxelizedThisFrame_;
 
   render::Buffer fragments_, dense_, counters_, nodes_, levels_, svoCounters_, attributes_;
+  render::Buffer fragmentNodes_;  // per dense fragment: the node it reached at the level last built
   render::Pipeline voxelize_, gather_, flag_, level_, alloc_, leafAttributes_, march_, debug_;
   VoxelStats stats_;
   double lastMarchWallMs_ = 0.0;
