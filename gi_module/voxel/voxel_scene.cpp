@@ -60,6 +60,8 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
   leafAttributes_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, 8, "svo_leaf_attributes");
   const Binding marchB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
   march_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_march_comp), marchB, 32, "svo_march");
+  const uint32_t noMarch[] = {0u};
+  marchOff_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_march_comp), marchB, 32, "svo_march_off", noMarch);
   const Binding debugB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS},
                             {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
   debug_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_voxel_debug_comp), debugB, 28, "voxel_debug");
@@ -399,6 +401,15 @@ DenseVoxelGrid VoxelScene::readbackFragmentGrid() {
 }
 
 double VoxelScene::marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels) {
+  return dispatchMarch(march_, segments, out, epsVoxels);
+}
+
+double VoxelScene::marchSegmentsWithoutMarch(const std::vector<Segment>& segments, std::vector<uint8_t>& out) {
+  return dispatchMarch(marchOff_, segments, out, 1e-3f);
+}
+
+double VoxelScene::dispatchMarch(const render::Pipeline& pipeline, const std::vector<Segment>& segments, std::vector<uint8_t>& out,
+                                 float epsVoxels) {
   out.assign(segments.size(), 0);
   if (segments.empty()) return 0.0;
   std::vector<glm::vec4> packed(segments.size() * 2);
@@ -414,14 +425,14 @@ double VoxelScene::marchSegments(const std::vector<Segment>& segments, std::vect
   ctx_.immediate([&](VkCommandBuffer cmd) {
     timer.beginFrame(cmd);
     uint32_t s = timer.begin(cmd, "svo_march");
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, march_.handle());
-    DescriptorWrites().storageBuffer(0, nodes_.handle()).storageBuffer(1, segBuf.handle()).storageBuffer(2, results.handle()).push(ctx_, cmd, march_);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+    DescriptorWrites().storageBuffer(0, nodes_.handle()).storageBuffer(1, segBuf.handle()).storageBuffer(2, results.handle()).push(ctx_, cmd, pipeline);
     struct {
       glm::vec4 worldToVoxel;
       uint32_t count, depth;
       float res, eps;
     } pc{glm::vec4(volume_.origin, 1.0f / volume_.voxelSize), uint32_t(segments.size()), volume_.depth(), float(volume_.resolution), epsVoxels};
-    vkCmdPushConstants(cmd, march_.layout(), kCS, 0, sizeof(pc), &pc);
+    vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(pc), &pc);
     vkCmdDispatch(cmd, dispatchGroups(uint32_t(segments.size()), 64), 1, 1);
     timer.end(cmd, s);
     render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,

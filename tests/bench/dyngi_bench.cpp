@@ -306,6 +306,49 @@ void BM_SvoVisibility(benchmark::State& state) {
 }
 BENCHMARK(BM_SvoVisibility)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(5);
 
+// The same dispatch with the march compiled out: reading a segment and writing its result, nothing
+// else. No march on this device can be faster: the ceiling next to BM_SvoVisibility.
+void BM_SvoVisibility_DispatchOnly(benchmark::State& state) {
+  VisibilitySet& v = visibilitySet();
+  std::vector<uint8_t> out;
+  for (auto _ : state) {
+    v.voxels->marchSegmentsWithoutMarch(v.segments, out);
+    state.SetIterationTime(v.voxels->lastMarchWallMs() * 1e-3);
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(v.segments.size()));
+}
+BENCHMARK(BM_SvoVisibility_DispatchOnly)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(5);
+
+// The SVO-restart march's C++ twin (double precision) on all cores, over the GPU-built SVO read back:
+// the same algorithm as native CPU code, for comparison with Embree's BVH on the same cores.
+void BM_SvoVisibility_CpuTwin(benchmark::State& state) {
+  VisibilitySet& v = visibilitySet();
+  static gi::SvoCpu svo(v.voxels->readbackNodes(), v.voxels->volume().resolution);
+  const gi::VoxelVolume& vol = v.voxels->volume();
+  std::vector<uint8_t> out(v.segments.size());
+  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  for (auto _ : state) {
+    std::vector<std::thread> pool;
+    size_t chunk = (v.segments.size() + threads - 1) / threads;
+    for (unsigned t = 0; t < threads; ++t) {
+      size_t b = t * chunk, e = std::min(v.segments.size(), b + chunk);
+      pool.emplace_back([&, b, e] {
+        for (size_t i = b; i < e; ++i) {
+          glm::dvec3 a = (glm::dvec3(v.segments[i].from) - glm::dvec3(vol.origin)) / double(vol.voxelSize);
+          glm::dvec3 c = (glm::dvec3(v.segments[i].to) - glm::dvec3(vol.origin)) / double(vol.voxelSize);
+          out[i] = svo.occluded(a, c, 1e-3) ? 1 : 0;
+        }
+      });
+    }
+    for (auto& th : pool) th.join();
+  }
+  size_t blocked = 0;
+  for (uint8_t b : out) blocked += b;
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(v.segments.size()));
+  state.counters["occluded_fraction"] = double(blocked) / double(v.segments.size());
+}
+BENCHMARK(BM_SvoVisibility_CpuTwin)->UseRealTime()->Unit(benchmark::kMillisecond)->Iterations(3);
+
 // The same segments through Embree on all cores (streams).
 void BM_EmbreeOcclusion(benchmark::State& state) {
   VisibilitySet& v = visibilitySet();

@@ -77,6 +77,9 @@ class VoxelScene final : public render::RenderFeature {
   // Visibility of world-space segments through the SVO on the GPU; out[i] = 1 when occluded.
   // Returns the GPU time of the march dispatch in ms.
   double marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels = 1e-3f);
+  // The same dispatch with the march compiled out (every result 0): what reading a segment and writing
+  // a result costs on this device, the ceiling for any march's throughput (benchmarks only).
+  double marchSegmentsWithoutMarch(const std::vector<Segment>& segments, std::vector<uint8_t>& out);
   // Wall time of the last marchSegments submit-to-fence (what a CPU caller waits).
   double lastMarchWallMs() const { return lastMarchWallMs_; }
 
@@ -110,7 +113,9 @@ class VoxelScene final : public render::RenderFeature {
 
   render::Buffer fragments_, dense_, counters_, nodes_, levels_, svoCounters_, attributes_;
   render::Buffer fragmentNodes_;  // per dense fragment: the node it reached at the level last built
-  render::Pipeline voxelize_, gather_, flag_, level_, alloc_, leafAttributes_, march_, debug_;
+  render::Pipeline voxelize_, gather_, flag_, level_, alloc_, leafAttributes_, march_, marchOff_, debug_;
+  double dispatchMarch(const render::Pipeline& pipeline, const std::vector<Segment>& segments, std::vector<uint8_t>& out,
+                       float epsVoxels);
   VoxelStats stats_;
   double lastMarchWallMs_ = 0.0;
 };
