@@ -26,6 +26,7 @@ namespace dyngi::gi {
 
 namespace {
 constexpr uint32_t kAttributeInts = 8;  // ints per leaf in the attribute buffer
+constexpr uint32_t kMinNodeGroups = 1u << 12;  // the node pool never shrinks below this (128 KB)
 }  // namespace
 
 VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings) : ctx_(ctx), settings_(settings) {
@@ -66,12 +67,14 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
                             {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
   debug_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_voxel_debug_comp), debugB, 28, "voxel_debug");
 
-  nodes_ = Buffer(ctx, VkDeviceSize(settings.maxNodeGroups) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo nodes");
+  // The first build gets the whole pool; afterwards it follows what the SVO uses (resizeNodePool).
+  nodeGroupCapacity_ = std::max(settings.maxNodeGroups, 2u);
+  nodes_ = Buffer(ctx, VkDeviceSize(nodeGroupCapacity_) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo nodes");
   levels_ = Buffer(ctx, sizeof(gpu::SvoLevel) * DYNGI_SVO_MAX_LEVELS, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                    MemoryUsage::Readback, "svo levels");
   svoCounters_ = Buffer(ctx, sizeof(gpu::SvoCounters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                         MemoryUsage::Readback, "svo counters");
-  ensureCapacity(1u << 16);
+  reallocateFragments(1u << 16, {});
 }
 
 VoxelScene::~VoxelScene() = default;
@@ -83,16 +86,66 @@ void VoxelScene::setVolume(const VoxelVolume& v) {
   allDirty_ = true;
 }
 
-void VoxelScene::ensureCapacity(uint64_t fragments) {
-  if (fragments_.valid() && fragments_.size() >= fragments * 16) return;
-  uint64_t cap = std::max<uint64_t>(fragments + fragments / 2, 1u << 16);
+void VoxelScene::ensureCapacity(uint64_t slots) {
+  if (fragments_.valid() && fragments_.size() >= slots * 16) return;
+  std::vector<VkBufferCopy> keep;
+  if (fragments_.valid() && highWater_ > 0) keep.push_back({0, 0, highWater_ * 16});
+  reallocateFragments(std::max<uint64_t>(slots + slots / 2, 1u << 16), keep);
+}
+
+void VoxelScene::reallocateFragments(uint64_t slots, const std::vector<VkBufferCopy>& keep) {
   vkDeviceWaitIdle(ctx_.device());
-  fragments_ = Buffer(ctx_, cap * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragments");
-  dense_ = Buffer(ctx_, cap * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragments (dense)");
-  fragmentNodes_ = Buffer(ctx_, cap * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragment nodes");
-  attributes_ = Buffer(ctx_, cap * kAttributeInts * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel leaf attributes");
-  stats_.fragmentCapacity = cap;
-  allDirty_ = true;  // contents are gone: everything is voxelized again
+  Buffer fresh(ctx_, slots * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragments");
+  ctx_.immediate([&](VkCommandBuffer cmd) {
+    vkCmdFillBuffer(cmd, fresh.handle(), 0, VK_WHOLE_SIZE, DYNGI_VOXEL_EMPTY);
+    render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                          VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    if (!keep.empty()) vkCmdCopyBuffer(cmd, fragments_.handle(), fresh.handle(), uint32_t(keep.size()), keep.data());
+  });
+  fragments_ = std::move(fresh);
+  // The SVO build's own buffers never hold more than the ranges do.
+  dense_ = Buffer(ctx_, slots * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragments (dense)");
+  fragmentNodes_ = Buffer(ctx_, slots * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragment nodes");
+  attributes_ = Buffer(ctx_, slots * kAttributeInts * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel leaf attributes");
+  stats_.fragmentCapacity = slots;
+  storageMoved_ = true;
+}
+
+uint64_t VoxelScene::movingCapacity(const Range& r) { return 2 * uint64_t(r.lastCount) + 64; }
+
+VoxelScene::RangeNeed VoxelScene::rangeNeed(uint64_t estimate, const Range* previous) {
+  if (!previous || previous->voxelizations == 0) return {estimate, estimate};
+  // It overflowed: more than it held, whatever the estimate says.
+  if (previous->lastCount > previous->capacity) {
+    uint64_t n = std::max<uint64_t>(estimate, uint64_t(previous->lastCount) * 5 / 4 + 64);
+    return {n, n};
+  }
+  // Known count: a moved or turned mesh rarely needs twice what it held (a thin sheet turning from an
+  // axis to a diagonal comes closest); the estimate overshoots small triangles several times over. The
+  // range is kept while it has a quarter of headroom, so a count that wobbles does not move it.
+  return {std::min<uint64_t>(estimate, uint64_t(previous->lastCount) * 5 / 4 + 64), std::min(estimate, movingCapacity(*previous))};
+}
+
+void VoxelScene::compactRanges() {
+  // Ranges are sized by an estimate that overshoots small triangles several times over, and a moved
+  // entity leaves a hole where its old range was. Once the counts are known, entities voxelized once
+  // (static) keep exactly their fragments; moving ones keep their slack (their count changes as they
+  // turn). Valid fragments sit at the start of a range (the voxelizer appends), so a copy moves them.
+  std::vector<std::pair<ecs::Entity, Range*>> order;
+  for (auto& [e, r] : ranges_) order.push_back({e, &r});
+  std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.second->first < y.second->first; });
+  std::vector<VkBufferCopy> keep;
+  uint64_t next = 0;
+  for (auto& [e, r] : order) {
+    uint64_t used = std::min<uint64_t>(r->lastCount, r->capacity);
+    uint64_t capacity = r->voxelizations > 1 ? std::min(r->capacity, movingCapacity(*r)) : used;
+    if (used > 0) keep.push_back({r->first * 16, next * 16, used * 16});
+    r->first = next;
+    r->capacity = capacity;
+    next += capacity;
+  }
+  highWater_ = next;
+  reallocateFragments(std::max<uint64_t>(next + next / 4, 1u << 16), keep);
 }
 
 uint64_t VoxelScene::estimateFragments(const scene::MeshData& mesh, const glm::mat4& m) const {
@@ -140,61 +193,65 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   for (const auto& [e, r] : ranges_)
     if (!present.count(e)) removed_.insert(e);
 
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    if (allDirty_) {
-      relayout(snapshot);
-      for (const auto& d : snapshot.draws) dirty_.insert(d.entity);
-      allDirty_ = false;
-      rebuildSvo_ = true;
-    }
-    for (ecs::Entity e : removed_) {
-      auto it = ranges_.find(e);
-      if (it == ranges_.end()) continue;
-      rangesToEmpty_.push_back(it->second);
-      freeCounters_.push_back(it->second.counter);
-      ranges_.erase(it);
-      rebuildSvo_ = true;
-    }
-    removed_.clear();
-    drawsToVoxelize_.clear();
-    uint64_t newHighWater = highWater_;
-    std::vector<std::pair<ecs::Entity, Range>> planned;
-    for (size_t i = 0; i < snapshot.draws.size(); ++i) {
-      const auto& d = snapshot.draws[i];
-      if (!dirty_.count(d.entity)) continue;
-      const scene::MeshData& mesh = snapshot.assets->mesh(d.mesh);
-      uint64_t need = std::max<uint64_t>(estimateFragments(mesh, toVoxel * d.model), 0);
-      auto it = ranges_.find(d.entity);
-      Range r = it != ranges_.end() ? it->second : Range{};
-      if (it != ranges_.end() && r.lastCount > r.capacity) need = std::max<uint64_t>(need, uint64_t(r.lastCount) * 5 / 4 + 64);
-      if (it == ranges_.end() || r.capacity < need) {
-        if (it != ranges_.end()) rangesToEmpty_.push_back(r);  // the old place must not keep stale voxels
-        Range fresh;
-        fresh.first = newHighWater;
-        fresh.capacity = need;
-        if (it != ranges_.end()) fresh.counter = r.counter;
-        else if (!freeCounters_.empty()) fresh.counter = freeCounters_.back(), freeCounters_.pop_back();
-        else fresh.counter = counterCount_++;
-        newHighWater += need;
-        r = fresh;
-      }
-      planned.push_back({d.entity, r});
-      drawsToVoxelize_.push_back(i);
-    }
-    if (!fragments_.valid() || newHighWater * 16 > fragments_.size()) {
-      ensureCapacity(newHighWater);  // sets allDirty_: lay everything out again in the new buffer
-      continue;
-    }
-    for (auto& [e, r] : planned) {
-      r.written = true;
-      ranges_[e] = r;
-      voxelizedThisFrame_.push_back(e);
-    }
-    highWater_ = newHighWater;
-    break;
+  // Compact when the ranges hold more than twice what they need (counts from the last frame): after
+  // the first frame, and again as moved entities leave holes.
+  if (!allDirty_ && highWater_ > (1u << 16)) {
+    uint64_t used = 0;
+    for (const auto& [e, r] : ranges_)
+      used += r.voxelizations > 1 ? std::min(r.capacity, movingCapacity(r)) : std::min<uint64_t>(r.lastCount, r.capacity);
+    if (highWater_ > 2 * used) compactRanges();
   }
+  if (allDirty_) {
+    relayout(snapshot);
+    for (const auto& d : snapshot.draws) dirty_.insert(d.entity);
+    allDirty_ = false;
+    rebuildSvo_ = true;
+  }
+  for (ecs::Entity e : removed_) {
+    auto it = ranges_.find(e);
+    if (it == ranges_.end()) continue;
+    rangesToEmpty_.push_back(it->second);
+    freeCounters_.push_back(it->second.counter);
+    ranges_.erase(it);
+    rebuildSvo_ = true;
+  }
+  removed_.clear();
+  drawsToVoxelize_.clear();
+  uint64_t newHighWater = highWater_;
+  std::vector<std::pair<ecs::Entity, Range>> planned;
+  for (size_t i = 0; i < snapshot.draws.size(); ++i) {
+    const auto& d = snapshot.draws[i];
+    if (!dirty_.count(d.entity)) continue;
+    const scene::MeshData& mesh = snapshot.assets->mesh(d.mesh);
+    auto it = ranges_.find(d.entity);
+    Range r = it != ranges_.end() ? it->second : Range{};
+    RangeNeed need = rangeNeed(estimateFragments(mesh, toVoxel * d.model), it != ranges_.end() ? &r : nullptr);
+    if (it == ranges_.end() || r.capacity < need.minimum) {
+      if (it != ranges_.end()) rangesToEmpty_.push_back(r);  // the old place must not keep stale voxels
+      Range fresh;
+      fresh.first = newHighWater;
+      fresh.capacity = need.fresh;
+      fresh.voxelizations = r.voxelizations;
+      if (it != ranges_.end()) fresh.counter = r.counter;
+      else if (!freeCounters_.empty()) fresh.counter = freeCounters_.back(), freeCounters_.pop_back();
+      else fresh.counter = counterCount_++;
+      newHighWater += need.fresh;
+      r = fresh;
+    }
+    planned.push_back({d.entity, r});
+    drawsToVoxelize_.push_back(i);
+  }
+  ensureCapacity(newHighWater);  // grows by copying: nothing already voxelized is lost
+  for (auto& [e, r] : planned) {
+    r.written = true;
+    ++r.voxelizations;
+    ranges_[e] = r;
+    voxelizedThisFrame_.push_back(e);
+  }
+  highWater_ = newHighWater;
   dirty_.clear();
-  if (!drawsToVoxelize_.empty()) rebuildSvo_ = true;
+  if (!drawsToVoxelize_.empty() || storageMoved_) rebuildSvo_ = true;
+  storageMoved_ = false;
   uint64_t countersBytes = uint64_t(std::max(counterCount_, 1u)) * 4;
   if (!counters_.valid() || counters_.size() < countersBytes) {
     vkDeviceWaitIdle(ctx_.device());
@@ -259,7 +316,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "svo_build");
     gpu::SvoCounters init{};
-    init.groups = glm::uvec4(1, settings_.maxNodeGroups, 0, 0);
+    init.groups = glm::uvec4(1, nodeGroupCapacity_, 0, 0);
     init.fragments = glm::uvec4(0, uint32_t(std::min<uint64_t>(stats_.fragmentCapacity, 0xFFFFFFFFu)), 0, 0);
     vkCmdUpdateBuffer(cmd, svoCounters_.handle(), 0, sizeof(init), &init);
     vkCmdFillBuffer(cmd, nodes_.handle(), 0, 32, 0);  // the root group
@@ -362,8 +419,31 @@ void VoxelScene::frameFinished(render::VulkanContext&) {
   stats_.leaves = c->groups.w;
   stats_.poolOverflow = c->groups.z != 0;
   stats_.svoBytes = stats_.nodes * 4;
+  if (stats_.poolOverflow && nodeGroupCapacity_ >= settings_.maxNodeGroups)
+    std::fprintf(stderr, "dyngi: warning: SVO node pool overflow (%u groups); raise maxNodeGroups\n", settings_.maxNodeGroups);
+  // Keep the pool between 4/3 and 8 times what the SVO uses: grow before it fills (an overflowing build
+  // is conservative: childless nodes count as occupied, so it is rebuilt next frame), shrink after the
+  // first build, which had the whole pool.
+  uint64_t want = nodeGroupCapacity_;
+  if (stats_.poolOverflow || groups * 4 > uint64_t(nodeGroupCapacity_) * 3) want = std::max<uint64_t>(2ull * nodeGroupCapacity_, 2 * groups);
+  else if (groups * 8 < nodeGroupCapacity_) want = 2 * groups;
+  want = std::clamp<uint64_t>(want, std::min<uint32_t>(kMinNodeGroups, settings_.maxNodeGroups), settings_.maxNodeGroups);
+  if (want != nodeGroupCapacity_) resizeNodePool(uint32_t(want), groups);
+  if (stats_.poolOverflow && want > groups) storageMoved_ = true;  // the conservative SVO stands until the next build
   stats_.totalBytes = fragments_.size() + dense_.size() + fragmentNodes_.size() + nodes_.size() + attributes_.size();
-  if (stats_.poolOverflow) std::fprintf(stderr, "dyngi: warning: SVO node pool overflow (%u groups); raise maxNodeGroups\n", settings_.maxNodeGroups);
+}
+
+void VoxelScene::resizeNodePool(uint32_t groups, uint64_t keepGroups) {
+  vkDeviceWaitIdle(ctx_.device());
+  Buffer fresh(ctx_, VkDeviceSize(groups) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo nodes");
+  keepGroups = std::min<uint64_t>(keepGroups, groups);
+  if (keepGroups > 0)  // the current SVO stays readable until the next build
+    ctx_.immediate([&](VkCommandBuffer cmd) {
+      VkBufferCopy copy{0, 0, keepGroups * 8 * 4};
+      vkCmdCopyBuffer(cmd, nodes_.handle(), fresh.handle(), 1, &copy);
+    });
+  nodes_ = std::move(fresh);
+  nodeGroupCapacity_ = groups;
 }
 
 std::vector<uint32_t> VoxelScene::readbackNodes() {

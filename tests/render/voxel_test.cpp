@@ -2,6 +2,7 @@
 // the SVO's C++ twin and the Embree BVH.
 #include <gtest/gtest.h>
 
+#include <glm/gtc/quaternion.hpp>
 #include <random>
 
 #include "dyngi/engine/ecs/scheduler.h"
@@ -195,6 +196,102 @@ TEST_F(VoxelTest, MovingObjectsReVoxelizeOnlyThemselvesAndMatchARebuild) {
   step();
   EXPECT_EQ(voxels->stats().entitiesVoxelized, 0u);
   EXPECT_FALSE(voxels->stats().rebuilt);
+}
+
+// Fine meshes: the per-entity range estimate overshoots small triangles several times over. After the
+// first frame the ranges are compacted to what they hold (static entities exactly, moving ones with
+// their slack); the SVO must not change, and later motion must still match a from-scratch build.
+TEST_F(VoxelTest, FragmentRangesAreCompactedWithoutLosingVoxels) {
+  sample::buildBuiltinScene("cornell", world, assets);
+  scene::MeshId sphere = assets.addMesh(scene::makeSphere(0.2f, 96, 48));
+  std::vector<ecs::Entity> spheres;
+  for (int i = 0; i < 3; ++i) {
+    ecs::Entity e = world.create();
+    scene::Transform t;
+    t.translation = {-0.5f + 0.5f * float(i), 1.0f, 0.2f};
+    world.add(e, t);
+    world.add(e, scene::WorldTransform{t.matrix()});
+    world.add(e, scene::MeshInstance{sphere, true});
+    world.add(e, scene::Material{.baseColor = glm::vec4(0.6f)});
+    spheres.push_back(e);
+  }
+  voxels = std::make_unique<gi::VoxelScene>(context(), gi::VoxelSettings{.resolution = 128});
+  renderer = std::make_unique<render::Renderer>(context());
+  renderer->addFeature(voxels.get());
+  renderer->resize(32, 32);
+  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
+  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(*voxels, assets));
+  auto fromScratch = [&] {
+    gi::VoxelScene fresh(context(), gi::VoxelSettings{.resolution = 128});
+    fresh.setVolume(voxels->volume());
+    render::Renderer r2(context());
+    r2.addFeature(&fresh);
+    r2.resize(16, 16);
+    r2.render(snapshot);
+    return gi::SvoCpu(fresh.readbackNodes(), 128).leaves();
+  };
+  step();
+  const uint64_t firstCapacity = voxels->stats().fragmentCapacity, fragments = voxels->stats().fragments;
+  gi::DenseVoxelGrid before = gi::SvoCpu(voxels->readbackNodes(), 128).leaves();
+  step();  // compacts: nothing moved, the SVO is rebuilt from the moved fragments
+  const uint64_t compactCapacity = voxels->stats().fragmentCapacity;
+  std::printf("fragments %llu: slots %llu -> %llu after compaction; total %.1f MB\n", (unsigned long long)fragments,
+              (unsigned long long)firstCapacity, (unsigned long long)compactCapacity, double(voxels->stats().totalBytes) / (1 << 20));
+  EXPECT_LT(compactCapacity * 2, firstCapacity);
+  EXPECT_LE(fragments, compactCapacity);
+  EXPECT_EQ(voxels->stats().fragments, fragments) << "every fragment survived the move";
+  GridDiff same = diff(gi::SvoCpu(voxels->readbackNodes(), 128).leaves(), before);
+  EXPECT_EQ(same.missing + same.extra, 0u);
+  // What is allocated follows what is held: fragments (fragment, dense copy, node index, attributes)
+  // and the SVO's nodes, within a factor of 3 (the first frame held more than 3 times that).
+  const gi::VoxelStats& st = voxels->stats();
+  EXPECT_LT(st.totalBytes, 3 * (st.fragments * (16 + 16 + 4 + 32) + st.svoBytes));
+  // One sphere starts moving (its exact-size range is too small for a new pose: it gets a new one).
+  for (int f = 0; f < 4; ++f) {
+    world.write<scene::Transform>(spheres[1]).rotation = glm::angleAxis(0.4f * float(f + 1), glm::vec3(0.3f, 1.0f, 0.2f));
+    world.write<scene::Transform>(spheres[1]).translation.x += 0.05f;
+    step();
+    EXPECT_EQ(voxels->stats().overflowedEntities, 0u);
+    GridDiff d = diff(gi::SvoCpu(voxels->readbackNodes(), 128).leaves(), fromScratch());
+    EXPECT_EQ(d.missing + d.extra, 0u) << "frame " << f;
+  }
+}
+
+// The node pool shrinks to what the first build used; when the scene then needs more, the build that
+// overflows is conservative (no voxel missing) and the pool grows so the next one is exact.
+TEST_F(VoxelTest, NodePoolGrowsWhenTheSceneNeedsMore) {
+  run("cornell", 128, 2);
+  const uint64_t smallPool = voxels->stats().totalBytes;
+  // Twelve slanted sheets across the room: far more occupied voxels than the box had.
+  scene::MeshId sheet = assets.addMesh(scene::makeQuad({-0.95f, 0.0f, -0.95f}, {1.9f, 0.0f, 0.0f}, {0.0f, 0.15f, 1.9f}));
+  for (int i = 0; i < 12; ++i) {
+    ecs::Entity e = world.create();
+    scene::Transform t;
+    t.translation = {0.0f, 0.1f + 0.14f * float(i), 0.0f};
+    world.add(e, t);
+    world.add(e, scene::WorldTransform{t.matrix()});
+    world.add(e, scene::MeshInstance{sheet, true});
+    world.add(e, scene::Material{.baseColor = glm::vec4(0.6f)});
+  }
+  step();
+  gi::DenseVoxelGrid exact = gi::voxelizeBruteForce(voxelSpaceTriangles(snapshot, voxels->volume()), 128);
+  GridDiff first = diff(gi::SvoCpu(voxels->readbackNodes(), 128).leaves(), exact);
+  std::printf("pool %.2f MB after the first build; sheets added: overflow %d, %zu missing, %zu extra\n",
+              double(smallPool) / (1 << 20), int(voxels->stats().poolOverflow), first.missing, first.extra);
+  EXPECT_TRUE(voxels->stats().poolOverflow) << "the test means to overflow the shrunken pool";
+  EXPECT_EQ(first.missing, 0u) << "an overflowing build is conservative";
+  step();
+  EXPECT_FALSE(voxels->stats().poolOverflow);
+  // Exact again: the same leaves as a from-scratch build with a pool big enough from the start.
+  gi::VoxelScene fresh(context(), gi::VoxelSettings{.resolution = 128});
+  fresh.setVolume(voxels->volume());
+  render::Renderer r2(context());
+  r2.addFeature(&fresh);
+  r2.resize(16, 16);
+  r2.render(snapshot);
+  GridDiff second = diff(gi::SvoCpu(voxels->readbackNodes(), 128).leaves(), gi::SvoCpu(fresh.readbackNodes(), 128).leaves());
+  EXPECT_EQ(second.missing + second.extra, 0u);
+  EXPECT_EQ(diff(gi::SvoCpu(voxels->readbackNodes(), 128).leaves(), exact).missing, 0u);
 }
 
 TEST_F(VoxelTest, ObjectLeavingTheVolumeIsClippedNotFatal) {

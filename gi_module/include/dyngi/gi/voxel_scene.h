@@ -24,7 +24,7 @@ enum class VoxelDebugView { None, Voxels, SvoSteps };
 struct VoxelSettings {
   uint32_t resolution = 128;       // power of two, 64..512
   float padding = 0.05f;           // volume = scene bounds grown by this fraction per side
-  uint32_t maxNodeGroups = 1u << 20;  // SVO pool: 8 nodes (32 bytes) per group
+  uint32_t maxNodeGroups = 1u << 20;  // SVO pool limit: 8 nodes (32 bytes) per group; the pool follows use
   VoxelDebugView debugView = VoxelDebugView::None;  // replaces the final image when set
 };
 
@@ -86,11 +86,24 @@ class VoxelScene final : public render::RenderFeature {
  private:
   struct Range {
     uint64_t first = 0, capacity = 0;
-    uint32_t counter = 0;    // index into the counters buffer
-    uint32_t lastCount = 0;  // fragments written (read back after the frame)
+    uint32_t counter = 0;        // index into the counters buffer
+    uint32_t lastCount = 0;      // fragments written (read back after the frame)
+    uint32_t voxelizations = 0;  // how often the entity was voxelized (more than once: it moves)
     bool written = false;
   };
-  void ensureCapacity(uint64_t fragments);
+  // Fragment storage of `slots` slots at least; kept fragments are copied, nothing is re-voxelized.
+  void ensureCapacity(uint64_t slots);
+  // Moves every range's fragments into a buffer sized by what they hold (see prepare()).
+  void compactRanges();
+  void reallocateFragments(uint64_t slots, const std::vector<VkBufferCopy>& keep);
+  void resizeNodePool(uint32_t groups, uint64_t keepGroups);
+  // Slots for an entity about to be voxelized: the estimate the first time, then from its last count.
+  // Its range is kept while it holds `minimum`; a new one gets `fresh`.
+  struct RangeNeed {
+    uint64_t minimum, fresh;
+  };
+  static RangeNeed rangeNeed(uint64_t estimate, const Range* previous);
+  static uint64_t movingCapacity(const Range& r);
   void relayout(const render::RenderSnapshot& snapshot);
   uint64_t estimateFragments(const scene::MeshData& mesh, const glm::mat4& modelToVoxel) const;
 
@@ -104,11 +117,13 @@ class VoxelScene final : public render::RenderFeature {
   std::vector<uint32_t> freeCounters_;
   uint32_t counterCount_ = 0;
   uint64_t highWater_ = 0;
+  uint32_t nodeGroupCapacity_ = 0;
 
   // What this frame records (decided in prepare).
   std::vector<size_t> drawsToVoxelize_;   // indices into snapshot.draws
   std::vector<Range> rangesToEmpty_;
   bool rebuildSvo_ = false;
+  bool storageMoved_ = false;  // fragments were moved or the derived buffers reallocated: rebuild the SVO
   std::vector<ecs::Entity> voxelizedThisFrame_;
 
   render::Buffer fragments_, dense_, counters_, nodes_, levels_, svoCounters_, attributes_;
