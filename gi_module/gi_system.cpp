@@ -11,7 +11,8 @@ GiSystem::GiSystem(render::VulkanContext& ctx, const scene::AssetStore& assets, 
   bvh_ = std::make_unique<EmbreeScene>();
   bool needVoxels = s.mode == GiMode::ManyLightsRsm || s.visibility == VisibilityBackend::Svo;
   if (needVoxels) {
-    voxels_ = std::make_unique<VoxelScene>(ctx, VoxelSettings{.resolution = s.svoResolution});
+    // The VPL techniques march the nodes only; the voxel debug view turns attributes on when asked.
+    voxels_ = std::make_unique<VoxelScene>(ctx, VoxelSettings{.resolution = s.svoResolution, .leafAttributes = false});
     voxelSync_ = std::make_unique<VoxelSyncSystem>(*voxels_, assets);
   }
   if (s.mode == GiMode::ManyLightsRsm) {

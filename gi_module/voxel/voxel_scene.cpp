@@ -11,9 +11,11 @@
 #include "shaders/shared/gi_gpu_types.h"
 #include "spirv/svo_alloc.comp.spv.h"
 #include "spirv/svo_flag.comp.spv.h"
+#include "spirv/svo_flag_cells.comp.spv.h"
 #include "spirv/svo_gather.comp.spv.h"
 #include "spirv/svo_leaf_attributes.comp.spv.h"
 #include "spirv/svo_level.comp.spv.h"
+#include "spirv/svo_mark.comp.spv.h"
 #include "spirv/svo_march.comp.spv.h"
 #include "spirv/voxel_debug.comp.spv.h"
 #include "spirv/voxelize.frag.spv.h"
@@ -52,7 +54,12 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
   const Binding gatherB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
   gather_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_gather_comp), gatherB, 4, "svo_gather");
   const Binding flagB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}};
-  flag_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_flag_comp), flagB, 8, "svo_flag");
+  flag_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_flag_comp), flagB, 12, "svo_flag");
+  const Binding markB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
+  mark_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_mark_comp), markB, 8, "svo_mark");
+  const Binding cellsB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}};
+  flagCells_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_flag_cells_comp), cellsB, 4, "svo_flag_cells");
+  coarse_ = Buffer(ctx, DYNGI_SVO_COARSE_WORDS * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo coarse occupancy");
   const Binding levelB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}};
   level_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_level_comp), levelB, 4, "svo_level");
   const Binding allocB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
@@ -78,6 +85,17 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
 }
 
 VoxelScene::~VoxelScene() = default;
+
+void VoxelScene::setDebugView(VoxelDebugView v) {
+  settings_.debugView = v;
+  if (v == VoxelDebugView::Voxels && !settings_.leafAttributes) {  // the view colours voxels by albedo
+    settings_.leafAttributes = true;
+    vkDeviceWaitIdle(ctx_.device());
+    attributes_ = Buffer(ctx_, stats_.fragmentCapacity * kAttributeInts * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly,
+                         "voxel leaf attributes");
+    storageMoved_ = true;  // build them
+  }
+}
 
 void VoxelScene::setVolume(const VoxelVolume& v) {
   volume_ = v;
@@ -106,7 +124,8 @@ void VoxelScene::reallocateFragments(uint64_t slots, const std::vector<VkBufferC
   // The SVO build's own buffers never hold more than the ranges do.
   dense_ = Buffer(ctx_, slots * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragments (dense)");
   fragmentNodes_ = Buffer(ctx_, slots * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragment nodes");
-  attributes_ = Buffer(ctx_, slots * kAttributeInts * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel leaf attributes");
+  attributes_ = Buffer(ctx_, settings_.leafAttributes ? slots * kAttributeInts * 4 : 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                       MemoryUsage::GpuOnly, "voxel leaf attributes");
   stats_.fragmentCapacity = slots;
   storageMoved_ = true;
 }
@@ -320,6 +339,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
     init.fragments = glm::uvec4(0, uint32_t(std::min<uint64_t>(stats_.fragmentCapacity, 0xFFFFFFFFu)), 0, 0);
     vkCmdUpdateBuffer(cmd, svoCounters_.handle(), 0, sizeof(init), &init);
     vkCmdFillBuffer(cmd, nodes_.handle(), 0, 32, 0);  // the root group
+    vkCmdFillBuffer(cmd, coarse_.handle(), 0, VK_WHOLE_SIZE, 0);
     render::computeWriteBarrier(cmd);
     const uint32_t slots = uint32_t(highWater_);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, gather_.handle());
@@ -328,22 +348,41 @@ bool VoxelScene::record(render::FrameContext& frame) {
     vkCmdDispatch(cmd, std::max(dispatchGroups(slots, 64 * DYNGI_SVO_ITEMS_PER_INVOCATION), 1u), 1, 1);
     render::computeWriteBarrier(cmd);
     const VkDeviceSize fragmentDispatch = offsetof(gpu::SvoCounters, fragmentDispatch);
-    for (uint32_t l = 0; l <= depth; ++l) {
+    auto levelPass = [&](uint32_t l) {  // level l's node range and dispatch sizes
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, level_.handle());
       DescriptorWrites().storageBuffer(0, levels_.handle()).storageBuffer(1, svoCounters_.handle()).push(ctx_, cmd, level_);
       vkCmdPushConstants(cmd, level_.layout(), kCS, 0, 4, &l);
       vkCmdDispatch(cmd, 1, 1, 1);
       render::computeWriteBarrier(cmd);
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, flag_.handle());
-      DescriptorWrites()
-          .storageBuffer(0, dense_.handle())
-          .storageBuffer(1, nodes_.handle())
-          .storageBuffer(2, svoCounters_.handle())
-          .storageBuffer(3, fragmentNodes_.handle())
-          .push(ctx_, cmd, flag_);
-      uint32_t fp[2] = {l, depth};
-      vkCmdPushConstants(cmd, flag_.layout(), kCS, 0, sizeof(fp), fp);
-      vkCmdDispatchIndirect(cmd, svoCounters_.handle(), fragmentDispatch);
+    };
+    // Coarse levels from the occupancy pyramid, one pass over the fragments (svo_mark.comp).
+    const uint32_t coarseLevels = std::min(DYNGI_SVO_COARSE_LEVELS, depth - 1);
+    levelPass(0);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mark_.handle());
+    DescriptorWrites().storageBuffer(0, dense_.handle()).storageBuffer(1, svoCounters_.handle()).storageBuffer(2, coarse_.handle()).push(ctx_, cmd, mark_);
+    uint32_t mp[2] = {coarseLevels, depth};
+    vkCmdPushConstants(cmd, mark_.layout(), kCS, 0, sizeof(mp), mp);
+    vkCmdDispatchIndirect(cmd, svoCounters_.handle(), fragmentDispatch);
+    render::computeWriteBarrier(cmd);
+    for (uint32_t l = 0; l <= depth; ++l) {
+      if (l > 0) levelPass(l);
+      if (l <= coarseLevels) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, flagCells_.handle());
+        DescriptorWrites().storageBuffer(0, coarse_.handle()).storageBuffer(1, nodes_.handle()).push(ctx_, cmd, flagCells_);
+        vkCmdPushConstants(cmd, flagCells_.layout(), kCS, 0, 4, &l);
+        vkCmdDispatch(cmd, std::max(dispatchGroups(1u << (3 * l), 64 * DYNGI_SVO_ITEMS_PER_INVOCATION), 1u), 1, 1);
+      } else {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, flag_.handle());
+        DescriptorWrites()
+            .storageBuffer(0, dense_.handle())
+            .storageBuffer(1, nodes_.handle())
+            .storageBuffer(2, svoCounters_.handle())
+            .storageBuffer(3, fragmentNodes_.handle())
+            .push(ctx_, cmd, flag_);
+        uint32_t fp[3] = {l, depth, coarseLevels + 1};
+        vkCmdPushConstants(cmd, flag_.layout(), kCS, 0, sizeof(fp), fp);
+        vkCmdDispatchIndirect(cmd, svoCounters_.handle(), fragmentDispatch);
+      }
       render::computeWriteBarrier(cmd);
       if (l == depth) break;  // leaves: flagged, never subdivided
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, alloc_.handle());
@@ -352,21 +391,23 @@ bool VoxelScene::record(render::FrameContext& frame) {
       vkCmdDispatchIndirect(cmd, levels_.handle(), VkDeviceSize(l) * sizeof(gpu::SvoLevel) + offsetof(gpu::SvoLevel, dispatch));
       render::computeWriteBarrier(cmd);
     }
-    // Leaf attributes, kept apart from the nodes.
-    vkCmdFillBuffer(cmd, attributes_.handle(), 0, VK_WHOLE_SIZE, 0);
-    render::computeWriteBarrier(cmd);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, leafAttributes_.handle());
-    DescriptorWrites()
-        .storageBuffer(0, dense_.handle())
-        .storageBuffer(1, fragmentNodes_.handle())
-        .storageBuffer(2, levels_.handle())
-        .storageBuffer(3, attributes_.handle())
-        .storageBuffer(4, svoCounters_.handle())
-        .push(ctx_, cmd, leafAttributes_);
-    uint32_t ap[2] = {depth, uint32_t(stats_.fragmentCapacity)};
-    vkCmdPushConstants(cmd, leafAttributes_.layout(), kCS, 0, sizeof(ap), ap);
-    vkCmdDispatchIndirect(cmd, svoCounters_.handle(), fragmentDispatch);
-    render::computeWriteBarrier(cmd);
+    if (settings_.leafAttributes) {
+      // Leaf attributes, kept apart from the nodes.
+      vkCmdFillBuffer(cmd, attributes_.handle(), 0, VK_WHOLE_SIZE, 0);
+      render::computeWriteBarrier(cmd);
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, leafAttributes_.handle());
+      DescriptorWrites()
+          .storageBuffer(0, dense_.handle())
+          .storageBuffer(1, fragmentNodes_.handle())
+          .storageBuffer(2, levels_.handle())
+          .storageBuffer(3, attributes_.handle())
+          .storageBuffer(4, svoCounters_.handle())
+          .push(ctx_, cmd, leafAttributes_);
+      uint32_t ap[2] = {depth, uint32_t(stats_.fragmentCapacity)};
+      vkCmdPushConstants(cmd, leafAttributes_.layout(), kCS, 0, sizeof(ap), ap);
+      vkCmdDispatchIndirect(cmd, svoCounters_.handle(), fragmentDispatch);
+      render::computeWriteBarrier(cmd);
+    }
   }
   stats_.rebuilt = true;
   return false;  // the voxel scene feeds other stages; it does not write indirect light

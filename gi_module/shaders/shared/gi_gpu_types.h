@@ -45,6 +45,11 @@ struct SvoLevel {
 // SVO build passes over fragments and nodes run 64-wide workgroups in which each invocation takes
 // this many items (grid-stride): lavapipe pays a fixed cost per invocation that dwarfs one step.
 #define DYNGI_SVO_ITEMS_PER_INVOCATION 16u
+// The top levels of the SVO (0..min(this, depth - 1)) are flagged from a dense occupancy pyramid (one bit
+// per cell, level l at bit (8^l - 1) / 7, cells x + y 2^l + z 4^l) that one pass over the fragments
+// marks; only the deeper levels walk the fragments once each.
+#define DYNGI_SVO_COARSE_LEVELS 5u
+#define DYNGI_SVO_COARSE_WORDS 1171u  // ceil(sum of 8^l for l <= 5 over 32)
 
 // Global SVO counters.
 #ifdef __cplusplus

@@ -26,6 +26,9 @@ struct VoxelSettings {
   float padding = 0.05f;           // volume = scene bounds grown by this fraction per side
   uint32_t maxNodeGroups = 1u << 20;  // SVO pool limit: 8 nodes (32 bytes) per group; the pool follows use
   VoxelDebugView debugView = VoxelDebugView::None;  // replaces the final image when set
+  // Per-voxel averaged albedo, normal and emission (the voxel debug view, radiance injection). Off, the
+  // build makes only what visibility needs: no attribute pass, no attribute memory.
+  bool leafAttributes = true;
 };
 
 struct VoxelStats {
@@ -59,7 +62,7 @@ class VoxelScene final : public render::RenderFeature {
   void markAllDirty() { allDirty_ = true; }
   // Fixes the volume (otherwise the first snapshot's bounds decide it). Re-voxelizes everything.
   void setVolume(const VoxelVolume& v);
-  void setDebugView(VoxelDebugView v) { settings_.debugView = v; }
+  void setDebugView(VoxelDebugView v);
 
   const VoxelVolume& volume() const { return volume_; }
   bool hasVolume() const { return haveVolume_; }
@@ -128,7 +131,8 @@ class VoxelScene final : public render::RenderFeature {
 
   render::Buffer fragments_, dense_, counters_, nodes_, levels_, svoCounters_, attributes_;
   render::Buffer fragmentNodes_;  // per dense fragment: the node it reached at the level last built
-  render::Pipeline voxelize_, gather_, flag_, level_, alloc_, leafAttributes_, march_, marchOff_, debug_;
+  render::Buffer coarse_;         // occupancy pyramid of the coarse levels (svo_mark.comp)
+  render::Pipeline voxelize_, gather_, mark_, flagCells_, flag_, level_, alloc_, leafAttributes_, march_, marchOff_, debug_;
   double dispatchMarch(const render::Pipeline& pipeline, const std::vector<Segment>& segments, std::vector<uint8_t>& out,
                        float epsVoxels);
   VoxelStats stats_;
