@@ -16,30 +16,28 @@ cmake --build build -j"$(nproc)" --target dyngi_sample dyngi_imgcmp >/dev/null
 
 echo "### Frame time (ms; median of $RUNS runs' medians over $FRAMES frames after warm-up) against T, 512 VPLs, 4x4, $SIZE"
 echo
-echo "| scene | T=1 | T=4 | T=8 | T=16 | T=32 |"
-echo "| --- | ---: | ---: | ---: | ---: | ---: |"
-for scene in static moving-spot rotating-object; do
-  row="| $scene |"
-  for T in 1 4 8 16 32; do
-    # Warm-up (left out of the medians) covers filling the pool and rendering every set once.
-    warm=$((T + 2))
-    for r in $(seq 1 "$RUNS"); do
+# Runs are interleaved (run r of every T before run r + 1) so a slow phase of the machine hits all T
+# alike, and the T=16 / T=1 ratio is taken per run, then its median.
+for r in $(seq 1 "$RUNS"); do
+  for scene in static moving-spot rotating-object; do
+    for T in 1 4 8 16 32; do
+      warm=$((T + 2))  # left out of the medians: filling the pool and rendering every set once
       $BIN/dyngi_sample --headless --animate $scene --gi svo --vpls 512 --temporal $T --frames $((warm + FRAMES)) --warmup $warm \
         --size $SIZE --stats out/bench/temporal_${scene}_${T}_$r.json >/dev/null 2>&1
     done
-    ms=$(python3 -c "import json, statistics, sys; print(round(statistics.median(json.load(open(f))['frame_ms']['median'] for f in sys.argv[1:]), 1))" \
-      out/bench/temporal_${scene}_${T}_*.json)
-    row="$row $ms |"
   done
-  echo "$row"
 done
-
-echo
 python3 - "$RUNS" <<'PY'
 import json, statistics, sys
-runs = int(sys.argv[1])
-med = lambda scene, T: statistics.median(json.load(open(f"out/bench/temporal_{scene}_{T}_{r}.json"))["frame_ms"]["median"] for r in range(1, runs + 1))
-print("T=16 / T=1 (goal <= 0.1): " + ", ".join(f"{s} {med(s, 16) / med(s, 1):.3f}" for s in ("static", "moving-spot", "rotating-object")))
+runs = range(1, int(sys.argv[1]) + 1)
+ms = lambda s, T, r: json.load(open(f"out/bench/temporal_{s}_{T}_{r}.json"))["frame_ms"]["median"]
+scenes, Ts = ("static", "moving-spot", "rotating-object"), (1, 4, 8, 16, 32)
+print("| scene | " + " | ".join(f"T={T}" for T in Ts) + " | T=16 / T=1 |")
+print("| --- | " + " | ".join("---:" for _ in Ts) + " | ---: |")
+for s in scenes:
+    cells = [f"{statistics.median(ms(s, T, r) for r in runs):.1f}" for T in Ts]
+    ratios = [ms(s, 16, r) / ms(s, 1, r) for r in runs]
+    print(f"| {s} | " + " | ".join(cells) + f" | {statistics.median(ratios):.3f} ({min(ratios):.3f}-{max(ratios):.3f}) |")
 PY
 
 echo

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <glm/gtc/quaternion.hpp>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -328,17 +329,22 @@ void BM_SvoVisibility_CpuTwin(benchmark::State& state) {
   const gi::VoxelVolume& vol = v.voxels->volume();
   std::vector<uint8_t> out(v.segments.size());
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  std::atomic<uint64_t> restarts{0};
   for (auto _ : state) {
     std::vector<std::thread> pool;
     size_t chunk = (v.segments.size() + threads - 1) / threads;
     for (unsigned t = 0; t < threads; ++t) {
       size_t b = t * chunk, e = std::min(v.segments.size(), b + chunk);
       pool.emplace_back([&, b, e] {
+        uint64_t sum = 0;
         for (size_t i = b; i < e; ++i) {
           glm::dvec3 a = (glm::dvec3(v.segments[i].from) - glm::dvec3(vol.origin)) / double(vol.voxelSize);
           glm::dvec3 c = (glm::dvec3(v.segments[i].to) - glm::dvec3(vol.origin)) / double(vol.voxelSize);
-          out[i] = svo.occluded(a, c, 1e-3) ? 1 : 0;
+          uint32_t steps = 0;
+          out[i] = svo.occluded(a, c, 1e-3, &steps) ? 1 : 0;
+          sum += steps;
         }
+        restarts += sum;
       });
     }
     for (auto& th : pool) th.join();
@@ -347,6 +353,7 @@ void BM_SvoVisibility_CpuTwin(benchmark::State& state) {
   for (uint8_t b : out) blocked += b;
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(v.segments.size()));
   state.counters["occluded_fraction"] = double(blocked) / double(v.segments.size());
+  state.counters["restarts_per_segment"] = double(restarts) / double(state.iterations() * v.segments.size());
 }
 BENCHMARK(BM_SvoVisibility_CpuTwin)->UseRealTime()->Unit(benchmark::kMillisecond)->Iterations(3);
 
