@@ -64,6 +64,18 @@ class VoxelTest : public RenderTest {
     renderer->render(snapshot);
     ++frame;
   }
+  // The SVO's leaves as they are now, and as a new voxel scene over the same snapshot and volume
+  // builds them from scratch.
+  gi::DenseVoxelGrid leaves() { return gi::SvoCpu(voxels->readbackNodes(), voxels->volume().resolution).leaves(); }
+  gi::DenseVoxelGrid scratchLeaves() {
+    gi::VoxelScene fresh(context(), gi::VoxelSettings{.resolution = voxels->volume().resolution});
+    fresh.setVolume(voxels->volume());
+    render::Renderer r2(context());
+    r2.addFeature(&fresh);
+    r2.resize(16, 16);
+    r2.render(snapshot);
+    return gi::SvoCpu(fresh.readbackNodes(), fresh.volume().resolution).leaves();
+  }
   ecs::World world;
   scene::AssetStore assets;
   ecs::Scheduler scheduler;
@@ -176,16 +188,7 @@ TEST_F(VoxelTest, MovingObjectsReVoxelizeOnlyThemselvesAndMatchARebuild) {
     EXPECT_EQ(voxels->stats().entitiesVoxelized, 2u) << "only the two moving boxes";
     EXPECT_TRUE(voxels->stats().rebuilt);
   }
-  gi::DenseVoxelGrid incremental = gi::SvoCpu(voxels->readbackNodes(), 64).leaves();
-  // From scratch: a new voxel scene over the same world state and volume.
-  gi::VoxelScene fresh(context(), gi::VoxelSettings{.resolution = 64});
-  fresh.setVolume(voxels->volume());
-  render::Renderer r2(context());
-  r2.addFeature(&fresh);
-  r2.resize(16, 16);
-  r2.render(snapshot);
-  gi::DenseVoxelGrid scratch = gi::SvoCpu(fresh.readbackNodes(), 64).leaves();
-  GridDiff d = diff(incremental, scratch);
+  GridDiff d = diff(leaves(), scratchLeaves());
   EXPECT_EQ(d.missing + d.extra, 0u) << "voxels the boxes left are gone, new ones are there";
   // And nothing moves: nothing is re-voxelized, the SVO is kept.
   auto& motion = world;  // stop the scripted motion
@@ -221,18 +224,9 @@ TEST_F(VoxelTest, FragmentRangesAreCompactedWithoutLosingVoxels) {
   renderer->resize(32, 32);
   scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
   scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(*voxels, assets));
-  auto fromScratch = [&] {
-    gi::VoxelScene fresh(context(), gi::VoxelSettings{.resolution = 128});
-    fresh.setVolume(voxels->volume());
-    render::Renderer r2(context());
-    r2.addFeature(&fresh);
-    r2.resize(16, 16);
-    r2.render(snapshot);
-    return gi::SvoCpu(fresh.readbackNodes(), 128).leaves();
-  };
   step();
   const uint64_t firstCapacity = voxels->stats().fragmentCapacity, fragments = voxels->stats().fragments;
-  gi::DenseVoxelGrid before = gi::SvoCpu(voxels->readbackNodes(), 128).leaves();
+  gi::DenseVoxelGrid before = leaves();
   step();  // compacts: nothing moved, the SVO is rebuilt from the moved fragments
   const uint64_t compactCapacity = voxels->stats().fragmentCapacity;
   std::printf("fragments %llu: slots %llu -> %llu after compaction; total %.1f MB\n", (unsigned long long)fragments,
@@ -240,7 +234,7 @@ TEST_F(VoxelTest, FragmentRangesAreCompactedWithoutLosingVoxels) {
   EXPECT_LT(compactCapacity * 2, firstCapacity);
   EXPECT_LE(fragments, compactCapacity);
   EXPECT_EQ(voxels->stats().fragments, fragments) << "every fragment survived the move";
-  GridDiff same = diff(gi::SvoCpu(voxels->readbackNodes(), 128).leaves(), before);
+  GridDiff same = diff(leaves(), before);
   EXPECT_EQ(same.missing + same.extra, 0u);
   // What is allocated follows what is held: fragments (fragment, dense copy, node index, attributes)
   // and the SVO's nodes, within a factor of 3 (the first frame held more than 3 times that).
@@ -252,7 +246,7 @@ TEST_F(VoxelTest, FragmentRangesAreCompactedWithoutLosingVoxels) {
     world.write<scene::Transform>(spheres[1]).translation.x += 0.05f;
     step();
     EXPECT_EQ(voxels->stats().overflowedEntities, 0u);
-    GridDiff d = diff(gi::SvoCpu(voxels->readbackNodes(), 128).leaves(), fromScratch());
+    GridDiff d = diff(leaves(), scratchLeaves());
     EXPECT_EQ(d.missing + d.extra, 0u) << "frame " << f;
   }
 }
@@ -275,7 +269,7 @@ TEST_F(VoxelTest, NodePoolGrowsWhenTheSceneNeedsMore) {
   }
   step();
   gi::DenseVoxelGrid exact = gi::voxelizeBruteForce(voxelSpaceTriangles(snapshot, voxels->volume()), 128);
-  GridDiff first = diff(gi::SvoCpu(voxels->readbackNodes(), 128).leaves(), exact);
+  GridDiff first = diff(leaves(), exact);
   std::printf("pool %.2f MB after the first build; sheets added: overflow %d, %zu missing, %zu extra\n",
               double(smallPool) / (1 << 20), int(voxels->stats().poolOverflow), first.missing, first.extra);
   EXPECT_TRUE(voxels->stats().poolOverflow) << "the test means to overflow the shrunken pool";
@@ -283,15 +277,9 @@ TEST_F(VoxelTest, NodePoolGrowsWhenTheSceneNeedsMore) {
   step();
   EXPECT_FALSE(voxels->stats().poolOverflow);
   // Exact again: the same leaves as a from-scratch build with a pool big enough from the start.
-  gi::VoxelScene fresh(context(), gi::VoxelSettings{.resolution = 128});
-  fresh.setVolume(voxels->volume());
-  render::Renderer r2(context());
-  r2.addFeature(&fresh);
-  r2.resize(16, 16);
-  r2.render(snapshot);
-  GridDiff second = diff(gi::SvoCpu(voxels->readbackNodes(), 128).leaves(), gi::SvoCpu(fresh.readbackNodes(), 128).leaves());
+  GridDiff second = diff(leaves(), scratchLeaves());
   EXPECT_EQ(second.missing + second.extra, 0u);
-  EXPECT_EQ(diff(gi::SvoCpu(voxels->readbackNodes(), 128).leaves(), exact).missing, 0u);
+  EXPECT_EQ(diff(leaves(), exact).missing, 0u);
 }
 
 TEST_F(VoxelTest, ObjectLeavingTheVolumeIsClippedNotFatal) {
@@ -309,7 +297,7 @@ TEST_F(VoxelTest, ObjectLeavingTheVolumeIsClippedNotFatal) {
     GridDiff d = diff(gpu, brute);
     EXPECT_EQ(d.missing, 0u) << "inside the volume nothing is lost";
     EXPECT_LE(d.extra, d.reference / 100);
-    GridDiff l = diff(gi::SvoCpu(voxels->readbackNodes(), 64).leaves(), gpu);
+    GridDiff l = diff(leaves(), gpu);
     EXPECT_EQ(l.missing + l.extra, 0u);
   }
 }
