@@ -205,7 +205,7 @@ int runApp(const Options& o) {
     if (!window) std::fprintf(stderr, "dyngi_sample: no window (%s); running headless\n", why.c_str());
   }
   const bool headless = !window;
-  const int frames = o.frames > 0 ? o.frames : (headless ? 60 : -1);
+  const int frames = o.frames > 0 ? o.frames : (headless ? kHeadlessDefaultFrames : -1);
 
   render::ContextOptions co;
 #ifndef NDEBUG
@@ -279,7 +279,7 @@ int runApp(const Options& o) {
   stats.scene = sceneName;
   stats.gi = o.gi;
   stats.device = ctx.deviceName();
-  stats.warmupFrames = int(o.warmup);  // Mesa compiles pipelines on first use: keep them out of the medians
+  stats.warmupFrames = o.warmupFrames();  // Mesa compiles pipelines on first use: keep them out of the medians
   ecs::FrameTime time;
   auto start = Clock::now(), last = start;
   int rendered = 0;
@@ -315,7 +315,7 @@ int runApp(const Options& o) {
     if (swapchain && !fs.presented) swapchain->recreate(renderer.width(), renderer.height());
     double frameMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     ++rendered;
-    if (rendered > int(o.warmup)) {
+    if (rendered > stats.warmupFrames) {
       stats.frameMs.push_back(frameMs);
       for (auto& [name, ms] : fs.gpuMs) stats.gpuStageMs[name].push_back(ms);
       for (auto& t : scheduler.lastTimings()) stats.cpuStageMs[t.name].push_back(t.cpuMs);

@@ -1,5 +1,6 @@
 #include "options.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <vector>
@@ -38,6 +39,12 @@ std::string usage() {
          "  --validation                           enable Vulkan validation layers\n"
          "  --help                                 this text\n"
          "Windowed: WASD move, hold the right mouse button to look, Q/E down/up, Esc quits.\n";
+}
+
+int Options::warmupFrames() const {
+  if (warmup >= 0) return warmup;
+  const int total = frames > 0 ? frames : (headless ? kHeadlessDefaultFrames : -1);
+  return total > 0 ? std::min(2, total - 1) : 2;
 }
 
 namespace {
@@ -104,10 +111,12 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
       o.frames = int(n);
     } else if (a == "--warmup") {
       if (!value(v)) return std::nullopt;
-      if (!parseUint(v, o.warmup) || o.warmup > 1000000) {
+      uint32_t n;
+      if (!parseUint(v, n) || n > 1000000) {
         error = "--warmup wants a frame count, got '" + v + "'";
         return std::nullopt;
       }
+      o.warmup = int(n);
     } else if (a == "--seed") {
       if (!value(v)) return std::nullopt;
       if (!parseUint(v, o.seed)) {
@@ -194,8 +203,9 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
     error = "--view " + o.view + " needs --gi svo --vpl-source rsm";
     return std::nullopt;
   }
-  if (o.frames > 0 && int64_t(o.warmup) >= o.frames) {
-    error = "--warmup " + std::to_string(o.warmup) + " leaves no frame of --frames " + std::to_string(o.frames) + " to time";
+  const int frames = o.frames > 0 ? o.frames : (o.headless ? kHeadlessDefaultFrames : -1);
+  if (o.warmup >= 0 && frames > 0 && o.warmup >= frames) {
+    error = "--warmup " + std::to_string(o.warmup) + " leaves none of the run's " + std::to_string(frames) + " frames to time";
     return std::nullopt;
   }
   return o;

@@ -6,12 +6,17 @@
 
 namespace dyngi::sample {
 
+constexpr int kHeadlessDefaultFrames = 60;  // a headless run without --frames
+
 struct Options {
   std::string scene = "cornell-dynamic";   // built-in name or a .gltf/.glb path
   bool headless = false;
   uint32_t width = 768, height = 768;
-  int frames = -1;                          // -1: headless 60, windowed until closed
-  uint32_t warmup = 2;                      // frames left out of the --stats medians (pipeline compiles, filling)
+  int frames = -1;                          // -1: headless kHeadlessDefaultFrames, windowed until closed
+  int warmup = -1;                          // frames left out of the --stats medians (pipeline compiles,
+                                            // filling); -1: two, or fewer when the run is shorter
+  // The warm-up this run uses: `warmup` when given, else 2 but always leaving one frame to time.
+  int warmupFrames() const;
   std::string gi = "off";                   // off | svo | bvh | path
   uint32_t temporal = 16;                   // T temporal VPL sets (svo/bvh with path VPLs)
   uint32_t reshoot = 0;                     // VPLs reshot per frame (0: vpls / T)

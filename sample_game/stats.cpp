@@ -8,7 +8,7 @@
 namespace dyngi::sample {
 
 double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
+  if (v.empty()) return std::nan("");  // nothing timed: null in JSON, not a zero that reads as "free"
   std::sort(v.begin(), v.end());
   if (p == 0.5) {  // exact median (mean of the middle pair for even counts)
     size_t n = v.size();
@@ -31,7 +31,8 @@ std::string escape(const std::string& s) {
 }
 std::string num(double v) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%.4f", std::isfinite(v) ? v : 0.0);
+  if (!std::isfinite(v)) return "null";
+  std::snprintf(buf, sizeof buf, "%.4f", v);
   return buf;
 }
 }  // namespace
@@ -93,7 +94,8 @@ std::string RunStats::table() const {
     std::snprintf(line, sizeof line, "  cpu %-20s %10.3f\n", name.c_str(), percentile(v, 0.5));
     t << line;
   }
-  std::snprintf(line, sizeof line, "  frame (median / p95)    %10.3f / %.3f\n", percentile(frameMs, 0.5), percentile(frameMs, 0.95));
+  if (frameMs.empty()) std::snprintf(line, sizeof line, "  no frame timed: the run ended within the %d warm-up frames\n", warmupFrames);
+  else std::snprintf(line, sizeof line, "  frame (median / p95)    %10.3f / %.3f\n", percentile(frameMs, 0.5), percentile(frameMs, 0.95));
   t << line;
   return t.str();
 }

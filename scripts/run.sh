@@ -6,7 +6,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDYNGI_BUILD_TESTS=OFF >/dev/null
+# Tests stay configured (only the sample is built here): turning them off would leave stale test
+# binaries in build/ for the next scripts/test.sh-less ctest run.
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDYNGI_BUILD_TESTS=ON >/dev/null
 cmake --build build -j"$(nproc)" --target dyngi_sample
 mkdir -p out
 if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then

@@ -61,8 +61,12 @@ TEST(Options, WarmupFramesAreLeftOutOfTheMedians) {
   std::string err;
   auto o = parse({"--frames", "40", "--warmup", "18"}, err);
   ASSERT_TRUE(o) << err;
-  EXPECT_EQ(o->warmup, 18u);
-  EXPECT_EQ(parse({}, err)->warmup, 2u);
+  EXPECT_EQ(o->warmupFrames(), 18);
+  // Default: two, but a short run keeps one frame to time.
+  EXPECT_EQ(parse({"--headless"}, err)->warmupFrames(), 2);
+  EXPECT_EQ(parse({"--frames", "1"}, err)->warmupFrames(), 0);
+  EXPECT_EQ(parse({"--frames", "2"}, err)->warmupFrames(), 1);
+  EXPECT_EQ(parse({"--frames", "3"}, err)->warmupFrames(), 2);
 }
 
 TEST(Options, RejectsBadValuesClearly) {
@@ -71,7 +75,7 @@ TEST(Options, RejectsBadValuesClearly) {
       {"--frames"},      {"--bogus"},       {"--exposure", "nan"}, {"--exposure", "-1"},
       {"--temporal", "0"}, {"--temporal", "33"}, {"--animate", "dance"}, {"--vpl-source", "magic"},
       {"--vpls", "3"},   {"--interleave", "9"}, {"--clamp", "-1"}, {"--voxel-res", "100"}, {"--view", "xray"},
-      {"--seed", "-4"},  {"--warmup", "x"},    {"--frames", "5", "--warmup", "5"}};
+      {"--seed", "-4"},  {"--warmup", "x"},    {"--frames", "5", "--warmup", "5"}, {"--headless", "--warmup", "60"}};
   for (auto& args : bad) {
     std::string err;
     EXPECT_FALSE(parse(args, err)) << args[0];
