@@ -4,6 +4,7 @@
 #include <cstring>
 #include <glm/gtc/packing.hpp>
 
+#include "dyngi/engine/render/frame_uniforms.h"
 #include "shared/gpu_types.h"
 #include "passes/passes.h"
 
@@ -145,13 +146,7 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
   for (RenderFeature* f : features_) f->prepare(ctx_, snapshot);
   shadow_->prepare(snapshot);
 
-  gpu::FrameUniforms fu{};
-  float aspect = float(targets_.width) / float(targets_.height);
-  fu.view = snapshot.camera.view;
-  fu.proj = snapshot.camera.projection(aspect);
-  fu.viewProj = fu.proj * fu.view;
-  fu.invViewProj = glm::inverse(fu.viewProj);
-  fu.cameraPos = glm::vec4(snapshot.camera.position, 1.0f);
+  gpu::FrameUniforms fu = cameraUniforms(snapshot.camera, targets_.width, targets_.height);
   fu.sizeAndCount = glm::uvec4(targets_.width, targets_.height, shadow_->lightCount(), uint32_t(snapshot.frame));
   fu.exposure = glm::vec4(settings_.exposure, float(settings_.toneMapper), 0, 0);
   fu.background = glm::vec4(settings_.background, 0.0f);

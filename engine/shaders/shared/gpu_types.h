@@ -32,6 +32,13 @@ DYNGI_GPU_STRUCT(FrameUniforms) {
   uvec4 sizeAndCount;   // x width, y height, z light count, w frame index
   vec4 exposure;        // x linear exposure multiplier, y tone-map operator (0 ACES fit, 1 none/clamp)
   vec4 background;      // rgb radiance where no geometry is hit
+  // Pixel rays at unit view depth: the surface seen through the centre of pixel q at view depth t
+  // (distance along viewForward) is cameraPos + t * (pixelRay0 + q.x * pixelRayStepX + q.y * pixelRayStepY).
+  // Lets a pass store one float per pixel instead of a world position.
+  vec4 viewForward;     // xyz unit view direction (world)
+  vec4 pixelRay0;       // xyz ray through pixel (0, 0)'s centre, scaled to unit view depth
+  vec4 pixelRayStepX;   // xyz change per pixel to the right
+  vec4 pixelRayStepY;   // xyz change per pixel down
 };
 
 // One light (storage buffer). Directions are unit vectors the light points along.
@@ -51,7 +58,7 @@ DYNGI_GPU_STRUCT(GBufferPush) {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameUniforms) == 4 * 64 + 4 * 16);
+static_assert(sizeof(FrameUniforms) == 4 * 64 + 8 * 16);
 static_assert(sizeof(GpuLight) == 64);
 static_assert(sizeof(GBufferPush) == 112);
 }  // namespace dyngi::gpu

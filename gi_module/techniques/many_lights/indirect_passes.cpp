@@ -47,10 +47,8 @@ void IndirectFilterPass::record(render::FrameContext& frame, render::Image& inpu
   render::Pipeline& pipeline = pipelines_[K - 1];
   if (!pipeline.handle()) {
     const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
-                         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS},
-                         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS},
-                         {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
-                         {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
+                         {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
+                         {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
     const uint32_t spec[] = {K};
     pipeline = render::Pipeline::compute(ctx_, DYNGI_SHADER(spv_filter_comp), b, 4, "indirect_filter", spec);
   }
@@ -62,10 +60,8 @@ void IndirectFilterPass::record(render::FrameContext& frame, render::Image& inpu
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
   DescriptorWrites()
       .uniformBuffer(0, frame.frameUniforms.handle())
-      .sampledImage(1, t.position.view(), frame.nearestSampler)
-      .sampledImage(2, t.normal.view(), frame.nearestSampler)
-      .storageImage(3, input.view())
-      .storageImage(4, t.indirect.view())
+      .storageImage(1, input.view())
+      .storageImage(2, t.indirect.view())
       .push(ctx_, cmd, pipeline);
   vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(float), &planeTolerance);
   vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);

@@ -10,7 +10,7 @@ namespace dyngi::gi {
 class IndirectGatherPass {
  public:
   explicit IndirectGatherPass(render::VulkanContext& ctx);
-  // Gathers `vpls` into `raw` ("indirect" in stats). `nodes` is the SVO (visibility 0), `bits` the
+  // Gathers `vpls` into `raw` (rgba32ui, filter_input.glsl's packing; "indirect" in stats). `nodes` is the SVO (visibility 0), `bits` the
   // precomputed visibility (visibility 2); pass any valid buffer when unused.
   void record(render::FrameContext& frame, VkBuffer vpls, VkBuffer nodes, VkBuffer bits, render::Image& raw, const gpu::GatherPush& pc);
 
@@ -22,7 +22,8 @@ class IndirectGatherPass {
 class IndirectFilterPass {
  public:
   explicit IndirectFilterPass(render::VulkanContext& ctx);
-  // Filters `input` (interleaved K x K, K in 1..8) into frame.targets.indirect ("filter" in stats).
+  // Filters `input` (interleaved K x K, K in 1..8; rgba32ui packed as in filter_input.glsl) into
+  // frame.targets.indirect ("filter" in stats).
   void record(render::FrameContext& frame, render::Image& input, uint32_t K, float planeTolerance);
 
  private:

@@ -86,7 +86,7 @@ void ManyLights::resize(render::VulkanContext& ctx, uint32_t width, uint32_t hei
   render::ImageDesc d;
   d.width = width;
   d.height = height;
-  d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  d.format = VK_FORMAT_R32G32B32A32_UINT;  // filter_input.glsl's packing: light with depth and normal
   d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   d.name = "indirect raw (interleaved)";
   raw_ = Image(ctx, d);

@@ -28,8 +28,8 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
   lastRendered_.assign(sets_, -1);
   gatherPass_ = std::make_unique<IndirectGatherPass>(ctx);
   filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
-  const Binding accumulateB[] = {{0, kUBO, kCS},  {1, kSampled, kCS}, {2, kStorageImage, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS},
-                                 {5, kSSBO, kCS}, {6, kSSBO, kCS},    {7, kSSBO, kCS},         {8, kStorageImage, kCS}};
+  const Binding accumulateB[] = {{0, kUBO, kCS},  {1, kStorageImage, kCS}, {2, kSSBO, kCS},        {3, kSSBO, kCS},
+                                 {4, kSSBO, kCS}, {5, kSSBO, kCS},         {6, kStorageImage, kCS}};
   accumulate_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_accumulate_comp), accumulateB, 24, "temporal_accumulate");
   vpls_ = Buffer(ctx, VkDeviceSize(perSet_) * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "temporal vpls");
   cameras_ = Buffer(ctx, VkDeviceSize(sets_) * sizeof(SetCamera), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "set cameras");
@@ -56,11 +56,10 @@ void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t width, uint32
     d.name = name;
     return Image(ctx, d);
   };
-  raw_ = make(VK_FORMAT_R32G32B32A32_SFLOAT, 1, "temporal raw");
-  accumulated_ = make(VK_FORMAT_R32G32B32A32_SFLOAT, 1, "temporal accumulated");
+  raw_ = make(VK_FORMAT_R32G32B32A32_UINT, 1, "temporal raw");  // filter_input.glsl's packing, as is accumulated_
+  accumulated_ = make(VK_FORMAT_R32G32B32A32_UINT, 1, "temporal accumulated");
   VkDeviceSize pixels = VkDeviceSize(width) * height * sets_;
-  setIndirect_ = Buffer(ctx, pixels * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set indirect");
-  setDepth_ = Buffer(ctx, pixels * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set depth");
+  setIndirect_ = Buffer(ctx, pixels * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set indirect + depth");
   sums_ = Buffer(ctx, VkDeviceSize(width) * height * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sums");
   sumDepths_ = Buffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sum depths");
   setCameras_.assign(sets_, glm::mat4(0.0f));
@@ -197,14 +196,12 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, accumulate_.handle());
     DescriptorWrites()
         .uniformBuffer(0, frame.frameUniforms.handle())
-        .sampledImage(1, t.position.view(), frame.nearestSampler)
-        .storageImage(2, raw_.view())
-        .storageBuffer(3, setIndirect_.handle())
-        .storageBuffer(4, setDepth_.handle())
-        .storageBuffer(5, cameras_.handle())
-        .storageBuffer(6, sums_.handle())
-        .storageBuffer(7, sumDepths_.handle())
-        .storageImage(8, accumulated_.view())
+        .storageImage(1, raw_.view())
+        .storageBuffer(2, setIndirect_.handle())
+        .storageBuffer(3, cameras_.handle())
+        .storageBuffer(4, sums_.handle())
+        .storageBuffer(5, sumDepths_.handle())
+        .storageImage(6, accumulated_.view())
         .push(ctx_, cmd, accumulate_);
     struct {
       uint32_t sets, set, mask, incremental;

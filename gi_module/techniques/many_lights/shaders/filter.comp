@@ -3,39 +3,47 @@
 // sub-image) over neighbours on the same surface: normals within ~25 degrees and positions close to
 // the pixel's tangent plane. Removes the interleaving pattern without blurring across edges.
 // K is a specialization constant so the tap loops unroll; the taps are branch-free (lavapipe runs
-// 8 pixels in lock step, and a G-buffer fetch in shared memory measured slower than the fetch itself).
+// 8 pixels in lock step, and a fetch from shared memory measured slower than the fetch itself). Each
+// tap is one fetch of the packed input (filter_input.glsl): depth, normal and light together.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const uint K = 4u;
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gPosition;
-layout(set = 0, binding = 2) uniform sampler2D gNormal;
-layout(set = 0, binding = 3, rgba32f) uniform readonly image2D raw;
-layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D outIndirect;
+layout(set = 0, binding = 1, rgba32ui) uniform readonly uimage2D filterInput;
+layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D outIndirect;
 layout(push_constant) uniform Push { float planeTolerance; };
+#include "filter_input.glsl"
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = ivec2(frame.sizeAndCount.xy);
   if (px.x >= size.x || px.y >= size.y) return;
-  vec4 p = texelFetch(gPosition, px, 0);
-  if (p.w == 0.0) { imageStore(outIndirect, px, vec4(0.0)); return; }
-  vec3 n = normalize(texelFetch(gNormal, px, 0).xyz);
-  float scale = planeTolerance * max(length(p.xyz - frame.cameraPos.xyz), 1e-3);
+  uvec4 centre = imageLoad(filterInput, px);
+  float t = filterViewDepth(centre);
+  if (t <= 0.0) { imageStore(outIndirect, px, vec4(0.0)); return; }
+  vec3 n = normalize(filterNormal(centre));
+  // Neighbour q's surface point is cameraPos + t_q ray(q), so its distance from this pixel's tangent
+  // plane is t_q dot(ray(q), n) - t dot(ray(px), n), with dot(ray(q), n) affine in q.
+  float rn0 = dot(frame.pixelRay0.xyz, n), rnx = dot(frame.pixelRayStepX.xyz, n), rny = dot(frame.pixelRayStepY.xyz, n);
+  vec3 ray = pixelRay(px);
+  float planeOffset = t * dot(ray, n);
+  float scale = planeTolerance * t * length(ray);  // the tolerance relative to the view distance
   const int lo = -int(K) / 2;
   vec3 sum = vec3(0.0);
   float wsum = 0.0;
   for (int dy = lo; dy < lo + int(K); ++dy)
     for (int dx = lo; dx < lo + int(K); ++dx) {
       ivec2 q = clamp(px + ivec2(dx, dy), ivec2(0), size - 1);
-      vec4 pq = texelFetch(gPosition, q, 0);
-      vec3 nq = texelFetch(gNormal, q, 0).xyz;
-      // Same surface: foreground, normal within ~25 degrees (cos >= 0.9, nq unnormalised: squared
+      uvec4 tap = imageLoad(filterInput, q);
+      float tq = filterViewDepth(tap);
+      vec3 nq = filterNormal(tap);
+      // Same surface: foreground, normal within ~25 degrees (cos >= 0.9; nq unnormalised: squared
       // form), close to the tangent plane.
       float dn = dot(n, nq);
-      bool same = pq.w != 0.0 && dn > 0.0 && dn * dn >= 0.81 * dot(nq, nq) && abs(dot(pq.xyz - p.xyz, n)) <= scale;
+      float plane = tq * (rn0 + float(q.x) * rnx + float(q.y) * rny) - planeOffset;
+      bool same = tq > 0.0 && dn > 0.0 && dn * dn >= 0.81 * dot(nq, nq) && abs(plane) <= scale;
       float w = same ? 1.0 : 0.0;
-      sum += imageLoad(raw, q).rgb * w;
+      sum += filterLight(tap) * w;
       wsum += w;
     }
   imageStore(outIndirect, px, vec4(wsum > 0.0 ? sum / wsum : vec3(0.0), 1.0));

@@ -3,7 +3,8 @@
 // only VPLs s, s + K^2, ...; one workgroup covers pixels of one sub-image, so its threads walk the same
 // VPLs (coherent VPL and SVO reads). E = sum flux G V with G = cos_x cos_y / max(B, d^2) and V from the
 // SVO-restart march; dim or back-facing VPLs are skipped before marching. Writes K^2 E / pi^2, so the
-// K x K filter's average is the full sum's E / pi (what composite multiplies by albedo).
+// K x K filter's average is the full sum's E / pi (what composite multiplies by albedo), packed with the
+// pixel's depth and normal for the filter (filter_input.glsl).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 #include "shared/gi_gpu_types.h"
@@ -13,9 +14,10 @@ layout(set = 0, binding = 1) uniform sampler2D gPosition;
 layout(set = 0, binding = 2) uniform sampler2D gNormal;
 layout(set = 0, binding = 3) readonly buffer Vpls { GpuVpl vpls[]; };
 layout(set = 0, binding = 4) readonly buffer Nodes { uint nodes[]; };
-layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D outRaw;
+layout(set = 0, binding = 5, rgba32ui) uniform writeonly uimage2D outRaw;  // filter_input.glsl's packing
 layout(set = 0, binding = 6) readonly buffer VisibilityBits { uint visibleBits[]; };  // visibility mode 2
 #include "svo_traverse.glsl"
+#include "filter_input.glsl"
 layout(push_constant) uniform Push { GatherPush pc; };
 
 const float PI = 3.14159265358979;
@@ -26,7 +28,7 @@ void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy) * int(K) + ivec2(s % K, s / K);
   if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return;
   vec4 pos = texelFetch(gPosition, px, 0);
-  if (pos.w == 0.0) { imageStore(outRaw, px, vec4(0.0)); return; }
+  if (pos.w == 0.0) { imageStore(outRaw, px, uvec4(0u)); return; }
   vec3 x = pos.xyz;
   vec3 nx = normalize(texelFetch(gNormal, px, 0).xyz);
   vec3 xv = (x - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + nx * pc.params.z;
@@ -56,5 +58,5 @@ void main() {
     }
     e += v.flux.rgb * g;
   }
-  imageStore(outRaw, px, vec4(float(K2) * e / (PI * PI), 1.0));
+  imageStore(outRaw, px, packFilterInput(viewDepthOf(x), nx, float(K2) * e / (PI * PI)));
 }

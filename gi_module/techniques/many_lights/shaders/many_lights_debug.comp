@@ -10,10 +10,11 @@ layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gAlbedo;
 layout(set = 0, binding = 2, rgba32f) uniform readonly image2D indirect;
-layout(set = 0, binding = 3, rgba32f) uniform readonly image2D raw;
+layout(set = 0, binding = 3, rgba32ui) uniform readonly uimage2D raw;  // filter_input.glsl's packing
 layout(set = 0, binding = 4) readonly buffer Vpls { GpuVpl vpls[]; };
 layout(set = 0, binding = 5, rgba32f) uniform image2D hdr;
 layout(push_constant) uniform Push { uint mode; uint K; uint vplCount; };
+#include "filter_input.glsl"
 void main() {
   uint i = gl_GlobalInvocationID.x;
   ivec2 size = ivec2(frame.sizeAndCount.xy);
@@ -45,6 +46,6 @@ void main() {
     src = clamp(src, ivec2(0), size - 1);
     // Each sub-image alone is a (noisier) estimate of the whole indirect light: shown at full scale.
     vec4 srcAlbedo = texelFetch(gAlbedo, src, 0);
-    imageStore(hdr, px, vec4(imageLoad(raw, src).rgb * srcAlbedo.rgb * (1.0 - srcAlbedo.a), 1.0));
+    imageStore(hdr, px, vec4(filterLight(imageLoad(raw, src)) * srcAlbedo.rgb * (1.0 - srcAlbedo.a), 1.0));
   }
 }

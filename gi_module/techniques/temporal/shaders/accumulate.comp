@@ -13,15 +13,13 @@
 #include "shared/gpu_types.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gPosition;
-layout(set = 0, binding = 2, rgba32f) uniform readonly image2D raw;
-layout(set = 0, binding = 3) buffer SetIndirect { vec4 setIndirect[]; };
-layout(set = 0, binding = 4) buffer SetDepth { float setDepth[]; };
+layout(set = 0, binding = 1, rgba32ui) uniform readonly uimage2D raw;  // this frame's gather (filter_input.glsl)
+layout(set = 0, binding = 2) buffer SetIndirect { vec4 setIndirect[]; };  // rgb light, a NDC depth (< 0: none)
 struct SetCamera { mat4 viewProj; mat4 invViewProj; };
-layout(set = 0, binding = 5) readonly buffer Cameras { SetCamera cameras[]; };
-layout(set = 0, binding = 6) buffer Sums { vec4 sums[]; };       // rgb sum, a sets counted
-layout(set = 0, binding = 7) buffer SumDepths { float sumDepths[]; };
-layout(set = 0, binding = 8, rgba32f) uniform writeonly image2D outAccumulated;
+layout(set = 0, binding = 3) readonly buffer Cameras { SetCamera cameras[]; };
+layout(set = 0, binding = 4) buffer Sums { vec4 sums[]; };       // rgb sum, a sets counted
+layout(set = 0, binding = 5) buffer SumDepths { float sumDepths[]; };
+layout(set = 0, binding = 6, rgba32ui) uniform writeonly uimage2D outAccumulated;  // the filter's input
 layout(push_constant) uniform Push {
   uint sets;
   uint set;         // the set gathered this frame
@@ -31,6 +29,8 @@ layout(push_constant) uniform Push {
   float cutoff;
   uint setWasStored; // 1: `set` held a sample before this frame (its old value is in the buffers)
 };
+
+#include "filter_input.glsl"
 
 // Whether a sample stored from the current camera at this pixel with NDC depth d is of surface p.
 bool sameSurface(vec2 pixelCentre, float d, vec3 p, float tolerance) {
@@ -45,51 +45,52 @@ void main() {
   if (px.x >= size.x || px.y >= size.y) return;
   uint pixel = uint(px.y * size.x + px.x);
   uint layer = uint(size.x * size.y);
-  vec4 p = texelFetch(gPosition, px, 0);
+  // The gather's texel carries this pixel's view depth and normal; the surface point follows from it.
+  uvec4 gathered = imageLoad(raw, px);
+  float viewDepth = filterViewDepth(gathered);
+  vec3 p = frame.cameraPos.xyz + viewDepth * pixelRay(px);
   float depthNow = -1.0;
-  if (p.w != 0.0) {
-    vec4 clip = frame.viewProj * vec4(p.xyz, 1.0);
+  if (viewDepth > 0.0) {
+    vec4 clip = frame.viewProj * vec4(p, 1.0);
     depthNow = clip.z / clip.w;
   }
   // Store this frame's set (old value kept for the incremental update).
   uint ik = set * layer + pixel;
   vec4 oldValue = setIndirect[ik];
-  float oldDepth = setDepth[ik];
-  vec4 newValue = imageLoad(raw, px);
-  setIndirect[ik] = newValue;
-  setDepth[ik] = depthNow;
+  vec3 newValue = filterLight(gathered);
+  setIndirect[ik] = vec4(newValue, depthNow);
   if (depthNow < 0.0) {
     sums[pixel] = vec4(0.0);
     sumDepths[pixel] = -1.0;
-    imageStore(outAccumulated, px, vec4(0.0));
+    imageStore(outAccumulated, px, uvec4(0u));
     return;
   }
-  float tolerance = cutoff * max(length(p.xyz - frame.cameraPos.xyz), 1e-3);
+  float tolerance = cutoff * max(length(p - frame.cameraPos.xyz), 1e-3);
   vec4 s;
   if (incremental != 0u && sumDepths[pixel] == depthNow) {
     // Only set `set` changed: take its old sample out (if the full pass had counted it) and put the
     // new one in. The test is the full pass's test for a set stored from this camera.
     s = sums[pixel];
-    if (setWasStored != 0u && sameSurface(vec2(px) + 0.5, oldDepth, p.xyz, tolerance)) s.rgb -= oldValue.rgb;
+    if (setWasStored != 0u && sameSurface(vec2(px) + 0.5, oldValue.a, p, tolerance)) s.rgb -= oldValue.rgb;
     else s.a += 1.0;
-    s.rgb += newValue.rgb;
+    s.rgb += newValue;
   } else {
-    s = vec4(newValue.rgb, 1.0);
+    s = vec4(newValue, 1.0);
     for (uint j = 0u; j < sets; ++j) {
       if (j == set || (validMask & (1u << j)) == 0u) continue;
-      vec4 clip = cameras[j].viewProj * vec4(p.xyz, 1.0);
+      vec4 clip = cameras[j].viewProj * vec4(p, 1.0);
       if (clip.w <= 0.0) continue;
       ivec2 q = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * vec2(size)));
       if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-      uint i = j * layer + uint(q.y * size.x + q.x);
-      float d = setDepth[i];
-      if (d < 0.0) continue;
-      vec4 y = cameras[j].invViewProj * vec4((vec2(q) + 0.5) / vec2(size) * 2.0 - 1.0, d, 1.0);
-      if (length(y.xyz / y.w - p.xyz) > tolerance) continue;
-      s += vec4(setIndirect[i].rgb, 1.0);
+      vec4 stored = setIndirect[j * layer + uint(q.y * size.x + q.x)];
+      if (stored.a < 0.0) continue;
+      vec4 y = cameras[j].invViewProj * vec4((vec2(q) + 0.5) / vec2(size) * 2.0 - 1.0, stored.a, 1.0);
+      if (length(y.xyz / y.w - p) > tolerance) continue;
+      s += vec4(stored.rgb, 1.0);
     }
     sumDepths[pixel] = depthNow;
   }
   sums[pixel] = s;
-  imageStore(outAccumulated, px, vec4(s.a > 0.0 ? s.rgb * float(sets) / s.a : vec3(0.0), 1.0));
+  vec3 light = s.a > 0.0 ? s.rgb * float(sets) / s.a : vec3(0.0);
+  imageStore(outAccumulated, px, uvec4(gathered.xy, packFilterLight(light)));
 }
