@@ -9,10 +9,7 @@
 #include "dyngi/engine/render/gpu_timer.h"
 #include "dyngi/engine/scene/animation.h"
 #include "shaders/shared/gi_gpu_types.h"
-#include "spirv/svo_alloc.comp.spv.h"
-#include "spirv/svo_flag.comp.spv.h"
-#include "spirv/svo_flag_cells.comp.spv.h"
-#include "spirv/svo_gather.comp.spv.h"
+#include "spirv/svo_expand.comp.spv.h"
 #include "spirv/svo_leaf_attributes.comp.spv.h"
 #include "spirv/svo_level.comp.spv.h"
 #include "spirv/svo_mark.comp.spv.h"
@@ -51,21 +48,20 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
   d.name = "voxelize";
   voxelize_ = Pipeline::graphics(ctx, d);
 
-  const Binding gatherB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
-  gather_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_gather_comp), gatherB, 4, "svo_gather");
-  const Binding flagB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}};
-  flag_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_flag_comp), flagB, 12, "svo_flag");
-  const Binding markB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
+  const Binding markB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}};
   mark_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_mark_comp), markB, 8, "svo_mark");
-  const Binding cellsB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}};
-  flagCells_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_flag_cells_comp), cellsB, 4, "svo_flag_cells");
-  coarse_ = Buffer(ctx, DYNGI_SVO_COARSE_WORDS * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo coarse occupancy");
-  const Binding levelB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}};
+  const Binding levelB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS}};
   level_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_level_comp), levelB, 4, "svo_level");
-  const Binding allocB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
-  alloc_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_alloc_comp), allocB, 4, "svo_alloc");
-  const Binding attrB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS}};
-  leafAttributes_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, 8, "svo_leaf_attributes");
+  const Binding expandB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS}};
+  expand_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_expand_comp), expandB, 8, "svo_expand");
+  const Binding attrB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}};
+  leafAttributes_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, 12, "svo_leaf_attributes");
+  // One bit per cell of every level 0..depth (DYNGI_SVO_LEVEL_BASE).
+  uint32_t depth = 0;
+  while ((1u << depth) < settings_.resolution) ++depth;
+  const uint64_t pyramidBits = ((uint64_t(1) << (3 * (depth + 1))) - 1) / 7;
+  occupancy_ = Buffer(ctx, (pyramidBits + 31) / 32 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                      MemoryUsage::GpuOnly, "svo occupancy pyramid");
   const Binding marchB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
   march_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_march_comp), marchB, 32, "svo_march");
   const uint32_t noMarch[] = {0u};
@@ -77,6 +73,7 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
   // The first build gets the whole pool; afterwards it follows what the SVO uses (resizeNodePool).
   nodeGroupCapacity_ = std::max(settings.maxNodeGroups, 2u);
   nodes_ = Buffer(ctx, VkDeviceSize(nodeGroupCapacity_) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo nodes");
+  nodeCells_ = Buffer(ctx, VkDeviceSize(nodeGroupCapacity_) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo node cells");
   levels_ = Buffer(ctx, sizeof(gpu::SvoLevel) * DYNGI_SVO_MAX_LEVELS, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                    MemoryUsage::Readback, "svo levels");
   svoCounters_ = Buffer(ctx, sizeof(gpu::SvoCounters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
@@ -121,9 +118,6 @@ void VoxelScene::reallocateFragments(uint64_t slots, const std::vector<VkBufferC
     if (!keep.empty()) vkCmdCopyBuffer(cmd, fragments_.handle(), fresh.handle(), uint32_t(keep.size()), keep.data());
   });
   fragments_ = std::move(fresh);
-  // The SVO build's own buffers never hold more than the ranges do.
-  dense_ = Buffer(ctx_, slots * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragments (dense)");
-  fragmentNodes_ = Buffer(ctx_, slots * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragment nodes");
   attributes_ = Buffer(ctx_, settings_.leafAttributes ? slots * kAttributeInts * 4 : 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                        MemoryUsage::GpuOnly, "voxel leaf attributes");
   stats_.fragmentCapacity = slots;
@@ -336,58 +330,42 @@ bool VoxelScene::record(render::FrameContext& frame) {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "svo_build");
     gpu::SvoCounters init{};
     init.groups = glm::uvec4(1, nodeGroupCapacity_, 0, 0);
-    init.fragments = glm::uvec4(0, uint32_t(std::min<uint64_t>(stats_.fragmentCapacity, 0xFFFFFFFFu)), 0, 0);
     vkCmdUpdateBuffer(cmd, svoCounters_.handle(), 0, sizeof(init), &init);
-    vkCmdFillBuffer(cmd, nodes_.handle(), 0, 32, 0);  // the root group
-    vkCmdFillBuffer(cmd, coarse_.handle(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, occupancy_.handle(), 0, VK_WHOLE_SIZE, 0);
     render::computeWriteBarrier(cmd);
+    // 1. Every fragment marks its cells in the occupancy pyramid.
     const uint32_t slots = uint32_t(highWater_);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, gather_.handle());
-    DescriptorWrites().storageBuffer(0, fragments_.handle()).storageBuffer(1, dense_.handle()).storageBuffer(2, svoCounters_.handle()).push(ctx_, cmd, gather_);
-    vkCmdPushConstants(cmd, gather_.layout(), kCS, 0, 4, &slots);
-    vkCmdDispatch(cmd, std::max(dispatchGroups(slots, 64 * DYNGI_SVO_ITEMS_PER_INVOCATION), 1u), 1, 1);
+    const uint32_t perGroup = 64 * DYNGI_SVO_ITEMS_PER_INVOCATION;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mark_.handle());
+    DescriptorWrites().storageBuffer(0, fragments_.handle()).storageBuffer(1, occupancy_.handle()).push(ctx_, cmd, mark_);
+    const uint32_t mp[2] = {slots, depth};
+    vkCmdPushConstants(cmd, mark_.layout(), kCS, 0, sizeof(mp), mp);
+    vkCmdDispatch(cmd, std::max(dispatchGroups(slots, perGroup), 1u), 1, 1);
     render::computeWriteBarrier(cmd);
-    const VkDeviceSize fragmentDispatch = offsetof(gpu::SvoCounters, fragmentDispatch);
-    auto levelPass = [&](uint32_t l) {  // level l's node range and dispatch sizes
+    // 2. Top down, level by level: the occupied nodes get their children, flagged from the pyramid.
+    for (uint32_t l = 0; l <= depth; ++l) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, level_.handle());
-      DescriptorWrites().storageBuffer(0, levels_.handle()).storageBuffer(1, svoCounters_.handle()).push(ctx_, cmd, level_);
+      DescriptorWrites()
+          .storageBuffer(0, levels_.handle())
+          .storageBuffer(1, svoCounters_.handle())
+          .storageBuffer(2, nodes_.handle())
+          .storageBuffer(3, nodeCells_.handle())
+          .storageBuffer(4, occupancy_.handle())
+          .push(ctx_, cmd, level_);
       vkCmdPushConstants(cmd, level_.layout(), kCS, 0, 4, &l);
       vkCmdDispatch(cmd, 1, 1, 1);
       render::computeWriteBarrier(cmd);
-    };
-    // Coarse levels from the occupancy pyramid, one pass over the fragments (svo_mark.comp).
-    const uint32_t coarseLevels = std::min(DYNGI_SVO_COARSE_LEVELS, depth - 1);
-    levelPass(0);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mark_.handle());
-    DescriptorWrites().storageBuffer(0, dense_.handle()).storageBuffer(1, svoCounters_.handle()).storageBuffer(2, coarse_.handle()).push(ctx_, cmd, mark_);
-    uint32_t mp[2] = {coarseLevels, depth};
-    vkCmdPushConstants(cmd, mark_.layout(), kCS, 0, sizeof(mp), mp);
-    vkCmdDispatchIndirect(cmd, svoCounters_.handle(), fragmentDispatch);
-    render::computeWriteBarrier(cmd);
-    for (uint32_t l = 0; l <= depth; ++l) {
-      if (l > 0) levelPass(l);
-      if (l <= coarseLevels) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, flagCells_.handle());
-        DescriptorWrites().storageBuffer(0, coarse_.handle()).storageBuffer(1, nodes_.handle()).push(ctx_, cmd, flagCells_);
-        vkCmdPushConstants(cmd, flagCells_.layout(), kCS, 0, 4, &l);
-        vkCmdDispatch(cmd, std::max(dispatchGroups(1u << (3 * l), 64 * DYNGI_SVO_ITEMS_PER_INVOCATION), 1u), 1, 1);
-      } else {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, flag_.handle());
-        DescriptorWrites()
-            .storageBuffer(0, dense_.handle())
-            .storageBuffer(1, nodes_.handle())
-            .storageBuffer(2, svoCounters_.handle())
-            .storageBuffer(3, fragmentNodes_.handle())
-            .push(ctx_, cmd, flag_);
-        uint32_t fp[3] = {l, depth, coarseLevels + 1};
-        vkCmdPushConstants(cmd, flag_.layout(), kCS, 0, sizeof(fp), fp);
-        vkCmdDispatchIndirect(cmd, svoCounters_.handle(), fragmentDispatch);
-      }
-      render::computeWriteBarrier(cmd);
-      if (l == depth) break;  // leaves: flagged, never subdivided
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, alloc_.handle());
-      DescriptorWrites().storageBuffer(0, nodes_.handle()).storageBuffer(1, levels_.handle()).storageBuffer(2, svoCounters_.handle()).push(ctx_, cmd, alloc_);
-      vkCmdPushConstants(cmd, alloc_.layout(), kCS, 0, 4, &l);
+      if (l == depth) break;  // leaves: their range is known, they are never subdivided
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, expand_.handle());
+      DescriptorWrites()
+          .storageBuffer(0, nodes_.handle())
+          .storageBuffer(1, nodeCells_.handle())
+          .storageBuffer(2, occupancy_.handle())
+          .storageBuffer(3, levels_.handle())
+          .storageBuffer(4, svoCounters_.handle())
+          .push(ctx_, cmd, expand_);
+      const uint32_t ep[2] = {l, depth};
+      vkCmdPushConstants(cmd, expand_.layout(), kCS, 0, sizeof(ep), ep);
       vkCmdDispatchIndirect(cmd, levels_.handle(), VkDeviceSize(l) * sizeof(gpu::SvoLevel) + offsetof(gpu::SvoLevel, dispatch));
       render::computeWriteBarrier(cmd);
     }
@@ -397,15 +375,14 @@ bool VoxelScene::record(render::FrameContext& frame) {
       render::computeWriteBarrier(cmd);
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, leafAttributes_.handle());
       DescriptorWrites()
-          .storageBuffer(0, dense_.handle())
-          .storageBuffer(1, fragmentNodes_.handle())
+          .storageBuffer(0, fragments_.handle())
+          .storageBuffer(1, nodes_.handle())
           .storageBuffer(2, levels_.handle())
           .storageBuffer(3, attributes_.handle())
-          .storageBuffer(4, svoCounters_.handle())
           .push(ctx_, cmd, leafAttributes_);
-      uint32_t ap[2] = {depth, uint32_t(stats_.fragmentCapacity)};
+      const uint32_t ap[3] = {depth, uint32_t(stats_.fragmentCapacity), slots};
       vkCmdPushConstants(cmd, leafAttributes_.layout(), kCS, 0, sizeof(ap), ap);
-      vkCmdDispatchIndirect(cmd, svoCounters_.handle(), fragmentDispatch);
+      vkCmdDispatch(cmd, std::max(dispatchGroups(slots, perGroup), 1u), 1, 1);
       render::computeWriteBarrier(cmd);
     }
   }
@@ -471,7 +448,7 @@ void VoxelScene::frameFinished(render::VulkanContext&) {
   want = std::clamp<uint64_t>(want, std::min<uint32_t>(kMinNodeGroups, settings_.maxNodeGroups), settings_.maxNodeGroups);
   if (want != nodeGroupCapacity_) resizeNodePool(uint32_t(want), groups);
   if (stats_.poolOverflow && want > groups) storageMoved_ = true;  // the conservative SVO stands until the next build
-  stats_.totalBytes = fragments_.size() + dense_.size() + fragmentNodes_.size() + nodes_.size() + attributes_.size();
+  stats_.totalBytes = fragments_.size() + nodes_.size() + nodeCells_.size() + occupancy_.size() + attributes_.size();
 }
 
 void VoxelScene::resizeNodePool(uint32_t groups, uint64_t keepGroups) {
@@ -484,6 +461,7 @@ void VoxelScene::resizeNodePool(uint32_t groups, uint64_t keepGroups) {
       vkCmdCopyBuffer(cmd, nodes_.handle(), fresh.handle(), 1, &copy);
     });
   nodes_ = std::move(fresh);
+  nodeCells_ = Buffer(ctx_, VkDeviceSize(groups) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo node cells");
   nodeGroupCapacity_ = groups;
 }
 

@@ -38,18 +38,19 @@ struct alignas(16) SvoLevel {
 #else
 struct SvoLevel {
 #endif
-  uvec4 range;          // x first node, y node count, z groups allocated before this level's alloc, w unused
-  uvec4 dispatch;       // indirect dispatch args for this level's alloc pass (x groups, 1, 1)
+  uvec4 range;          // x first node, y node count, z groups allocated before this level's expand, w unused
+  uvec4 dispatch;       // indirect dispatch args for this level's expand pass (x groups, 1, 1)
 };
 
 // SVO build passes over fragments and nodes run 64-wide workgroups in which each invocation takes
 // this many items (grid-stride): lavapipe pays a fixed cost per invocation that dwarfs one step.
 #define DYNGI_SVO_ITEMS_PER_INVOCATION 16u
-// The top levels of the SVO (0..min(this, depth - 1)) are flagged from a dense occupancy pyramid (one bit
-// per cell, level l at bit (8^l - 1) / 7, cells x + y 2^l + z 4^l) that one pass over the fragments
-// marks; only the deeper levels walk the fragments once each.
-#define DYNGI_SVO_COARSE_LEVELS 5u
-#define DYNGI_SVO_COARSE_WORDS 1171u  // ceil(sum of 8^l for l <= 5 over 32)
+// The build's occupancy pyramid: one bit per cell of every level 0..depth, level l starting at bit
+// (8^l - 1) / 7, cell (x, y, z) at x + y 2^l + z 4^l within it (svo_mark.comp marks it, svo_expand.comp
+// reads it).
+#define DYNGI_SVO_LEVEL_BASE(l) (((1u << (3u * (l))) - 1u) / 7u)
+// A node's cell at its level, 10 bits per axis (svo_expand.comp keeps one per node it may subdivide).
+#define DYNGI_SVO_PACK_CELL(c) ((c).x | ((c).y << 10) | ((c).z << 20))
 
 // Global SVO counters.
 #ifdef __cplusplus
@@ -58,8 +59,6 @@ struct alignas(16) SvoCounters {
 struct SvoCounters {
 #endif
   uvec4 groups;         // x groups allocated (incl. root group), y group capacity, z overflowed (0/1), w leaves
-  uvec4 fragments;      // x valid fragments gathered into the dense list, y its capacity
-  uvec4 fragmentDispatch;  // indirect dispatch args over the dense list (x groups, 1, 1; see ITEMS_PER_INVOCATION)
 };
 
 // A virtual point light: a point on a surface that reflects `flux` (watts, reflected: rho * E * A)
@@ -116,7 +115,7 @@ static_assert(sizeof(GpuVpl) == 48);
 static_assert(sizeof(RsmPush) == 96);
 static_assert(sizeof(GatherPush) == 64);
 static_assert(sizeof(SvoLevel) == 32);
-static_assert(sizeof(SvoCounters) == 48);
+static_assert(sizeof(SvoCounters) == 16);
 }  // namespace dyngi::gi::gpu
 #endif
 

@@ -6,11 +6,10 @@
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) readonly buffer Fragments { uvec4 fragments[]; };
-layout(set = 0, binding = 1) readonly buffer FragmentNodes { uint fragmentNodes[]; };  // leaf per fragment
+layout(set = 0, binding = 1) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = 2) readonly buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = 3) buffer Attributes { int attributes[]; };  // 8 ints per leaf
-layout(set = 0, binding = 4) readonly buffer Counters { SvoCounters counters; };
-layout(push_constant) uniform Push { uint depth; uint leafCapacity; };
+layout(push_constant) uniform Push { uint depth; uint leafCapacity; uint slots; };
 
 vec3 unpackEmission(uint e) {
   vec4 v = unpackUnorm4x8(e);
@@ -20,8 +19,15 @@ vec3 unpackEmission(uint e) {
 void accumulate(uint i) {
   uvec4 f = fragments[i];
   if (f.x == DYNGI_VOXEL_EMPTY) return;
-  uint node = fragmentNodes[i];  // written by the last level's svo_flag pass
-  if (node == 0xFFFFFFFFu) return;  // its branch overflowed the node pool
+  // Its leaf: down from the root.
+  uvec3 v = uvec3(f.x & 1023u, (f.x >> 10) & 1023u, (f.x >> 20) & 1023u);
+  uint node = 0u;
+  for (uint l = 0u; l < depth; ++l) {
+    uint g = nodes[node] & DYNGI_SVO_GROUP_MASK;
+    if (g == 0u) return;  // its branch overflowed the node pool
+    uint shift = depth - 1u - l;
+    node = 8u * g + (((v.x >> shift) & 1u) | (((v.y >> shift) & 1u) << 1) | (((v.z >> shift) & 1u) << 2));
+  }
   uint leaf = node - levels[depth].range.x;
   if (leaf >= leafCapacity) return;
   vec4 albedo = unpackUnorm4x8(f.y);
@@ -39,6 +45,6 @@ void accumulate(uint i) {
 }
 
 void main() {
-  uint n = min(counters.fragments.x, counters.fragments.y), stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
-  for (uint i = gl_GlobalInvocationID.x; i < n; i += stride) accumulate(i);
+  uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+  for (uint i = gl_GlobalInvocationID.x; i < slots; i += stride) accumulate(i);
 }

@@ -1,19 +1,22 @@
 #version 460
-// SVO build bookkeeping (one thread): before level `level`'s alloc pass, fix that level's node range
+// SVO build bookkeeping (one thread): before level `level`'s expand pass, fix that level's node range
 // from the groups the previous level allocated, remember the group counter, and write the indirect
-// dispatch size of the alloc pass.
+// dispatch size of the expand pass. Level 0 also seeds the root from the occupancy pyramid.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 1) in;
 layout(set = 0, binding = 0) buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = 1) buffer Counters { SvoCounters counters; };
+layout(set = 0, binding = 2) buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = 3) buffer NodeCells { uint nodeCells[]; };
+layout(set = 0, binding = 4) readonly buffer Occupancy { uint occupancy[]; };
 layout(push_constant) uniform Push { uint level; };
 void main() {
   uint used = min(counters.groups.x, counters.groups.y);
   if (level == 0u) {
     levels[0].range = uvec4(0u, 1u, used, 0u);
-    uint n = min(counters.fragments.x, counters.fragments.y);
-    counters.fragmentDispatch = uvec4(max((n + 64u * DYNGI_SVO_ITEMS_PER_INVOCATION - 1u) / (64u * DYNGI_SVO_ITEMS_PER_INVOCATION), 1u), 1u, 1u, 0u);
+    nodes[0] = (occupancy[0] & 1u) != 0u ? DYNGI_SVO_FLAG : 0u;  // level 0's one cell
+    nodeCells[0] = 0u;
   } else {
     uint before = levels[level - 1u].range.z;
     levels[level].range = uvec4(8u * before, 8u * (used - before), used, 0u);

@@ -129,10 +129,10 @@ class VoxelScene final : public render::RenderFeature {
   bool storageMoved_ = false;  // fragments were moved or the derived buffers reallocated: rebuild the SVO
   std::vector<ecs::Entity> voxelizedThisFrame_;
 
-  render::Buffer fragments_, dense_, counters_, nodes_, levels_, svoCounters_, attributes_;
-  render::Buffer fragmentNodes_;  // per dense fragment: the node it reached at the level last built
-  render::Buffer coarse_;         // occupancy pyramid of the coarse levels (svo_mark.comp)
-  render::Pipeline voxelize_, gather_, mark_, flagCells_, flag_, level_, alloc_, leafAttributes_, march_, marchOff_, debug_;
+  render::Buffer fragments_, counters_, nodes_, levels_, svoCounters_, attributes_;
+  render::Buffer nodeCells_;  // per node that may be subdivided: its cell (svo_expand.comp), sized like nodes_
+  render::Buffer occupancy_;  // occupancy pyramid of every level (svo_mark.comp)
+  render::Pipeline voxelize_, mark_, level_, expand_, leafAttributes_, march_, marchOff_, debug_;
   double dispatchMarch(const render::Pipeline& pipeline, const std::vector<Segment>& segments, std::vector<uint8_t>& out,
                        float epsVoxels);
   VoxelStats stats_;

@@ -1,0 +1,57 @@
+#version 460
+// SVO build, step 2 of a level: every occupied node of `level` gets a group of 8 children, each flagged
+// from the occupancy pyramid at level + 1 and given its cell (unless the children are leaves, which are
+// never subdivided). One invocation writes a whole group, so no atomics touch the nodes; the groups come
+// from one counter (an append per subgroup). Nodes are visited in level order, which keeps a level's
+// groups contiguous (svo_level.comp relies on it).
+#extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#include "shared/gi_gpu_types.h"
+#include "subgroup_append.glsl"
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 0) buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = 1) buffer NodeCells { uint nodeCells[]; };
+layout(set = 0, binding = 2) readonly buffer Occupancy { uint occupancy[]; };
+layout(set = 0, binding = 3) readonly buffer Levels { SvoLevel levels[]; };
+layout(set = 0, binding = 4) buffer Counters { SvoCounters counters; };
+layout(push_constant) uniform Push { uint level; uint depth; };
+
+bool occupied(uint l, uvec3 cell) {
+  uint index = DYNGI_SVO_LEVEL_BASE(l) + cell.x + (cell.y << l) + (cell.z << (2u * l));
+  return (occupancy[index >> 5] & (1u << (index & 31u))) != 0u;
+}
+
+void expand(uint node) {
+  bool want = nodes[node] == DYNGI_SVO_FLAG;  // occupied, not yet subdivided
+  uint g;
+  DYNGI_SUBGROUP_APPEND(counters.groups.x, want, g)
+  uint leaves = 0u;
+  if (want && g >= counters.groups.y) {
+    counters.groups.z = 1u;  // overflow: the node stays flagged without children (treated as occupied)
+  } else if (want) {
+    uint packed = nodeCells[node];
+    uvec3 cell = uvec3(packed & 1023u, (packed >> 10) & 1023u, packed >> 20);
+    uint childLevel = level + 1u;
+    bool childrenAreLeaves = childLevel == depth;
+    for (uint c = 0u; c < 8u; ++c) {
+      uvec3 child = 2u * cell + uvec3(c & 1u, (c >> 1) & 1u, c >> 2);
+      bool o = occupied(childLevel, child);
+      nodes[8u * g + c] = o ? DYNGI_SVO_FLAG : 0u;
+      if (o && !childrenAreLeaves) nodeCells[8u * g + c] = DYNGI_SVO_PACK_CELL(child);
+      leaves += o && childrenAreLeaves ? 1u : 0u;
+    }
+    nodes[node] = DYNGI_SVO_FLAG | g;
+  }
+  uint subgroupLeaves = subgroupAdd(leaves);
+  if (subgroupLeaves > 0u && subgroupElect()) atomicAdd(counters.groups.w, subgroupLeaves);
+}
+
+void main() {
+  uint n = levels[level].range.y, stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+  // Uniform trip count per subgroup: the subgroup operations inside need every invocation.
+  uint rounds = (n + stride - 1u) / stride;
+  for (uint r = 0u; r < rounds; ++r) {
+    uint i = gl_GlobalInvocationID.x + r * stride;
+    if (i < n) expand(levels[level].range.x + i);
+  }
+}
