@@ -109,11 +109,41 @@ struct GatherPush {
 
 #define DYNGI_MAX_RSM_LAYERS 24
 
+// The camera a temporal set's indirect buffer was gathered from (storage buffer, one per set): enough to
+// project a point into it and to rebuild the point a stored pixel's view depth stands for (the pixel rays
+// of engine FrameUniforms).
+#ifdef __cplusplus
+struct alignas(16) TemporalSetCamera {
+#else
+struct TemporalSetCamera {
+#endif
+  mat4 viewProj;
+  vec4 position;        // xyz camera position
+  vec4 pixelRay0;       // xyz ray through pixel (0, 0)'s centre at unit view depth
+  vec4 pixelRayStepX;   // xyz per pixel to the right
+  vec4 pixelRayStepY;   // xyz per pixel down
+};
+
+// Temporal accumulation settings (push constants).
+#ifdef __cplusplus
+struct alignas(16) AccumulatePush {
+#else
+struct AccumulatePush {
+#endif
+  uvec4 sets;           // x set count, y the set gathered this frame, z sets stored at least once (bits),
+                        // w sets stored from the current camera (bits)
+  uvec4 mode;           // x 1: incremental (camera as last frame, set y last stored from it, sums current),
+                        // y 1: set y held a sample before this frame
+  vec4 params;          // x reprojection cut-off (relative to the view distance)
+};
+
 #ifdef __cplusplus
 static_assert(sizeof(VoxelizePush) == 112);
 static_assert(sizeof(GpuVpl) == 48);
 static_assert(sizeof(RsmPush) == 96);
 static_assert(sizeof(GatherPush) == 64);
+static_assert(sizeof(TemporalSetCamera) == 128);
+static_assert(sizeof(AccumulatePush) == 48);
 static_assert(sizeof(SvoLevel) == 32);
 static_assert(sizeof(SvoCounters) == 16);
 }  // namespace dyngi::gi::gpu

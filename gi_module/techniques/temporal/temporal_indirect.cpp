@@ -4,6 +4,7 @@
 #include <chrono>
 #include <thread>
 
+#include "dyngi/engine/render/frame_uniforms.h"
 #include "shaders/shared/gi_gpu_types.h"
 #include "techniques/many_lights/indirect_passes.h"
 #include "spirv/accumulate.comp.spv.h"
@@ -11,12 +12,6 @@
 #include "gpu_aliases.h"
 
 namespace dyngi::gi {
-
-namespace {
-struct SetCamera {
-  glm::mat4 viewProj, invViewProj;
-};
-}  // namespace
 
 TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, VoxelScene* voxels, const EmbreeScene* bvh,
                                    const TemporalSettings& settings)
@@ -30,9 +25,9 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
   filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
   const Binding accumulateB[] = {{0, kUBO, kCS},  {1, kStorageImage, kCS}, {2, kSSBO, kCS},        {3, kSSBO, kCS},
                                  {4, kSSBO, kCS}, {5, kSSBO, kCS},         {6, kStorageImage, kCS}};
-  accumulate_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_accumulate_comp), accumulateB, 24, "temporal_accumulate");
+  accumulate_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_accumulate_comp), accumulateB, sizeof(gpu::AccumulatePush), "temporal_accumulate");
   vpls_ = Buffer(ctx, VkDeviceSize(perSet_) * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "temporal vpls");
-  cameras_ = Buffer(ctx, VkDeviceSize(sets_) * sizeof(SetCamera), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "set cameras");
+  cameras_ = Buffer(ctx, VkDeviceSize(sets_) * sizeof(gpu::TemporalSetCamera), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "set cameras");
   bits_ = Buffer(ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "visibility bits");
 }
 
@@ -156,11 +151,9 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
   if (settings_.visibility == VisibilityBackend::Bvh) computeBvhVisibility(frame, perPixel);
   VkCommandBuffer cmd = frame.cmd;
   // This frame's camera for the set about to be gathered.
-  SetCamera cam;
-  float aspect = float(t.width) / float(t.height);
-  cam.viewProj = frame.snapshot.camera.projection(aspect) * frame.snapshot.camera.view;
-  cam.invViewProj = glm::inverse(cam.viewProj);
-  cameras_.upload(&cam, sizeof(cam), VkDeviceSize(currentSet_) * sizeof(SetCamera));
+  const dyngi::gpu::FrameUniforms view = render::cameraUniforms(frame.snapshot.camera, t.width, t.height);
+  gpu::TemporalSetCamera cam{view.viewProj, view.cameraPos, view.pixelRay0, view.pixelRayStepX, view.pixelRayStepY};
+  cameras_.upload(&cam, sizeof(cam), VkDeviceSize(currentSet_) * sizeof(gpu::TemporalSetCamera));
   {
     gpu::GatherPush pc{};
     if (voxels_ && voxels_->hasVolume()) {
@@ -186,9 +179,11 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
   paths_.markSetRendered(currentSet_);
   setCameras_[currentSet_] = cam.viewProj;
   lastCamera_ = cam.viewProj;
-  uint32_t validMask = 0;
-  for (uint32_t s = 0; s < sets_; ++s)
+  uint32_t validMask = 0, sameCamera = 0;
+  for (uint32_t s = 0; s < sets_; ++s) {
     if (lastRendered_[s] >= 0) validMask |= 1u << s;
+    if (setCameras_[s] == cam.viewProj) sameCamera |= 1u << s;
+  }
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "temporal_accumulate");
     raw_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
@@ -203,11 +198,10 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
         .storageBuffer(5, sumDepths_.handle())
         .storageImage(6, accumulated_.view())
         .push(ctx_, cmd, accumulate_);
-    struct {
-      uint32_t sets, set, mask, incremental;
-      float cutoff;
-      uint32_t setWasStored;
-    } pc{sets_, currentSet_, validMask, incremental ? 1u : 0u, settings_.reprojectionCutoff, setWasStored ? 1u : 0u};
+    gpu::AccumulatePush pc{};
+    pc.sets = glm::uvec4(sets_, currentSet_, validMask, sameCamera);
+    pc.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, 0u, 0u);
+    pc.params = glm::vec4(settings_.reprojectionCutoff, 0.0f, 0.0f, 0.0f);
     vkCmdPushConstants(cmd, accumulate_.layout(), kCS, 0, sizeof(pc), &pc);
     vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
   }
