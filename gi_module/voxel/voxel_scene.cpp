@@ -135,8 +135,13 @@ VoxelScene::RangeNeed VoxelScene::rangeNeed(uint64_t estimate, const Range* prev
   }
   // Known count: a moved or turned mesh rarely needs twice what it held (a thin sheet turning from an
   // axis to a diagonal comes closest); the estimate overshoots small triangles several times over. The
-  // range is kept while it has a quarter of headroom, so a count that wobbles does not move it.
-  return {std::min<uint64_t>(estimate, uint64_t(previous->lastCount) * 5 / 4 + 64), std::min(estimate, movingCapacity(*previous))};
+  // range is kept while it has a quarter of headroom, so a count that wobbles does not move it. A mesh
+  // that grew (scaled up, deformed larger) since that count needs it scaled by how much its estimate
+  // grew: sized from the old count alone it would overflow and lose voxels for a frame.
+  Range scaled = *previous;
+  if (previous->lastEstimate > 0 && estimate > previous->lastEstimate)
+    scaled.lastCount = uint32_t(std::min<double>(double(previous->lastCount) * double(estimate) / double(previous->lastEstimate), 4.0e9));
+  return {std::min<uint64_t>(estimate, uint64_t(scaled.lastCount) * 5 / 4 + 64), std::min(estimate, movingCapacity(scaled))};
 }
 
 void VoxelScene::compactRanges() {
@@ -238,7 +243,8 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     const scene::MeshData& mesh = snapshot.assets->mesh(d.mesh);
     auto it = ranges_.find(d.entity);
     Range r = it != ranges_.end() ? it->second : Range{};
-    RangeNeed need = rangeNeed(estimateFragments(mesh, toVoxel * d.model), it != ranges_.end() ? &r : nullptr);
+    const uint64_t estimate = estimateFragments(mesh, toVoxel * d.model);
+    RangeNeed need = rangeNeed(estimate, it != ranges_.end() ? &r : nullptr);
     if (it == ranges_.end() || r.capacity < need.minimum) {
       if (it != ranges_.end()) rangesToEmpty_.push_back(r);  // the old place must not keep stale voxels
       Range fresh;
@@ -251,6 +257,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
       newHighWater += need.fresh;
       r = fresh;
     }
+    r.lastEstimate = estimate;
     planned.push_back({d.entity, r});
     drawsToVoxelize_.push_back(i);
   }

@@ -236,10 +236,12 @@ TEST_F(VoxelTest, FragmentRangesAreCompactedWithoutLosingVoxels) {
   EXPECT_EQ(voxels->stats().fragments, fragments) << "every fragment survived the move";
   GridDiff same = diff(leaves(), before);
   EXPECT_EQ(same.missing + same.extra, 0u);
-  // What is allocated follows what is held: fragments (fragment, dense copy, node index, attributes)
-  // and the SVO's nodes, within a factor of 3 (the first frame held more than 3 times that).
+  // What is allocated follows what is held: fragments (the record, leaf attributes), the SVO's nodes
+  // with their cells and the occupancy pyramid, within a factor of 3 (the first frame held more than 3
+  // times that).
   const gi::VoxelStats& st = voxels->stats();
-  EXPECT_LT(st.totalBytes, 3 * (st.fragments * (16 + 16 + 4 + 32) + st.svoBytes));
+  const uint64_t pyramidBytes = ((((uint64_t(1) << 24) - 1) / 7) + 31) / 32 * 4;  // levels 0..7 of 128^3
+  EXPECT_LT(st.totalBytes, 3 * (st.fragments * (16 + 32) + 2 * st.svoBytes + pyramidBytes));
   // One sphere starts moving (its exact-size range is too small for a new pose: it gets a new one).
   for (int f = 0; f < 4; ++f) {
     world.write<scene::Transform>(spheres[1]).rotation = glm::angleAxis(0.4f * float(f + 1), glm::vec3(0.3f, 1.0f, 0.2f));
@@ -249,6 +251,42 @@ TEST_F(VoxelTest, FragmentRangesAreCompactedWithoutLosingVoxels) {
     GridDiff d = diff(leaves(), scratchLeaves());
     EXPECT_EQ(d.missing + d.extra, 0u) << "frame " << f;
   }
+}
+
+// A moving mesh's range is sized from its last count; one scaled up 5x in one frame (25x the surface)
+// must get a range grown with it, not overflow and lose voxels for a frame.
+TEST_F(VoxelTest, MeshScaledUpInOneFrameKeepsAllItsVoxels) {
+  sample::buildBuiltinScene("cornell", world, assets);
+  voxels = std::make_unique<gi::VoxelScene>(context(), gi::VoxelSettings{.resolution = 128});
+  renderer = std::make_unique<render::Renderer>(context());
+  renderer->addFeature(voxels.get());
+  renderer->resize(32, 32);
+  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
+  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(*voxels, assets));
+  step();
+  const uint64_t walls = voxels->stats().fragments;
+  ecs::Entity sphere = world.create();
+  scene::Transform t;
+  t.translation = {0.0f, 1.0f, 0.0f};
+  t.scale = glm::vec3(0.5f);
+  world.add(sphere, t);
+  world.add(sphere, scene::WorldTransform{t.matrix()});
+  world.add(sphere, scene::MeshInstance{assets.addMesh(scene::makeSphere(0.2f, 48, 24)), true});
+  world.add(sphere, scene::Material{.baseColor = glm::vec4(0.6f)});
+  for (int f = 0; f < 3; ++f) {  // moving: its range follows its count
+    world.write<scene::Transform>(sphere).translation.x += 0.02f;
+    step();
+  }
+  const uint64_t before = voxels->stats().fragments - walls;
+  world.write<scene::Transform>(sphere).scale = glm::vec3(2.5f);
+  step();
+  const uint64_t after = voxels->stats().fragments - walls;
+  std::printf("sphere scaled 5x: %llu -> %llu fragments, %u entities overflowed\n", (unsigned long long)before,
+              (unsigned long long)after, voxels->stats().overflowedEntities);
+  EXPECT_GT(after, 2 * before + 64) << "more than a moving range's slack: sized from the old count it overflows";
+  EXPECT_EQ(voxels->stats().overflowedEntities, 0u);
+  GridDiff d = diff(leaves(), scratchLeaves());
+  EXPECT_EQ(d.missing + d.extra, 0u) << "no voxel lost in the frame it grew";
 }
 
 // The node pool shrinks to what the first build used; when the scene then needs more, the build that

@@ -92,6 +92,7 @@ class VoxelScene final : public render::RenderFeature {
     uint32_t counter = 0;        // index into the counters buffer
     uint32_t lastCount = 0;      // fragments written (read back after the frame)
     uint32_t voxelizations = 0;  // how often the entity was voxelized (more than once: it moves)
+    uint64_t lastEstimate = 0;   // estimateFragments() when it was last voxelized (lastCount's pose)
     bool written = false;
   };
   // Fragment storage of `slots` slots at least; kept fragments are copied, nothing is re-voxelized.
