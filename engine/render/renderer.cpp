@@ -52,8 +52,7 @@ Renderer::Renderer(VulkanContext& ctx, const RendererSettings& settings) : ctx_(
   if (settings.gpuTimestamps) timer_ = std::make_unique<GpuTimer>(ctx);
   shadow_ = std::make_unique<ShadowPass>(ctx, ShadowPass::Settings{.mapSize = settings.shadowMapSize, .maxLayers = settings.maxShadowLayers});
   gbuffer_ = std::make_unique<GBufferPass>(ctx);
-  direct_ = std::make_unique<DirectLightingPass>(ctx);
-  composite_ = std::make_unique<CompositePass>(ctx);
+  lighting_ = std::make_unique<LightingPass>(ctx);
   tonemap_ = std::make_unique<TonemapPass>(ctx);
 }
 
@@ -80,7 +79,6 @@ bool Renderer::resize(uint32_t width, uint32_t height) {
   t.albedo = makeTarget(ctx_, width, height, VK_FORMAT_R8G8B8A8_UNORM, color, "gbuffer albedo");
   t.emissive = makeTarget(ctx_, width, height, VK_FORMAT_R16G16B16A16_SFLOAT, color, "gbuffer emissive");
   t.depth = makeTarget(ctx_, width, height, VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "depth");
-  t.direct = makeTarget(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "direct");
   t.indirect = makeTarget(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "indirect");
   t.hdr = makeTarget(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "hdr");
   t.ldr = makeTarget(ctx_, width, height, VK_FORMAT_R8G8B8A8_UNORM, storage, "ldr");
@@ -180,21 +178,20 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
   if (!settings_.featuresOnly) {
     shadow_->execute(frame);
     gbuffer_->execute(frame, textures);
-    direct_->execute(frame, *shadow_);
   }
   bool indirectWritten = false;
   for (RenderFeature* f : features_) indirectWritten |= f->record(frame);
   if (settings_.featuresOnly) {
     // nothing else to record
-  } else if (!indirectWritten) {
+  } else if (!indirectWritten) {  // readable as a target: zero, not last frame's
     targets_.indirect.transition(cmd_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     VkClearColorValue zero{};
     VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     vkCmdClearColorImage(cmd_, targets_.indirect.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
   }
   if (!settings_.featuresOnly) {
-    composite_->execute(frame);
-    for (RenderFeature* f : features_) f->recordAfterComposite(frame);
+    lighting_->execute(frame, *shadow_, indirectWritten);
+    for (RenderFeature* f : features_) f->recordAfterLighting(frame);
     tonemap_->execute(frame);
   }
 
@@ -271,7 +268,6 @@ Image& Renderer::target(TargetId id) {
     case TargetId::Normal: return targets_.normal;
     case TargetId::Albedo: return targets_.albedo;
     case TargetId::Emissive: return targets_.emissive;
-    case TargetId::Direct: return targets_.direct;
     case TargetId::Indirect: return targets_.indirect;
     case TargetId::Hdr: return targets_.hdr;
     case TargetId::Ldr: return targets_.ldr;

@@ -397,7 +397,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
   return false;  // the voxel scene feeds other stages; it does not write indirect light
 }
 
-void VoxelScene::recordAfterComposite(render::FrameContext& frame) {
+void VoxelScene::recordAfterLighting(render::FrameContext& frame) {
   if (settings_.debugView == VoxelDebugView::None || !haveVolume_) return;
   render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "voxel_debug_view");
   render::RenderTargets& t = frame.targets;

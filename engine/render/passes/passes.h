@@ -58,22 +58,13 @@ class GBufferPass {
   Pipeline pipeline_;
 };
 
-class DirectLightingPass {
+// The frame's radiance into targets.hdr: emission + shadowed direct light + albedo x targets.indirect
+// (when `hasIndirect`).
+class LightingPass {
  public:
-  static constexpr const char* kName = "direct";
-  explicit DirectLightingPass(VulkanContext& ctx);
-  void execute(FrameContext& frame, ShadowPass& shadows);
-
- private:
-  VulkanContext& ctx_;
-  Pipeline pipeline_;
-};
-
-class CompositePass {
- public:
-  static constexpr const char* kName = "composite";
-  explicit CompositePass(VulkanContext& ctx);
-  void execute(FrameContext& frame);
+  static constexpr const char* kName = "lighting";
+  explicit LightingPass(VulkanContext& ctx);
+  void execute(FrameContext& frame, ShadowPass& shadows, bool hasIndirect);
 
  private:
   VulkanContext& ctx_;
@@ -90,7 +81,5 @@ class TonemapPass {
   VulkanContext& ctx_;
   Pipeline pipeline_;
 };
-
-
 
 }  // namespace dyngi::render

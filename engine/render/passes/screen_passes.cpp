@@ -1,8 +1,7 @@
-// The full-screen compute passes: direct lighting, composite, tone mapping.
+// The full-screen compute passes: lighting and tone mapping.
 #include "shared/gpu_types.h"
 #include "passes.h"
-#include "spirv/composite.comp.spv.h"
-#include "spirv/direct.comp.spv.h"
+#include "spirv/lighting.comp.spv.h"
 #include "spirv/tonemap.comp.spv.h"
 
 namespace dyngi::render {
@@ -15,7 +14,7 @@ void prepareOutput(VkCommandBuffer cmd, Image& img) { img.transition(cmd, VK_IMA
 void prepareInput(VkCommandBuffer cmd, Image& img) { img.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, kCompute, kRead); }
 }  // namespace
 
-DirectLightingPass::DirectLightingPass(VulkanContext& ctx) : ctx_(ctx) {
+LightingPass::LightingPass(VulkanContext& ctx) : ctx_(ctx) {
   const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
                        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
                        {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
@@ -24,16 +23,17 @@ DirectLightingPass::DirectLightingPass(VulkanContext& ctx) : ctx_(ctx) {
                        {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
                        {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
                        {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
-  pipeline_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_direct_comp), b, 0, "direct");
+                       {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {9, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
+  pipeline_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_lighting_comp), b, sizeof(uint32_t), "lighting");
 }
 
-void DirectLightingPass::execute(FrameContext& frame, ShadowPass& shadows) {
+void LightingPass::execute(FrameContext& frame, ShadowPass& shadows, bool hasIndirect) {
   ScopedPass scope(ctx_, frame.timer, frame.cmd, kName);
   VkCommandBuffer cmd = frame.cmd;
   RenderTargets& t = frame.targets;
-  for (Image* in : {&t.position, &t.normal, &t.albedo, &t.emissive}) prepareInput(cmd, *in);
-  prepareOutput(cmd, t.direct);
+  for (Image* in : {&t.position, &t.normal, &t.albedo, &t.emissive, &t.indirect}) prepareInput(cmd, *in);
+  prepareOutput(cmd, t.hdr);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
   DescriptorWrites()
       .uniformBuffer(0, frame.frameUniforms.handle())
@@ -44,36 +44,11 @@ void DirectLightingPass::execute(FrameContext& frame, ShadowPass& shadows) {
       .storageBuffer(5, shadows.lights().handle())
       .storageBuffer(6, shadows.matrices().handle())
       .sampledImage(7, shadows.shadowMap().view(), shadows.compareSampler(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-      .storageImage(8, t.direct.view())
+      .storageImage(8, t.indirect.view())
+      .storageImage(9, t.hdr.view())
       .push(ctx_, cmd, pipeline_);
-  vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
-}
-
-CompositePass::CompositePass(VulkanContext& ctx) : ctx_(ctx) {
-  const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
-  pipeline_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_composite_comp), b, sizeof(uint32_t) * 2, "composite");
-}
-
-void CompositePass::execute(FrameContext& frame) {
-  ScopedPass scope(ctx_, frame.timer, frame.cmd, kName);
-  VkCommandBuffer cmd = frame.cmd;
-  RenderTargets& t = frame.targets;
-  prepareInput(cmd, t.direct);
-  prepareInput(cmd, t.indirect);
-  prepareInput(cmd, t.albedo);
-  prepareOutput(cmd, t.hdr);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
-  DescriptorWrites()
-      .storageImage(0, t.direct.view())
-      .storageImage(1, t.indirect.view())
-      .sampledImage(2, t.albedo.view(), frame.nearestSampler)
-      .storageImage(3, t.hdr.view())
-      .push(ctx_, cmd, pipeline_);
-  uint32_t size[2] = {t.width, t.height};
-  vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(size), size);
+  const uint32_t flag = hasIndirect ? 1u : 0u;
+  vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(flag), &flag);
   vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
 }
 

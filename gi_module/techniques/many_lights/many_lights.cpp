@@ -255,7 +255,7 @@ bool ManyLights::record(render::FrameContext& frame) {
   return true;
 }
 
-void ManyLights::recordAfterComposite(render::FrameContext& frame) {
+void ManyLights::recordAfterLighting(render::FrameContext& frame) {
   if (settings_.view == ManyLightsView::Final || !raw_.valid()) return;
   render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "many_lights_debug_view");
   render::RenderTargets& t = frame.targets;

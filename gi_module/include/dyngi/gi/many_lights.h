@@ -2,7 +2,7 @@
 // Many-lights GI with SVO visibility (after Sun & Agu): reflective shadow maps per light, VPLs
 // importance-sampled from RSM flux, extra bounces shot through the voxel scene, an interleaved KxK
 // gather with SVO-restart visibility, a geometry-aware merge filter. Writes targets.indirect; the
-// engine's composite adds albedo x indirect to direct light. Stages: rsm, vpl_generate, vpl_bounce,
+// engine's lighting pass adds albedo x indirect to direct light. Stages: rsm, vpl_generate, vpl_bounce,
 // indirect, filter (plus the voxel scene's voxelize and svo_build).
 #include <memory>
 
@@ -43,7 +43,7 @@ class ManyLights final : public render::RenderFeature {
   const char* name() const override { return "many_lights"; }
   void prepare(render::VulkanContext& ctx, const render::RenderSnapshot& snapshot) override;
   bool record(render::FrameContext& frame) override;
-  void recordAfterComposite(render::FrameContext& frame) override;
+  void recordAfterLighting(render::FrameContext& frame) override;
   void resize(render::VulkanContext& ctx, uint32_t width, uint32_t height) override;
 
   ManyLightsSettings& settings() { return settings_; }

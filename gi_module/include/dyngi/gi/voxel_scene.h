@@ -54,7 +54,7 @@ class VoxelScene final : public render::RenderFeature {
   void prepare(render::VulkanContext& ctx, const render::RenderSnapshot& snapshot) override;
   bool record(render::FrameContext& frame) override;
   void frameFinished(render::VulkanContext& ctx) override;
-  void recordAfterComposite(render::FrameContext& frame) override;
+  void recordAfterLighting(render::FrameContext& frame) override;
 
   // Change tracking (called by VoxelSyncSystem, or by hand).
   void markDirty(ecs::Entity e) { dirty_.insert(e); }

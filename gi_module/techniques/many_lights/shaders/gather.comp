@@ -3,7 +3,7 @@
 // only VPLs s, s + K^2, ...; one workgroup covers pixels of one sub-image, so its threads walk the same
 // VPLs (coherent VPL and SVO reads). E = sum flux G V with G = cos_x cos_y / max(B, d^2) and V from the
 // SVO-restart march; dim or back-facing VPLs are skipped before marching. Writes K^2 E / pi^2, so the
-// K x K filter's average is the full sum's E / pi (what composite multiplies by albedo), packed with the
+// K x K filter's average is the full sum's E / pi (what the lighting pass multiplies by albedo), packed with the
 // pixel's depth and normal for the filter (filter_input.glsl).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"

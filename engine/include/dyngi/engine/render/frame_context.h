@@ -19,9 +19,8 @@ struct RenderTargets {
   Image albedo;     // RGBA8:   rgb linear base colour, a metallic
   Image emissive;   // RGBA16F: rgb emitted radiance
   Image depth;      // D32
-  Image direct;     // RGBA32F: emission + direct lighting
   Image indirect;   // RGBA32F: written by GI features (E_indirect / pi); cleared to 0 otherwise
-  Image hdr;        // RGBA32F: direct + albedo * indirect, linear radiance before exposure
+  Image hdr;        // RGBA32F: emission + direct + albedo * indirect, linear radiance before exposure
   Image ldr;        // RGBA8:   tone-mapped, sRGB-encoded display image
 };
 

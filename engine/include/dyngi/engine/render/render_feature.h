@@ -1,7 +1,8 @@
 #pragma once
 // The hook through which a subsystem (dyngi's GI, or a user's own effect) adds GPU work to the frame
-// without the engine knowing about it. A feature records after direct lighting and before composite;
-// it reads the G-buffer and writes targets.indirect (or its own images).
+// without the engine knowing about it. A feature records after the G-buffer and shadow maps and before
+// lighting; it reads the G-buffer and writes targets.indirect (or its own images), which lighting
+// multiplies by albedo and adds to direct light.
 #include "dyngi/engine/render/frame_context.h"
 
 namespace dyngi::render {
@@ -14,8 +15,8 @@ class RenderFeature {
   virtual void prepare(VulkanContext& /*ctx*/, const RenderSnapshot& /*snapshot*/) {}
   // Records GPU work. Returns true when it wrote targets.indirect this frame (else it is cleared).
   virtual bool record(FrameContext& frame) = 0;
-  // Records after composite, before tone mapping: debug views that replace targets.hdr.
-  virtual void recordAfterComposite(FrameContext& /*frame*/) {}
+  // Records after lighting, before tone mapping: debug views that replace targets.hdr.
+  virtual void recordAfterLighting(FrameContext& /*frame*/) {}
   // Called after the frame's fence: read back results, resolve queries.
   virtual void frameFinished(VulkanContext& /*ctx*/) {}
   // Called when the render targets are recreated (resize).

@@ -1,5 +1,6 @@
 #pragma once
-// The deferred renderer: shadow -> gbuffer -> direct -> [render features] -> composite -> tonemap
+// The deferred renderer: shadow -> gbuffer -> [render features] -> lighting (direct + albedo x indirect)
+// -> [features after lighting] -> tonemap
 // -> present or read back. One frame in flight: the CPU waits for each frame's fence. On lavapipe the
 // "GPU" is the CPU, so overlap would buy nothing there; on a discrete GPU this is the first thing to
 // change (see docs/ARCHITECTURE.md).
@@ -18,8 +19,7 @@ namespace dyngi::render {
 
 class ShadowPass;
 class GBufferPass;
-class DirectLightingPass;
-class CompositePass;
+class LightingPass;
 class TonemapPass;
 
 struct RendererSettings {
@@ -34,7 +34,7 @@ struct RendererSettings {
   bool featuresOnly = false;
 };
 
-enum class TargetId { Position, Normal, Albedo, Emissive, Direct, Indirect, Hdr, Ldr };
+enum class TargetId { Position, Normal, Albedo, Emissive, Indirect, Hdr, Ldr };
 
 struct FrameStats {
   std::vector<std::pair<std::string, double>> gpuMs;  // per pass, recording order
@@ -96,8 +96,7 @@ class Renderer {
   std::unique_ptr<GpuTimer> timer_;
   std::unique_ptr<ShadowPass> shadow_;
   std::unique_ptr<GBufferPass> gbuffer_;
-  std::unique_ptr<DirectLightingPass> direct_;
-  std::unique_ptr<CompositePass> composite_;
+  std::unique_ptr<LightingPass> lighting_;
   std::unique_ptr<TonemapPass> tonemap_;
   std::vector<RenderFeature*> features_;
   FrameStats stats_;

@@ -1,6 +1,8 @@
 #version 460
-// Deferred direct lighting: emission + Lambert diffuse from every light, shadowed through the
-// shadow-map array (bilinear PCF, 3x3-texel tent). Output is linear radiance.
+// Deferred lighting, the frame's radiance: emission + Lambert diffuse from every light, shadowed
+// through the shadow-map array (bilinear PCF, 3x3-texel tent), + albedo x the indirect light render
+// features wrote (E_indirect / pi). Runs after the features: one pass instead of a direct pass and a
+// composite pass (no direct image written and read back).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 #include "shared/lighting.glsl"
@@ -15,7 +17,9 @@ layout(set = 0, binding = 4) uniform sampler2D gEmissive;
 layout(set = 0, binding = 5) readonly buffer Lights { GpuLight lights[]; };
 layout(set = 0, binding = 6) readonly buffer ShadowMatrices { mat4 shadowViewProj[]; };
 layout(set = 0, binding = 7) uniform sampler2DArrayShadow shadowMaps;
-layout(set = 0, binding = 8, rgba32f) uniform writeonly image2D outDirect;
+layout(set = 0, binding = 8, rgba32f) uniform readonly image2D indirect;
+layout(set = 0, binding = 9, rgba32f) uniform writeonly image2D outHdr;
+layout(push_constant) uniform Push { uint hasIndirect; };  // 0: no feature wrote indirect light
 
 const float PI = 3.14159265358979;
 
@@ -54,7 +58,7 @@ void main() {
   if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return;
   vec4 pos = texelFetch(gPosition, px, 0);
   if (pos.w == 0.0) {
-    imageStore(outDirect, px, vec4(frame.background.rgb, 1.0));
+    imageStore(outHdr, px, vec4(frame.background.rgb, 1.0));
     return;
   }
   vec3 n = normalize(texelFetch(gNormal, px, 0).xyz);
@@ -71,5 +75,6 @@ void main() {
     if (max(e.r, max(e.g, e.b)) <= 0.0) continue;
     radiance += diffuse * e * shadowFactor(L, pos.xyz, n, dist);
   }
-  imageStore(outDirect, px, vec4(radiance, 1.0));
+  if (hasIndirect != 0u) radiance += albedoMetal.rgb * (1.0 - albedoMetal.a) * imageLoad(indirect, px).rgb;
+  imageStore(outHdr, px, vec4(radiance, 1.0));
 }
