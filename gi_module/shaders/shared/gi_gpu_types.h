@@ -133,7 +133,8 @@ struct AccumulatePush {
   uvec4 sets;           // x set count, y the set gathered this frame, z sets stored at least once (bits),
                         // w sets stored from the current camera (bits)
   uvec4 mode;           // x 1: incremental (camera as last frame, set y last stored from it, sums current),
-                        // y 1: set y held a sample before this frame
+                        // y 1: set y held a sample before this frame, zw sub-image size of the per-pixel
+                        // buffers' layout (ceil(width / K), ceil(height / K))
   vec4 params;          // x reprojection cut-off (relative to the view distance)
 };
 

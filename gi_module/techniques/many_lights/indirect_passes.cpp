@@ -9,16 +9,20 @@
 
 namespace dyngi::gi {
 
-IndirectGatherPass::IndirectGatherPass(render::VulkanContext& ctx) : ctx_(ctx) {
+IndirectGatherPass::IndirectGatherPass(render::VulkanContext& ctx, bool accumulate) : ctx_(ctx), accumulate_(accumulate) {
   const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS},
                        {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS}, {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},
                        {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},         {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
-                       {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS}};
-  pipeline_ = render::Pipeline::compute(ctx, DYNGI_SHADER(spv_gather_comp), b, sizeof(gpu::GatherPush), "indirect_gather");
+                       {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},         {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},
+                       {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},         {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},
+                       {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS}};
+  const uint32_t spec[] = {accumulate ? 1u : 0u};
+  pipeline_ = render::Pipeline::compute(ctx, DYNGI_SHADER(spv_gather_comp), b, sizeof(gpu::GatherPush) + sizeof(gpu::AccumulatePush),
+                                        accumulate ? "indirect_gather_accumulate" : "indirect_gather", spec);
 }
 
 void IndirectGatherPass::record(render::FrameContext& frame, VkBuffer vpls, VkBuffer nodes, VkBuffer bits, render::Image& raw,
-                                const gpu::GatherPush& pc) {
+                                const gpu::GatherPush& pc, const TemporalBuffers* temporal) {
   render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "indirect");
   VkCommandBuffer cmd = frame.cmd;
   render::RenderTargets& t = frame.targets;
@@ -26,6 +30,8 @@ void IndirectGatherPass::record(render::FrameContext& frame, VkBuffer vpls, VkBu
     in->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   raw.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
+  const bool acc = accumulate_ && temporal;
+  // Without accumulation the temporal bindings are never read; any valid buffer keeps them defined.
   DescriptorWrites()
       .uniformBuffer(0, frame.frameUniforms.handle())
       .sampledImage(1, t.position.view(), frame.nearestSampler)
@@ -34,8 +40,13 @@ void IndirectGatherPass::record(render::FrameContext& frame, VkBuffer vpls, VkBu
       .storageBuffer(4, nodes)
       .storageImage(5, raw.view())
       .storageBuffer(6, bits)
+      .storageBuffer(7, acc ? temporal->setIndirect : vpls)
+      .storageBuffer(8, acc ? temporal->cameras : vpls)
+      .storageBuffer(9, acc ? temporal->sums : vpls)
+      .storageBuffer(10, acc ? temporal->sumDepths : vpls)
       .push(ctx_, cmd, pipeline_);
   vkCmdPushConstants(cmd, pipeline_.layout(), kCS, 0, sizeof(pc), &pc);
+  if (acc) vkCmdPushConstants(cmd, pipeline_.layout(), kCS, sizeof(pc), sizeof(temporal->push), &temporal->push);
   const uint32_t K = pc.info.y;
   vkCmdDispatch(cmd, dispatchGroups(dispatchGroups(t.width, K), 8), dispatchGroups(dispatchGroups(t.height, K), 8), K * K);
 }

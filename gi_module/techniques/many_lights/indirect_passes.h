@@ -9,14 +9,23 @@ namespace dyngi::gi {
 
 class IndirectGatherPass {
  public:
-  explicit IndirectGatherPass(render::VulkanContext& ctx);
-  // Gathers `vpls` into `raw` (rgba32ui, filter_input.glsl's packing; "indirect" in stats). `nodes` is the SVO (visibility 0), `bits` the
-  // precomputed visibility (visibility 2); pass any valid buffer when unused.
-  void record(render::FrameContext& frame, VkBuffer vpls, VkBuffer nodes, VkBuffer bits, render::Image& raw, const gpu::GatherPush& pc);
+  // With `accumulate` (the temporal technique) each pixel's light is accumulated into the temporal sets
+  // right away (temporal_accumulate.glsl) and `raw` receives the accumulated light.
+  IndirectGatherPass(render::VulkanContext& ctx, bool accumulate = false);
+  // The temporal technique's buffers (accumulate only).
+  struct TemporalBuffers {
+    VkBuffer setIndirect = VK_NULL_HANDLE, cameras = VK_NULL_HANDLE, sums = VK_NULL_HANDLE, sumDepths = VK_NULL_HANDLE;
+    gpu::AccumulatePush push{};
+  };
+  // Gathers `vpls` into `raw` (rgba32ui, filter_input.glsl's packing; "indirect" in stats). `nodes` is the
+  // SVO (visibility 0), `bits` the precomputed visibility (visibility 2); pass any valid buffer when unused.
+  void record(render::FrameContext& frame, VkBuffer vpls, VkBuffer nodes, VkBuffer bits, render::Image& raw, const gpu::GatherPush& pc,
+              const TemporalBuffers* temporal = nullptr);
 
  private:
   render::VulkanContext& ctx_;
   render::Pipeline pipeline_;
+  bool accumulate_ = false;
 };
 
 class IndirectFilterPass {

@@ -7,7 +7,6 @@
 #include "dyngi/engine/render/frame_uniforms.h"
 #include "shaders/shared/gi_gpu_types.h"
 #include "techniques/many_lights/indirect_passes.h"
-#include "spirv/accumulate.comp.spv.h"
 
 #include "gpu_aliases.h"
 
@@ -21,11 +20,8 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
   sets_ = std::min(paths.settings().temporalSets, 32u);
   perSet_ = (paths.settings().count + sets_ - 1) / sets_;
   lastRendered_.assign(sets_, -1);
-  gatherPass_ = std::make_unique<IndirectGatherPass>(ctx);
+  gatherPass_ = std::make_unique<IndirectGatherPass>(ctx, /*accumulate=*/true);
   filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
-  const Binding accumulateB[] = {{0, kUBO, kCS},  {1, kStorageImage, kCS}, {2, kSSBO, kCS},        {3, kSSBO, kCS},
-                                 {4, kSSBO, kCS}, {5, kSSBO, kCS},         {6, kStorageImage, kCS}};
-  accumulate_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_accumulate_comp), accumulateB, sizeof(gpu::AccumulatePush), "temporal_accumulate");
   vpls_ = Buffer(ctx, VkDeviceSize(perSet_) * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "temporal vpls");
   cameras_ = Buffer(ctx, VkDeviceSize(sets_) * sizeof(gpu::TemporalSetCamera), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "set cameras");
   bits_ = Buffer(ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "visibility bits");
@@ -51,12 +47,15 @@ void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t width, uint32
     d.name = name;
     return Image(ctx, d);
   };
-  raw_ = make(VK_FORMAT_R32G32B32A32_UINT, 1, "temporal raw");  // filter_input.glsl's packing, as is accumulated_
-  accumulated_ = make(VK_FORMAT_R32G32B32A32_UINT, 1, "temporal accumulated");
-  VkDeviceSize pixels = VkDeviceSize(width) * height * sets_;
-  setIndirect_ = Buffer(ctx, pixels * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set indirect + depth");
-  sums_ = Buffer(ctx, VkDeviceSize(width) * height * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sums");
-  sumDepths_ = Buffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sum depths");
+  accumulated_ = make(VK_FORMAT_R32G32B32A32_UINT, 1, "temporal accumulated");  // filter_input.glsl's packing
+  // Per-pixel buffers in sub-image-major order (temporal_accumulate.glsl): K^2 sub-images of
+  // ceil(width / K) x ceil(height / K).
+  const uint32_t K = std::clamp(settings_.interleave, 1u, 8u);
+  subSize_ = glm::uvec2((width + K - 1) / K, (height + K - 1) / K);
+  const VkDeviceSize layer = VkDeviceSize(K) * K * subSize_.x * subSize_.y;
+  setIndirect_ = Buffer(ctx, layer * sets_ * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set indirect + depth");
+  sums_ = Buffer(ctx, layer * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sums");
+  sumDepths_ = Buffer(ctx, layer * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sum depths");
   setCameras_.assign(sets_, glm::mat4(0.0f));
   lastCamera_ = glm::mat4(0.0f);
   std::fill(lastRendered_.begin(), lastRendered_.end(), -1);  // stored buffers are gone
@@ -141,7 +140,7 @@ void TemporalIndirect::computeBvhVisibility(render::FrameContext& frame, uint32_
 }
 
 bool TemporalIndirect::record(render::FrameContext& frame) {
-  if (!raw_.valid()) return false;
+  if (!accumulated_.valid()) return false;
   if (settings_.visibility == VisibilityBackend::Svo && !voxels_->hasVolume()) return false;
   render::RenderTargets& t = frame.targets;
   const uint32_t K = std::clamp(settings_.interleave, 1u, 8u), K2 = K * K;
@@ -149,28 +148,11 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
   // (No ScopedPass here: the mid-frame submit would split a debug label across command buffers; the
   // CPU time is reported as lastBvhVisibilityMs.)
   if (settings_.visibility == VisibilityBackend::Bvh) computeBvhVisibility(frame, perPixel);
-  VkCommandBuffer cmd = frame.cmd;
   // This frame's camera for the set about to be gathered.
   const dyngi::gpu::FrameUniforms view = render::cameraUniforms(frame.snapshot.camera, t.width, t.height);
   gpu::TemporalSetCamera cam{view.viewProj, view.cameraPos, view.pixelRay0, view.pixelRayStepX, view.pixelRayStepY};
   cameras_.upload(&cam, sizeof(cam), VkDeviceSize(currentSet_) * sizeof(gpu::TemporalSetCamera));
-  {
-    gpu::GatherPush pc{};
-    if (voxels_ && voxels_->hasVolume()) {
-      const VoxelVolume& vol = voxels_->volume();
-      pc.worldToVoxel = glm::vec4(vol.origin, 1.0f / vol.voxelSize);
-      pc.params = glm::vec4(settings_.distanceClamp, settings_.luminanceThreshold, settings_.liftVoxels, float(vol.resolution));
-      pc.info = glm::uvec4(perSet_, K, 0u, vol.depth());
-    } else {
-      pc.params = glm::vec4(settings_.distanceClamp, settings_.luminanceThreshold, 0.0f, 1.0f);
-      pc.info = glm::uvec4(perSet_, K, 1u, 0u);
-    }
-    if (settings_.visibility == VisibilityBackend::Bvh) pc.info.z = 2u;
-    if (settings_.visibility == VisibilityBackend::None) pc.info.z = 1u;
-    pc.range = glm::uvec4(0u, perPixel, 0u, 0u);
-    gatherPass_->record(frame, vpls_.handle(), voxels_ ? voxels_->nodes().handle() : vpls_.handle(), bits_.handle(), raw_, pc);
-  }
-  // Incremental accumulation when nothing but this set changed for this camera (see accumulate.comp);
+  // Incremental accumulation when nothing but this set changed for this camera (see temporal_accumulate.glsl);
   // a full reprojection otherwise, and every 256 frames to wash out float drift in the running sums.
   const bool setWasStored = lastRendered_[currentSet_] >= 0;
   const bool incremental = cam.viewProj == lastCamera_ && setWasStored && setCameras_[currentSet_] == cam.viewProj &&
@@ -185,25 +167,24 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     if (setCameras_[s] == cam.viewProj) sameCamera |= 1u << s;
   }
   {
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "temporal_accumulate");
-    raw_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-    accumulated_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, accumulate_.handle());
-    DescriptorWrites()
-        .uniformBuffer(0, frame.frameUniforms.handle())
-        .storageImage(1, raw_.view())
-        .storageBuffer(2, setIndirect_.handle())
-        .storageBuffer(3, cameras_.handle())
-        .storageBuffer(4, sums_.handle())
-        .storageBuffer(5, sumDepths_.handle())
-        .storageImage(6, accumulated_.view())
-        .push(ctx_, cmd, accumulate_);
-    gpu::AccumulatePush pc{};
-    pc.sets = glm::uvec4(sets_, currentSet_, validMask, sameCamera);
-    pc.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, 0u, 0u);
-    pc.params = glm::vec4(settings_.reprojectionCutoff, 0.0f, 0.0f, 0.0f);
-    vkCmdPushConstants(cmd, accumulate_.layout(), kCS, 0, sizeof(pc), &pc);
-    vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
+    gpu::GatherPush pc{};
+    if (voxels_ && voxels_->hasVolume()) {
+      const VoxelVolume& vol = voxels_->volume();
+      pc.worldToVoxel = glm::vec4(vol.origin, 1.0f / vol.voxelSize);
+      pc.params = glm::vec4(settings_.distanceClamp, settings_.luminanceThreshold, settings_.liftVoxels, float(vol.resolution));
+      pc.info = glm::uvec4(perSet_, K, 0u, vol.depth());
+    } else {
+      pc.params = glm::vec4(settings_.distanceClamp, settings_.luminanceThreshold, 0.0f, 1.0f);
+      pc.info = glm::uvec4(perSet_, K, 1u, 0u);
+    }
+    if (settings_.visibility == VisibilityBackend::Bvh) pc.info.z = 2u;
+    if (settings_.visibility == VisibilityBackend::None) pc.info.z = 1u;
+    pc.range = glm::uvec4(0u, perPixel, 0u, 0u);
+    IndirectGatherPass::TemporalBuffers tb{setIndirect_.handle(), cameras_.handle(), sums_.handle(), sumDepths_.handle(), {}};
+    tb.push.sets = glm::uvec4(sets_, currentSet_, validMask, sameCamera);
+    tb.push.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, subSize_.x, subSize_.y);
+    tb.push.params = glm::vec4(settings_.reprojectionCutoff, 0.0f, 0.0f, 0.0f);
+    gatherPass_->record(frame, vpls_.handle(), voxels_ ? voxels_->nodes().handle() : vpls_.handle(), bits_.handle(), accumulated_, pc, &tb);
   }
   filterPass_->record(frame, accumulated_, K, settings_.filterPlaneTolerance);
   return true;

@@ -7,7 +7,8 @@
 // result is kept per set with its depth and camera; every frame all sets are reprojected into the
 // current view (samples whose surface moved more than the cut-off are dropped) and summed, then the
 // geometry-aware filter (the discontinuity buffer) removes the interleaving pattern.
-// Stages: indirect, temporal_accumulate (store + reprojection, O(1) per pixel for a still camera), filter;
+// Stages: indirect (the gather, which also stores the set and accumulates: O(1) per pixel for a still
+// camera, reprojection otherwise), filter;
 // the Embree visibility's CPU time is reported separately.
 #include <memory>
 #include <vector>
@@ -69,9 +70,9 @@ class TemporalIndirect final : public render::RenderFeature {
   std::vector<TemporalVpl> setVpls_;  // CPU copy of the VPLs uploaded this frame
   render::Buffer vpls_, cameras_, bits_, setIndirect_, sums_, sumDepths_;
   glm::mat4 lastCamera_{0.0f};
-  render::Image raw_, accumulated_;
+  render::Image accumulated_;  // the gather's accumulated light, the filter's input
+  glm::uvec2 subSize_{0};      // sub-image size of the per-pixel buffers' layout
   std::vector<glm::mat4> setCameras_;   // CPU copy: which sets were stored from the current camera
-  render::Pipeline accumulate_;
   std::unique_ptr<class IndirectGatherPass> gatherPass_;
   std::unique_ptr<class IndirectFilterPass> filterPass_;
   double bvhMs_ = 0.0;

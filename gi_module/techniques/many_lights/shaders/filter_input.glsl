@@ -3,7 +3,7 @@
 //   x  view depth of the pixel's surface (float bits; 0: no surface),
 //   y  its normal, octahedral, snorm 2 x 16 bits (~0.003 rad),
 //   zw indirect light rgb as half floats (clamped to the half range).
-// The gather writes it; the temporal accumulation rewrites the light and keeps x and y.
+// The gather writes it (with the temporal technique: the accumulated light, temporal_accumulate.glsl).
 // Needs FrameUniforms `frame` (shared/gpu_types.h) declared before inclusion.
 
 vec2 octEncode(vec3 n) {
@@ -31,9 +31,10 @@ uvec2 packFilterLight(vec3 light) {
   return uvec2(packHalf2x16(light.rg), packHalf2x16(vec2(light.b, 0.0)));
 }
 
-uvec4 packFilterInput(float viewDepth, vec3 n, vec3 light) {
-  return uvec4(floatBitsToUint(viewDepth), packSnorm2x16(octEncode(n)), packFilterLight(light));
+uvec4 packFilterInput(float viewDepth, uint packedNormal, vec3 light) {
+  return uvec4(floatBitsToUint(viewDepth), packedNormal, packFilterLight(light));
 }
+uint packFilterNormal(vec3 n) { return packSnorm2x16(octEncode(n)); }
 
 vec3 filterLight(uvec4 t) { return vec3(unpackHalf2x16(t.z), unpackHalf2x16(t.w).x); }
 float filterViewDepth(uvec4 t) { return uintBitsToFloat(t.x); }

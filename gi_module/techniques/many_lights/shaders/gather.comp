@@ -3,12 +3,15 @@
 // only VPLs s, s + K^2, ...; one workgroup covers pixels of one sub-image, so its threads walk the same
 // VPLs (coherent VPL and SVO reads). E = sum flux G V with G = cos_x cos_y / max(B, d^2) and V from the
 // SVO-restart march; dim or back-facing VPLs are skipped before marching. Writes K^2 E / pi^2, so the
-// K x K filter's average is the full sum's E / pi (what the lighting pass multiplies by albedo), packed with the
-// pixel's depth and normal for the filter (filter_input.glsl).
+// K x K filter's average is the full sum's E / pi (what the lighting pass multiplies by albedo), packed
+// with the pixel's depth and normal for the filter (filter_input.glsl). With kAccumulate (the temporal
+// technique) the light first goes into the temporal sets and sums (temporal_accumulate.glsl) and what
+// is written is the accumulated light.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 0) const bool kAccumulate = false;
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D gPosition;
 layout(set = 0, binding = 2) uniform sampler2D gNormal;
@@ -16,9 +19,15 @@ layout(set = 0, binding = 3) readonly buffer Vpls { GpuVpl vpls[]; };
 layout(set = 0, binding = 4) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = 5, rgba32ui) uniform writeonly uimage2D outRaw;  // filter_input.glsl's packing
 layout(set = 0, binding = 6) readonly buffer VisibilityBits { uint visibleBits[]; };  // visibility mode 2
+// Temporal accumulation only (kAccumulate).
+layout(set = 0, binding = 7) buffer SetIndirect { vec4 setIndirect[]; };
+layout(set = 0, binding = 8) readonly buffer Cameras { TemporalSetCamera cameras[]; };
+layout(set = 0, binding = 9) buffer Sums { vec4 sums[]; };
+layout(set = 0, binding = 10) buffer SumDepths { float sumDepths[]; };
+layout(push_constant) uniform Push { GatherPush pc; AccumulatePush acc; };
 #include "svo_traverse.glsl"
 #include "filter_input.glsl"
-layout(push_constant) uniform Push { GatherPush pc; };
+#include "temporal_accumulate.glsl"
 
 const float PI = 3.14159265358979;
 
@@ -28,35 +37,42 @@ void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy) * int(K) + ivec2(s % K, s / K);
   if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return;
   vec4 pos = texelFetch(gPosition, px, 0);
-  if (pos.w == 0.0) { imageStore(outRaw, px, uvec4(0u)); return; }
-  vec3 x = pos.xyz;
-  vec3 nx = normalize(texelFetch(gNormal, px, 0).xyz);
-  vec3 xv = (x - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + nx * pc.params.z;
-  vec3 e = vec3(0.0);
+  vec3 e = vec3(0.0), nx = vec3(0.0, 0.0, 1.0);
+  float depth = -1.0;
   uint K2 = K * K;
-  // Importance sampling gives every first-bounce VPL the same luminance; the threshold is relative to it.
-  float threshold = pc.params.y * vpls[pc.range.x].flux.w;
-  uint bitBase = (uint(px.y) * frame.sizeAndCount.x + uint(px.x)) * pc.range.y;
-  uint m = 0u;
-  for (uint i = s; i < pc.info.x; i += K2, ++m) {
-    GpuVpl v = vpls[pc.range.x + i];
-    if (v.position.w < 0.0 || v.flux.w <= threshold) continue;
-    vec3 d = v.position.xyz - x;
-    float d2 = dot(d, d);
-    if (d2 <= 0.0) continue;
-    vec3 w = d * inversesqrt(d2);
-    float cx = dot(nx, w), cy = -dot(v.normal.xyz, w);
-    if (cx <= 0.0 || cy <= 0.0) continue;
-    float g = cx * cy / max(pc.params.x, d2);
-    if (pc.info.z == 2u) {
-      uint bit = bitBase + m;
-      if ((visibleBits[bit >> 5] & (1u << (bit & 31u))) == 0u) continue;
-    } else if (pc.info.z == 0u) {
-      vec3 yv = (v.position.xyz - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + v.normal.xyz * pc.params.z;
-      uint steps;
-      if (svoOccluded(xv, yv, 1e-3, pc.info.w, pc.params.w, steps)) continue;
+  if (pos.w != 0.0) {
+    vec3 x = pos.xyz;
+    depth = viewDepthOf(x);
+    nx = normalize(texelFetch(gNormal, px, 0).xyz);
+    vec3 xv = (x - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + nx * pc.params.z;
+    // Importance sampling gives every first-bounce VPL the same luminance; the threshold is relative to it.
+    float threshold = pc.params.y * vpls[pc.range.x].flux.w;
+    uint bitBase = (uint(px.y) * frame.sizeAndCount.x + uint(px.x)) * pc.range.y;
+    uint m = 0u;
+    for (uint i = s; i < pc.info.x; i += K2, ++m) {
+      GpuVpl v = vpls[pc.range.x + i];
+      if (v.position.w < 0.0 || v.flux.w <= threshold) continue;
+      vec3 d = v.position.xyz - x;
+      float d2 = dot(d, d);
+      if (d2 <= 0.0) continue;
+      vec3 w = d * inversesqrt(d2);
+      float cx = dot(nx, w), cy = -dot(v.normal.xyz, w);
+      if (cx <= 0.0 || cy <= 0.0) continue;
+      float g = cx * cy / max(pc.params.x, d2);
+      if (pc.info.z == 2u) {
+        uint bit = bitBase + m;
+        if ((visibleBits[bit >> 5] & (1u << (bit & 31u))) == 0u) continue;
+      } else if (pc.info.z == 0u) {
+        vec3 yv = (v.position.xyz - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + v.normal.xyz * pc.params.z;
+        uint steps;
+        if (svoOccluded(xv, yv, 1e-3, pc.info.w, pc.params.w, steps)) continue;
+      }
+      e += v.flux.rgb * g;
     }
-    e += v.flux.rgb * g;
   }
-  imageStore(outRaw, px, packFilterInput(viewDepthOf(x), nx, float(K2) * e / (PI * PI)));
+  vec3 light = float(K2) * e / (PI * PI);
+  uint packedNormal = packFilterNormal(nx);
+  uvec4 result = depth > 0.0 ? packFilterInput(depth, packedNormal, light) : uvec4(0u);
+  if (kAccumulate) result = temporalAccumulate(px, K, light, depth, packedNormal);
+  imageStore(outRaw, px, result);
 }
