@@ -28,12 +28,15 @@ void main() {
   vec3 ray = pixelRay(px);
   float planeOffset = t * dot(ray, n);
   float scale = planeTolerance * t * length(ray);  // the tolerance relative to the view distance
-  const int lo = -int(K) / 2;
+  // The K x K window, shifted inward at the image's edges so that it always holds K distinct columns
+  // and rows, one pixel of every sub-image (a clamped window would repeat the edge pixel's sub-image
+  // and leave another out: a visible interleaving pattern along the border).
+  ivec2 first = clamp(px - int(K) / 2, ivec2(0), max(size - int(K), ivec2(0)));
   vec3 sum = vec3(0.0);
   float wsum = 0.0;
-  for (int dy = lo; dy < lo + int(K); ++dy)
-    for (int dx = lo; dx < lo + int(K); ++dx) {
-      ivec2 q = clamp(px + ivec2(dx, dy), ivec2(0), size - 1);
+  for (int dy = 0; dy < int(K); ++dy)
+    for (int dx = 0; dx < int(K); ++dx) {
+      ivec2 q = min(first + ivec2(dx, dy), size - 1);
       uvec4 tap = imageLoad(filterInput, q);
       float tq = filterViewDepth(tap);
       vec3 nq = filterNormal(tap);
