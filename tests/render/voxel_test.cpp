@@ -49,14 +49,26 @@ class VoxelTest : public RenderTest {
   // Renders `frames` frames of `scene` with a voxel scene plugged in.
   void run(const std::string& sceneName, uint32_t res, int frames) {
     sample::buildBuiltinScene(sceneName, world, assets);
+    attachVoxels(res, 64, /*scriptedMotion=*/true);
+    for (int f = 0; f < frames; ++f) step();
+  }
+  // A voxel scene at `res` in a renderer of size x size, with the systems that feed it.
+  void attachVoxels(uint32_t res, uint32_t size, bool scriptedMotion = false) {
     voxels = std::make_unique<gi::VoxelScene>(context(), gi::VoxelSettings{.resolution = res});
     renderer = std::make_unique<render::Renderer>(context());
     renderer->addFeature(voxels.get());
-    renderer->resize(64, 64);
-    scheduler.add(ecs::Phase::Update, std::make_unique<scene::ScriptedMotionSystem>());
+    renderer->resize(size, size);
+    if (scriptedMotion) scheduler.add(ecs::Phase::Update, std::make_unique<scene::ScriptedMotionSystem>());
     scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
     scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(*voxels, assets));
-    for (int f = 0; f < frames; ++f) step();
+  }
+  ecs::Entity addMeshEntity(scene::MeshId mesh, const scene::Transform& t) {
+    ecs::Entity e = world.create();
+    world.add(e, t);
+    world.add(e, scene::WorldTransform{t.matrix()});
+    world.add(e, scene::MeshInstance{mesh, true});
+    world.add(e, scene::Material{.baseColor = glm::vec4(0.6f)});
+    return e;
   }
   void step() {
     scheduler.runFrame(world, ecs::FrameTime{0.2, 0.2 * double(frame), frame});
@@ -209,21 +221,11 @@ TEST_F(VoxelTest, FragmentRangesAreCompactedWithoutLosingVoxels) {
   scene::MeshId sphere = assets.addMesh(scene::makeSphere(0.2f, 96, 48));
   std::vector<ecs::Entity> spheres;
   for (int i = 0; i < 3; ++i) {
-    ecs::Entity e = world.create();
     scene::Transform t;
     t.translation = {-0.5f + 0.5f * float(i), 1.0f, 0.2f};
-    world.add(e, t);
-    world.add(e, scene::WorldTransform{t.matrix()});
-    world.add(e, scene::MeshInstance{sphere, true});
-    world.add(e, scene::Material{.baseColor = glm::vec4(0.6f)});
-    spheres.push_back(e);
+    spheres.push_back(addMeshEntity(sphere, t));
   }
-  voxels = std::make_unique<gi::VoxelScene>(context(), gi::VoxelSettings{.resolution = 128});
-  renderer = std::make_unique<render::Renderer>(context());
-  renderer->addFeature(voxels.get());
-  renderer->resize(32, 32);
-  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
-  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(*voxels, assets));
+  attachVoxels(128, 32);
   step();
   const uint64_t firstCapacity = voxels->stats().fragmentCapacity, fragments = voxels->stats().fragments;
   gi::DenseVoxelGrid before = leaves();
@@ -257,22 +259,13 @@ TEST_F(VoxelTest, FragmentRangesAreCompactedWithoutLosingVoxels) {
 // must get a range grown with it, not overflow and lose voxels for a frame.
 TEST_F(VoxelTest, MeshScaledUpInOneFrameKeepsAllItsVoxels) {
   sample::buildBuiltinScene("cornell", world, assets);
-  voxels = std::make_unique<gi::VoxelScene>(context(), gi::VoxelSettings{.resolution = 128});
-  renderer = std::make_unique<render::Renderer>(context());
-  renderer->addFeature(voxels.get());
-  renderer->resize(32, 32);
-  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
-  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(*voxels, assets));
+  attachVoxels(128, 32);
   step();
   const uint64_t walls = voxels->stats().fragments;
-  ecs::Entity sphere = world.create();
   scene::Transform t;
   t.translation = {0.0f, 1.0f, 0.0f};
   t.scale = glm::vec3(0.5f);
-  world.add(sphere, t);
-  world.add(sphere, scene::WorldTransform{t.matrix()});
-  world.add(sphere, scene::MeshInstance{assets.addMesh(scene::makeSphere(0.2f, 48, 24)), true});
-  world.add(sphere, scene::Material{.baseColor = glm::vec4(0.6f)});
+  ecs::Entity sphere = addMeshEntity(assets.addMesh(scene::makeSphere(0.2f, 48, 24)), t);
   for (int f = 0; f < 3; ++f) {  // moving: its range follows its count
     world.write<scene::Transform>(sphere).translation.x += 0.02f;
     step();
