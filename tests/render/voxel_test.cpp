@@ -6,6 +6,7 @@
 #include <random>
 
 #include "dyngi/engine/ecs/scheduler.h"
+#include "dyngi/engine/render/image_metrics.h"
 #include "dyngi/engine/scene/scripted_motion.h"
 #include "dyngi/engine/scene/transform_system.h"
 #include "dyngi/gi/bvh.h"
@@ -280,6 +281,26 @@ TEST_F(VoxelTest, MeshScaledUpInOneFrameKeepsAllItsVoxels) {
   EXPECT_EQ(voxels->stats().overflowedEntities, 0u);
   GridDiff d = diff(leaves(), scratchLeaves());
   EXPECT_EQ(d.missing + d.extra, 0u) << "no voxel lost in the frame it grew";
+}
+
+// A debug view draws over hdr after lighting and before tone mapping: the display image is the
+// tone-mapped debug view, not the lit frame (and the frame stays clean under validation).
+TEST_F(VoxelTest, DebugViewIsWhatTheDisplayImageShows) {
+  run("cornell", 64, 1);
+  render::RendererSettings rs;
+  const std::vector<uint8_t> lit = renderer->readbackLdr();
+  voxels->setDebugView(gi::VoxelDebugView::Voxels);
+  step();
+  const std::vector<uint8_t> shown = renderer->readbackLdr();
+  const std::vector<uint8_t> expected = render::tonemapToSrgb8(renderer->readback(render::TargetId::Hdr), rs.exposure, rs.toneMapper);
+  int worst = 0;
+  size_t differing = 0;
+  for (size_t i = 0; i < shown.size(); ++i) {
+    worst = std::max(worst, std::abs(int(shown[i]) - int(expected[i])));
+    differing += std::abs(int(shown[i]) - int(lit[i])) > 8;
+  }
+  EXPECT_LE(worst, 1) << "the display image is the tone-mapped debug view";
+  EXPECT_GT(differing, shown.size() / 10) << "the debug view looks unlike the lit frame";
 }
 
 // The node pool shrinks to what the first build used; when the scene then needs more, the build that
