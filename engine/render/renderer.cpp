@@ -172,7 +172,7 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
     again.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     DYNGI_VK(vkBeginCommandBuffer(cmd_, &again));
   };
-  FrameContext frame{ctx_, cmd_, timer_.get(), snapshot, targets_, frameUniforms_, meshes, linearSampler_, nearestSampler_, textures,
+  FrameContext frame{ctx_, cmd_, timer_.get(), snapshot, targets_, frameUniforms_, fu, meshes, linearSampler_, nearestSampler_, textures,
                      submitAndWait};
 
   if (!settings_.featuresOnly) {

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <thread>
 
-#include "dyngi/engine/render/frame_uniforms.h"
 #include "shaders/shared/gi_gpu_types.h"
 #include "techniques/many_lights/indirect_passes.h"
 
@@ -50,9 +49,9 @@ void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t width, uint32
   accumulated_ = make(VK_FORMAT_R32G32B32A32_UINT, 1, "temporal accumulated");  // filter_input.glsl's packing
   // Per-pixel buffers in sub-image-major order (temporal_accumulate.glsl): K^2 sub-images of
   // ceil(width / K) x ceil(height / K).
-  const uint32_t K = std::clamp(settings_.interleave, 1u, 8u);
-  subSize_ = glm::uvec2((width + K - 1) / K, (height + K - 1) / K);
-  const VkDeviceSize layer = VkDeviceSize(K) * K * subSize_.x * subSize_.y;
+  const uint32_t K = interleave();
+  const glm::uvec2 sub = subImageSize(width, height);
+  const VkDeviceSize layer = VkDeviceSize(K) * K * sub.x * sub.y;
   setIndirect_ = Buffer(ctx, layer * sets_ * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set indirect + depth");
   sums_ = Buffer(ctx, layer * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sums");
   sumDepths_ = Buffer(ctx, layer * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sum depths");
@@ -96,7 +95,7 @@ void TemporalIndirect::computeBvhVisibility(render::FrameContext& frame, uint32_
   frame.submitAndWait();  // this frame's G-buffer, on the CPU
   std::vector<glm::vec4> pos = render::readbackImage(ctx_, frame.targets.position);
   std::vector<glm::vec4> nrm = render::readbackImage(ctx_, frame.targets.normal);
-  const uint32_t W = frame.targets.width, H = frame.targets.height, K = settings_.interleave, K2 = K * K;
+  const uint32_t W = frame.targets.width, H = frame.targets.height, K = interleave(), K2 = K * K;
   size_t words = (size_t(W) * H * perPixel + 31) / 32;
   std::vector<uint32_t> bits(words, 0);
   const float scale = frame.snapshot.sceneBounds.valid() ? glm::length(frame.snapshot.sceneBounds.extent()) : 1.0f;
@@ -143,13 +142,13 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
   if (!accumulated_.valid()) return false;
   if (settings_.visibility == VisibilityBackend::Svo && !voxels_->hasVolume()) return false;
   render::RenderTargets& t = frame.targets;
-  const uint32_t K = std::clamp(settings_.interleave, 1u, 8u), K2 = K * K;
+  const uint32_t K = interleave(), K2 = K * K;
   const uint32_t perPixel = (perSet_ + K2 - 1) / K2;
   // (No ScopedPass here: the mid-frame submit would split a debug label across command buffers; the
   // CPU time is reported as lastBvhVisibilityMs.)
   if (settings_.visibility == VisibilityBackend::Bvh) computeBvhVisibility(frame, perPixel);
   // This frame's camera for the set about to be gathered.
-  const dyngi::gpu::FrameUniforms view = render::cameraUniforms(frame.snapshot.camera, t.width, t.height);
+  const dyngi::gpu::FrameUniforms& view = frame.uniforms;  // what this frame's shaders see
   gpu::TemporalSetCamera cam{view.viewProj, view.cameraPos, view.pixelRay0, view.pixelRayStepX, view.pixelRayStepY};
   cameras_.upload(&cam, sizeof(cam), VkDeviceSize(currentSet_) * sizeof(gpu::TemporalSetCamera));
   // Incremental accumulation when nothing but this set changed for this camera (see temporal_accumulate.glsl);
@@ -182,7 +181,8 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     pc.range = glm::uvec4(0u, perPixel, 0u, 0u);
     IndirectGatherPass::TemporalBuffers tb{setIndirect_.handle(), cameras_.handle(), sums_.handle(), sumDepths_.handle(), {}};
     tb.push.sets = glm::uvec4(sets_, currentSet_, validMask, sameCamera);
-    tb.push.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, subSize_.x, subSize_.y);
+    const glm::uvec2 sub = subImageSize(t.width, t.height);
+    tb.push.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, sub.x, sub.y);
     tb.push.params = glm::vec4(settings_.reprojectionCutoff, 0.0f, 0.0f, 0.0f);
     gatherPass_->record(frame, vpls_.handle(), voxels_ ? voxels_->nodes().handle() : vpls_.handle(), bits_.handle(), accumulated_, pc, &tb);
   }

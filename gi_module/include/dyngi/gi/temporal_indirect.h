@@ -10,6 +10,7 @@
 // Stages: indirect (the gather, which also stores the set and accumulates: O(1) per pixel for a still
 // camera, reprojection otherwise), filter;
 // the Embree visibility's CPU time is reported separately.
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -71,7 +72,12 @@ class TemporalIndirect final : public render::RenderFeature {
   render::Buffer vpls_, cameras_, bits_, setIndirect_, sums_, sumDepths_;
   glm::mat4 lastCamera_{0.0f};
   render::Image accumulated_;  // the gather's accumulated light, the filter's input
-  glm::uvec2 subSize_{0};      // sub-image size of the per-pixel buffers' layout
+  // Size of one of the K x K sub-images the per-pixel buffers are laid out in.
+  uint32_t interleave() const { return std::clamp(settings_.interleave, 1u, 8u); }  // K
+  glm::uvec2 subImageSize(uint32_t width, uint32_t height) const {
+    const uint32_t K = interleave();
+    return {(width + K - 1) / K, (height + K - 1) / K};
+  }
   std::vector<glm::mat4> setCameras_;   // CPU copy: which sets were stored from the current camera
   std::unique_ptr<class IndirectGatherPass> gatherPass_;
   std::unique_ptr<class IndirectFilterPass> filterPass_;

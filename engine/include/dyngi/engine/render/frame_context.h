@@ -7,6 +7,7 @@
 #include "dyngi/engine/render/gpu_timer.h"
 #include "dyngi/engine/render/resources.h"
 #include "dyngi/engine/render/snapshot.h"
+#include "shared/gpu_types.h"
 
 namespace dyngi::render {
 
@@ -54,7 +55,8 @@ struct FrameContext {
   GpuTimer* timer;
   const RenderSnapshot& snapshot;
   RenderTargets& targets;
-  const Buffer& frameUniforms;            // gpu::FrameUniforms
+  const Buffer& frameUniforms;            // gpu::FrameUniforms, as the shaders see them
+  const gpu::FrameUniforms& uniforms;     // the same values on the CPU (camera matrices, pixel rays)
   const std::vector<GpuMesh*>& meshes;    // indexed like snapshot.draws
   VkSampler linearSampler;
   VkSampler nearestSampler;
