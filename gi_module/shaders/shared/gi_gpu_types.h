@@ -136,6 +136,18 @@ struct AccumulatePush {
                         // y 1: set y held a sample before this frame, zw sub-image size of the per-pixel
                         // buffers' layout (ceil(width / K), ceil(height / K))
   vec4 params;          // x reprojection cut-off (relative to the view distance)
+  uvec4 grid;           // x interleave K, y 1: the reprojection pass runs over the queued pixels, 0: over all
+};
+
+// The pixels the gather queues for the full reprojection (storage buffer, reset every frame); its first
+// three words are the reprojection pass's indirect dispatch (VkDispatchIndirectCommand).
+#ifdef __cplusplus
+struct alignas(16) TemporalQueue {
+#else
+struct TemporalQueue {
+#endif
+  uvec4 dispatchAndCount;  // x workgroups of 64 (raised by the thread that queues every 64th pixel), y 1, z 1,
+                           // w pixels queued
 };
 
 #ifdef __cplusplus
@@ -144,7 +156,8 @@ static_assert(sizeof(GpuVpl) == 48);
 static_assert(sizeof(RsmPush) == 96);
 static_assert(sizeof(GatherPush) == 64);
 static_assert(sizeof(TemporalSetCamera) == 128);
-static_assert(sizeof(AccumulatePush) == 48);
+static_assert(sizeof(AccumulatePush) == 64);
+static_assert(sizeof(TemporalQueue) == 16);
 static_assert(sizeof(SvoLevel) == 32);
 static_assert(sizeof(SvoCounters) == 16);
 }  // namespace dyngi::gi::gpu

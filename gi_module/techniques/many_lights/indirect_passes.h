@@ -15,6 +15,7 @@ class IndirectGatherPass {
   // The temporal technique's buffers (accumulate only).
   struct TemporalBuffers {
     VkBuffer setIndirect = VK_NULL_HANDLE, cameras = VK_NULL_HANDLE, sums = VK_NULL_HANDLE, sumDepths = VK_NULL_HANDLE;
+    VkBuffer queue = VK_NULL_HANDLE, queueArgs = VK_NULL_HANDLE;  // pixels queued for the full reprojection
     gpu::AccumulatePush push{};
   };
   // Gathers `vpls` into `raw` (rgba32ui, filter_input.glsl's packing; "indirect" in stats). `nodes` is the

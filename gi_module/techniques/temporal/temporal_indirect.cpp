@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "shaders/shared/gi_gpu_types.h"
+#include "spirv/temporal_reproject.comp.spv.h"
 #include "techniques/many_lights/indirect_passes.h"
 
 #include "gpu_aliases.h"
@@ -24,6 +25,12 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
   vpls_ = Buffer(ctx, VkDeviceSize(perSet_) * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "temporal vpls");
   cameras_ = Buffer(ctx, VkDeviceSize(sets_) * sizeof(gpu::TemporalSetCamera), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "set cameras");
   bits_ = Buffer(ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "visibility bits");
+  queueArgs_ = Buffer(ctx, sizeof(gpu::TemporalQueue),
+                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                      MemoryUsage::GpuOnly, "temporal reprojection queue args");
+  const Binding b[] = {{0, kUBO, kCS},  {1, kSSBO, kCS},         {2, kSSBO, kCS}, {3, kSSBO, kCS},
+                       {4, kSSBO, kCS}, {5, kStorageImage, kCS}, {6, kSSBO, kCS}, {7, kSSBO, kCS}};
+  reprojectPipeline_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_temporal_reproject_comp), b, sizeof(gpu::AccumulatePush), "temporal_reproject");
 }
 
 TemporalIndirect::~TemporalIndirect() = default;
@@ -55,6 +62,7 @@ void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t width, uint32
   setIndirect_ = Buffer(ctx, layer * sets_ * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set indirect + depth");
   sums_ = Buffer(ctx, layer * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sums");
   sumDepths_ = Buffer(ctx, layer * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sum depths");
+  queue_ = Buffer(ctx, layer * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal reprojection queue");
   setCameras_.assign(sets_, glm::mat4(0.0f));
   lastCamera_ = glm::mat4(0.0f);
   std::fill(lastRendered_.begin(), lastRendered_.end(), -1);  // stored buffers are gone
@@ -154,7 +162,7 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
   // Incremental accumulation when nothing but this set changed for this camera (see temporal_accumulate.glsl);
   // a full reprojection otherwise, and every 256 frames to wash out float drift in the running sums.
   const bool setWasStored = lastRendered_[currentSet_] >= 0;
-  const bool incremental = cam.viewProj == lastCamera_ && setWasStored && setCameras_[currentSet_] == cam.viewProj &&
+  const bool incremental = settings_.incrementalAccumulation && cam.viewProj == lastCamera_ && setWasStored && setCameras_[currentSet_] == cam.viewProj &&
                            frameCounter_ % 256 != 0;
   lastRendered_[currentSet_] = int64_t(frameCounter_++);
   paths_.markSetRendered(currentSet_);
@@ -179,15 +187,54 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     if (settings_.visibility == VisibilityBackend::Bvh) pc.info.z = 2u;
     if (settings_.visibility == VisibilityBackend::None) pc.info.z = 1u;
     pc.range = glm::uvec4(0u, perPixel, 0u, 0u);
-    IndirectGatherPass::TemporalBuffers tb{setIndirect_.handle(), cameras_.handle(), sums_.handle(), sumDepths_.handle(), {}};
+    IndirectGatherPass::TemporalBuffers tb{setIndirect_.handle(), cameras_.handle(), sums_.handle(), sumDepths_.handle(),
+                                           queue_.handle(),       queueArgs_.handle(), {}};
     tb.push.sets = glm::uvec4(sets_, currentSet_, validMask, sameCamera);
     const glm::uvec2 sub = subImageSize(t.width, t.height);
     tb.push.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, sub.x, sub.y);
     tb.push.params = glm::vec4(settings_.reprojectionCutoff, 0.0f, 0.0f, 0.0f);
+    // With an unchanged camera the gather queues the few pixels whose surface changed; otherwise every
+    // pixel needs the full reprojection and the pass runs over all of them.
+    tb.push.grid = glm::uvec4(K, incremental ? 1u : 0u, 0u, 0u);
+    if (incremental) {
+      const gpu::TemporalQueue empty{glm::uvec4(0u, 1u, 1u, 0u)};
+      vkCmdUpdateBuffer(frame.cmd, queueArgs_.handle(), 0, sizeof(empty), &empty);
+      render::memoryBarrier(frame.cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    }
     gatherPass_->record(frame, vpls_.handle(), voxels_ ? voxels_->nodes().handle() : vpls_.handle(), bits_.handle(), accumulated_, pc, &tb);
+    recordReprojection(frame, tb.push, incremental);
   }
   filterPass_->record(frame, accumulated_, K, settings_.filterPlaneTolerance);
   return true;
+}
+
+void TemporalIndirect::recordReprojection(render::FrameContext& frame, const gpu::AccumulatePush& push, bool queued) {
+  render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "reproject");
+  VkCommandBuffer cmd = frame.cmd;
+  render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+  accumulated_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, reprojectPipeline_.handle());
+  DescriptorWrites()
+      .uniformBuffer(0, frame.frameUniforms.handle())
+      .storageBuffer(1, setIndirect_.handle())
+      .storageBuffer(2, cameras_.handle())
+      .storageBuffer(3, sums_.handle())
+      .storageBuffer(4, sumDepths_.handle())
+      .storageImage(5, accumulated_.view())
+      .storageBuffer(6, queue_.handle())
+      .storageBuffer(7, queueArgs_.handle())
+      .push(ctx_, cmd, reprojectPipeline_);
+  vkCmdPushConstants(cmd, reprojectPipeline_.layout(), kCS, 0, sizeof(push), &push);
+  if (queued) {
+    vkCmdDispatchIndirect(cmd, queueArgs_.handle(), 0);
+  } else {
+    const uint64_t pixels = uint64_t(push.grid.x) * push.grid.x * push.mode.z * push.mode.w;
+    vkCmdDispatch(cmd, uint32_t((pixels + 63) / 64), 1, 1);
+  }
 }
 
 }  // namespace dyngi::gi

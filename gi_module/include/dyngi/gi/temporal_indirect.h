@@ -7,8 +7,9 @@
 // result is kept per set with its depth and camera; every frame all sets are reprojected into the
 // current view (samples whose surface moved more than the cut-off are dropped) and summed, then the
 // geometry-aware filter (the discontinuity buffer) removes the interleaving pattern.
-// Stages: indirect (the gather, which also stores the set and accumulates: O(1) per pixel for a still
-// camera, reprojection otherwise), filter;
+// Stages: indirect (the gather, which also stores the set and accumulates in O(1) the pixels whose
+// camera and surface did not change), reproject (every set reprojected for the other pixels: those the
+// gather queued, or all when the camera moved), filter;
 // the Embree visibility's CPU time is reported separately.
 #include <algorithm>
 #include <memory>
@@ -22,6 +23,10 @@
 
 namespace dyngi::gi {
 
+namespace gpu {
+struct AccumulatePush;
+}
+
 enum class VisibilityBackend { Svo, Bvh, None };
 
 struct TemporalSettings {
@@ -30,6 +35,9 @@ struct TemporalSettings {
   float luminanceThreshold = 0.01f;
   float liftVoxels = 1.5f;              // SVO: segment ends leave their surface by this many voxels
   float reprojectionCutoff = 0.02f;     // relative to the view distance
+  // false: every pixel is reprojected from every set each frame, as when the camera moves (the reference
+  // the O(1) update for a still camera is tested against).
+  bool incrementalAccumulation = true;
   float filterPlaneTolerance = 0.02f;
   VisibilityBackend visibility = VisibilityBackend::Svo;
 };
@@ -58,6 +66,8 @@ class TemporalIndirect final : public render::RenderFeature {
 
  private:
   void computeBvhVisibility(render::FrameContext& frame, uint32_t perPixel);
+  // The full reprojection (temporal_reproject.comp) of the pixels the gather queued, or of every pixel.
+  void recordReprojection(render::FrameContext& frame, const gpu::AccumulatePush& push, bool queued);
 
   render::VulkanContext& ctx_;
   VplPaths& paths_;
@@ -70,6 +80,8 @@ class TemporalIndirect final : public render::RenderFeature {
   std::vector<int64_t> lastRendered_;   // frame each set was last gathered (-1: never)
   std::vector<TemporalVpl> setVpls_;  // CPU copy of the VPLs uploaded this frame
   render::Buffer vpls_, cameras_, bits_, setIndirect_, sums_, sumDepths_;
+  render::Buffer queue_, queueArgs_;  // pixels queued for the full reprojection, and their count (TemporalQueue)
+  render::Pipeline reprojectPipeline_;
   glm::mat4 lastCamera_{0.0f};
   render::Image accumulated_;  // the gather's accumulated light, the filter's input
   // Size of one of the K x K sub-images the per-pixel buffers are laid out in.

@@ -6,7 +6,8 @@
 // K x K filter's average is the full sum's E / pi (what the lighting pass multiplies by albedo), packed
 // with the pixel's depth and normal for the filter (filter_input.glsl). With kAccumulate (the temporal
 // technique) the light first goes into the temporal sets and sums (temporal_accumulate.glsl) and what
-// is written is the accumulated light.
+// is written is the accumulated light, or, for pixels queued for the full reprojection, this set's light
+// until temporal_reproject.comp overwrites it.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 #include "shared/gi_gpu_types.h"
@@ -24,6 +25,8 @@ layout(set = 0, binding = 7) buffer SetIndirect { vec4 setIndirect[]; };
 layout(set = 0, binding = 8) readonly buffer Cameras { TemporalSetCamera cameras[]; };
 layout(set = 0, binding = 9) buffer Sums { vec4 sums[]; };
 layout(set = 0, binding = 10) buffer SumDepths { float sumDepths[]; };
+layout(set = 0, binding = 11) writeonly buffer Queue { uint queuedPixels[]; };  // x | y << 16
+layout(set = 0, binding = 12) buffer QueueArgs { TemporalQueue queue; };
 layout(push_constant) uniform Push { GatherPush pc; AccumulatePush acc; };
 #include "svo_traverse.glsl"
 #include "filter_input.glsl"
@@ -73,6 +76,16 @@ void main() {
   vec3 light = float(K2) * e / (PI * PI);
   uint packedNormal = packFilterNormal(nx);
   uvec4 result = depth > 0.0 ? packFilterInput(depth, packedNormal, light) : uvec4(0u);
-  if (kAccumulate) result = temporalAccumulate(px, K, light, depth, packedNormal);
+  if (kAccumulate) {
+    uvec4 accumulated;
+    if (temporalAccumulateIncremental(px, K, light, depth, packedNormal, accumulated)) result = accumulated;
+    else if (acc.grid.y != 0u) {
+      // Queue the pixel for the full reprojection (temporal_reproject.comp); without a queue that pass
+      // runs over every pixel.
+      uint slot = atomicAdd(queue.dispatchAndCount.w, 1u);
+      queuedPixels[slot] = uint(px.x) | (uint(px.y) << 16);
+      if (slot % 64u == 0u) atomicAdd(queue.dispatchAndCount.x, 1u);
+    }
+  }
   imageStore(outRaw, px, result);
 }

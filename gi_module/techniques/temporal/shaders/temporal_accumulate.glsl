@@ -1,14 +1,19 @@
-// Temporal accumulation of one pixel, run by the gather right after it computed the pixel's light for
-// the set gathered this frame (so the light never goes through an image).
+// Temporal accumulation of one pixel, in two parts.
 //
 // Per pixel the running sum (rgb) and the number of sets in it (a) are kept with the view depth they
-// refer to. When the camera has not moved since the last frame and the pixel still shows the same
-// surface (same depth), only set `set` changed: the sum is updated in O(1) (old value out, new value in).
-// Otherwise every set is reprojected into the current view: a stored sample counts when the surface it
-// was gathered for lies within `cutoff` (relative to the view distance) of this pixel's surface. Sets
-// that miss (disocclusion) are made up for by scaling the sum by T / count, so a pixel is never black
-// while any set sees it. Depths are view depths (distance along the view axis): a set stored from the
-// current camera is tested at the same pixel with one subtraction, no matrix.
+// refer to. The gather, right after it computed the pixel's light for the set gathered this frame (so the
+// light never goes through an image), stores it and calls temporalAccumulateIncremental: when the camera
+// has not moved since the last frame and the pixel still shows the same surface (same depth), only set
+// `set` changed and the sum is updated in O(1) (old value out, new value in). Every other pixel is queued
+// for temporalAccumulateFull (temporal_reproject.comp): every set is reprojected into the current view
+// and a stored sample counts when the surface it was gathered for lies within `cutoff` (relative to the
+// view distance) of this pixel's surface. Sets that miss (disocclusion) are made up for by scaling the sum
+// by T / count, so a pixel is never black while any set sees it. Depths are view depths (distance along
+// the view axis): a set stored from the current camera is tested at the same pixel with one subtraction.
+//
+// Why two passes: lavapipe runs both sides of every branch for all lanes, so a reprojection loop in the
+// gather costs every pixel even when none takes it; the queue makes the rare full path cost only the
+// pixels that need it (all of them only when the camera moved).
 //
 // The per-pixel buffers are stored sub-image major (temporalIndex), the order the gather's workgroups
 // walk, so a workgroup reads and writes contiguous memory.
@@ -23,59 +28,72 @@ uint temporalIndex(ivec2 q, uint K) {
   return (s * subSize.y + sub.y) * subSize.x + sub.x;
 }
 
-// Returns the filter's input for pixel px (filter_input.glsl), newValue being this frame's light for
-// set acc.sets.y at a surface of view depth `depth` (<= 0: none) with packed normal `packedNormal`.
-uvec4 temporalAccumulate(ivec2 px, uint K, vec3 newValue, float depth, uint packedNormal) {
-  ivec2 size = ivec2(frame.sizeAndCount.xy);
-  const uint layer = acc.mode.z * acc.mode.w * K * K;
-  const uint sets = acc.sets.x, set = acc.sets.y, validMask = acc.sets.z, sameCamera = acc.sets.w;
-  const float cutoff = acc.params.x;
+uint temporalLayerSize(uint K) { return acc.mode.z * acc.mode.w * K * K; }
+
+vec3 temporalAverage(vec4 s) { return s.a > 0.0 ? s.rgb * float(acc.sets.x) / s.a : vec3(0.0); }
+
+// The gather's part for pixel px: stores newValue, this frame's light for set acc.sets.y at a surface of
+// view depth `depth` (<= 0: none). Returns true with the filter input (filter_input.glsl) in `result`
+// when the pixel is done (no surface, or the incremental update applied); false when it needs
+// temporalAccumulateFull.
+bool temporalAccumulateIncremental(ivec2 px, uint K, vec3 newValue, float depth, uint packedNormal, out uvec4 result) {
+  const uint set = acc.sets.y;
   uint pixel = temporalIndex(px, K);
   // Store this frame's set (old value kept for the incremental update).
-  uint ik = set * layer + pixel;
+  uint ik = set * temporalLayerSize(K) + pixel;
   vec4 oldValue = setIndirect[ik];
   setIndirect[ik] = vec4(newValue, depth > 0.0 ? depth : -1.0);
+  result = uvec4(0u);
   if (depth <= 0.0) {
     sums[pixel] = vec4(0.0);
     sumDepths[pixel] = -1.0;
-    return uvec4(0u);
+    return true;
   }
-  // Same surface along this pixel's ray: view depths within cutoff x depth.
-  float depthTolerance = cutoff * depth;
-  vec4 s;
-  if (acc.mode.x != 0u && sumDepths[pixel] == depth) {
-    // Only set `set` changed: take its old sample out (if the full pass had counted it) and put the
-    // new one in. The test is the full pass's test for a set stored from this camera.
-    s = sums[pixel];
-    if (acc.mode.y != 0u && oldValue.a > 0.0 && abs(oldValue.a - depth) <= depthTolerance) s.rgb -= oldValue.rgb;
-    else s.a += 1.0;
-    s.rgb += newValue;
-  } else {
-    s = vec4(newValue, 1.0);
-    vec3 ray = pixelRay(px);
-    vec3 p = frame.cameraPos.xyz + depth * ray;
-    float tolerance = depthTolerance * length(ray);  // cutoff x distance to the camera
-    for (uint j = 0u; j < sets; ++j) {
-      if (j == set || (validMask & (1u << j)) == 0u) continue;
-      if ((sameCamera & (1u << j)) != 0u) {
-        vec4 stored = setIndirect[j * layer + pixel];
-        if (stored.a > 0.0 && abs(stored.a - depth) <= depthTolerance) s += vec4(stored.rgb, 1.0);
-        continue;
-      }
-      TemporalSetCamera c = cameras[j];
-      vec4 clip = c.viewProj * vec4(p, 1.0);
-      if (clip.w <= 0.0) continue;
-      ivec2 q = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * vec2(size)));
-      if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-      vec4 stored = setIndirect[j * layer + temporalIndex(q, K)];
-      if (stored.a <= 0.0) continue;
-      vec3 y = c.position.xyz + stored.a * (c.pixelRay0.xyz + float(q.x) * c.pixelRayStepX.xyz + float(q.y) * c.pixelRayStepY.xyz);
-      if (length(y - p) > tolerance) continue;
-      s += vec4(stored.rgb, 1.0);
-    }
-    sumDepths[pixel] = depth;
+  if (acc.mode.x == 0u || sumDepths[pixel] != depth) return false;
+  // Only set `set` changed: take its old sample out (if the full pass had counted it) and put the new one
+  // in. The test is the full pass's test for a set stored from this camera.
+  vec4 s = sums[pixel];
+  if (acc.mode.y != 0u && oldValue.a > 0.0 && abs(oldValue.a - depth) <= acc.params.x * depth) s.rgb -= oldValue.rgb;
+  else s.a += 1.0;
+  s.rgb += newValue;
+  sums[pixel] = s;
+  result = packFilterInput(depth, packedNormal, temporalAverage(s));
+  return true;
+}
+
+// The full reprojection for pixel px, whose light for this frame's set the gather stored; returns the
+// filter input (filter_input.glsl).
+uvec4 temporalAccumulateFull(ivec2 px, uint K, uint packedNormal) {
+  ivec2 size = ivec2(frame.sizeAndCount.xy);
+  const uint layer = temporalLayerSize(K);
+  const uint set = acc.sets.y, validMask = acc.sets.z, sameCamera = acc.sets.w;
+  uint pixel = temporalIndex(px, K);
+  vec4 own = setIndirect[set * layer + pixel];
+  float depth = own.a;
+  float depthTolerance = acc.params.x * depth;
+  vec4 s = vec4(own.rgb, 1.0);
+  vec3 ray = pixelRay(px);
+  vec3 p = frame.cameraPos.xyz + depth * ray;
+  float tolerance = depthTolerance * length(ray);  // cutoff x distance to the camera
+  // Two loops over uniform set masks, so a still camera (every set stored from it) never runs the
+  // reprojection's arithmetic: lavapipe would run it for every set, masked, if both lived in one loop.
+  uint others = validMask & ~(1u << set);
+  for (uint same = others & sameCamera; same != 0u; same &= same - 1u) {
+    vec4 stored = setIndirect[uint(findLSB(same)) * layer + pixel];
+    if (stored.a > 0.0 && abs(stored.a - depth) <= depthTolerance) s += vec4(stored.rgb, 1.0);
+  }
+  for (uint moved = others & ~sameCamera; moved != 0u; moved &= moved - 1u) {
+    uint j = uint(findLSB(moved));
+    TemporalSetCamera c = cameras[j];
+    vec4 clip = c.viewProj * vec4(p, 1.0);
+    ivec2 q = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * vec2(size)));
+    bool inside = clip.w > 0.0 && all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
+    vec4 stored = inside ? setIndirect[j * layer + temporalIndex(q, K)] : vec4(0.0);
+    if (stored.a <= 0.0) continue;
+    vec3 y = c.position.xyz + stored.a * (c.pixelRay0.xyz + float(q.x) * c.pixelRayStepX.xyz + float(q.y) * c.pixelRayStepY.xyz);
+    if (length(y - p) <= tolerance) s += vec4(stored.rgb, 1.0);
   }
   sums[pixel] = s;
-  vec3 light = s.a > 0.0 ? s.rgb * float(sets) / s.a : vec3(0.0);
-  return packFilterInput(depth, packedNormal, light);
+  sumDepths[pixel] = depth;
+  return packFilterInput(depth, packedNormal, temporalAverage(s));
 }
