@@ -53,6 +53,16 @@ float shadowFactor(GpuLight L, vec3 p, vec3 n, float dist) {
   return sum * 0.25;
 }
 
+// Irradiance from light L at p (normal n), shadowed.
+vec3 directLight(GpuLight L, vec3 p, vec3 n) {
+  if (L.radiance.w == 0.0) return vec3(0.0);
+  vec3 l;
+  float dist;
+  vec3 e = lightIrradiance(L, p, n, l, dist);
+  if (max(e.r, max(e.g, e.b)) <= 0.0) return vec3(0.0);
+  return e * shadowFactor(L, p, n, dist);
+}
+
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return;
@@ -65,16 +75,12 @@ void main() {
   vec4 albedoMetal = texelFetch(gAlbedo, px, 0);
   vec3 diffuse = albedoMetal.rgb * (1.0 - albedoMetal.a) / PI;
   vec3 radiance = texelFetch(gEmissive, px, 0).rgb;
-  uint count = frame.sizeAndCount.z;
-  for (uint i = 0u; i < count; ++i) {
-    GpuLight L = lights[i];
-    if (L.radiance.w == 0.0) continue;
-    vec3 l;
-    float dist;
-    vec3 e = lightIrradiance(L, pos.xyz, n, l, dist);
-    if (max(e.r, max(e.g, e.b)) <= 0.0) continue;
-    radiance += diffuse * e * shadowFactor(L, pos.xyz, n, dist);
-  }
+  // A do-while: lavapipe runs a for loop's body once more, masked, before it sees every lane has left,
+  // which here would cost a whole light (shadow lookups included) per pixel.
+  uint count = frame.sizeAndCount.z, i = 0u;
+  do {
+    if (i < count) radiance += diffuse * directLight(lights[i], pos.xyz, n);
+  } while (++i < count);
   if (hasIndirect != 0u) radiance += albedoMetal.rgb * (1.0 - albedoMetal.a) * imageLoad(indirect, px).rgb;
   imageStore(outHdr, px, vec4(radiance, 1.0));
 }

@@ -34,6 +34,30 @@ layout(push_constant) uniform Push { GatherPush pc; AccumulatePush acc; };
 
 const float PI = 3.14159265358979;
 
+// Light from the set's VPL i (the m-th this pixel gathers) at surface point x with normal nx (xv: x in
+// voxel units, lifted): flux G V, or 0 for an absent, dim or back-facing VPL or one beyond the count.
+vec3 vplLight(uint i, uint m, vec3 x, vec3 nx, vec3 xv, float threshold, uint bitBase) {
+  if (i >= pc.info.x) return vec3(0.0);
+  GpuVpl v = vpls[pc.range.x + i];
+  if (v.position.w < 0.0 || v.flux.w <= threshold) return vec3(0.0);
+  vec3 d = v.position.xyz - x;
+  float d2 = dot(d, d);
+  if (d2 <= 0.0) return vec3(0.0);
+  vec3 w = d * inversesqrt(d2);
+  float cx = dot(nx, w), cy = -dot(v.normal.xyz, w);
+  if (cx <= 0.0 || cy <= 0.0) return vec3(0.0);
+  float g = cx * cy / max(pc.params.x, d2);
+  if (pc.info.z == 2u) {
+    uint bit = bitBase + m;
+    if ((visibleBits[bit >> 5] & (1u << (bit & 31u))) == 0u) return vec3(0.0);
+  } else if (pc.info.z == 0u) {
+    vec3 yv = (v.position.xyz - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + v.normal.xyz * pc.params.z;
+    uint steps;
+    if (svoOccluded(xv, yv, 1e-3, pc.info.w, pc.params.w, steps)) return vec3(0.0);
+  }
+  return v.flux.rgb * g;
+}
+
 void main() {
   uint K = pc.info.y;
   uint s = gl_GlobalInvocationID.z;
@@ -51,27 +75,14 @@ void main() {
     // Importance sampling gives every first-bounce VPL the same luminance; the threshold is relative to it.
     float threshold = pc.params.y * vpls[pc.range.x].flux.w;
     uint bitBase = (uint(px.y) * frame.sizeAndCount.x + uint(px.x)) * pc.range.y;
-    uint m = 0u;
-    for (uint i = s; i < pc.info.x; i += K2, ++m) {
-      GpuVpl v = vpls[pc.range.x + i];
-      if (v.position.w < 0.0 || v.flux.w <= threshold) continue;
-      vec3 d = v.position.xyz - x;
-      float d2 = dot(d, d);
-      if (d2 <= 0.0) continue;
-      vec3 w = d * inversesqrt(d2);
-      float cx = dot(nx, w), cy = -dot(v.normal.xyz, w);
-      if (cx <= 0.0 || cy <= 0.0) continue;
-      float g = cx * cy / max(pc.params.x, d2);
-      if (pc.info.z == 2u) {
-        uint bit = bitBase + m;
-        if ((visibleBits[bit >> 5] & (1u << (bit & 31u))) == 0u) continue;
-      } else if (pc.info.z == 0u) {
-        vec3 yv = (v.position.xyz - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + v.normal.xyz * pc.params.z;
-        uint steps;
-        if (svoOccluded(xv, yv, 1e-3, pc.info.w, pc.params.w, steps)) continue;
-      }
-      e += v.flux.rgb * g;
-    }
+    // A do-while: lavapipe runs a for loop's body once more, masked, before it sees every lane has left;
+    // checking at the end saves that pass (a gather and an SVO march step per pixel).
+    uint i = s, m = 0u;
+    do {
+      e += vplLight(i, m, x, nx, xv, threshold, bitBase);
+      i += K2;
+      ++m;
+    } while (i < pc.info.x);
   }
   vec3 light = float(K2) * e / (PI * PI);
   uint packedNormal = packFilterNormal(nx);

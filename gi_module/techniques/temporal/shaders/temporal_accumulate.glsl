@@ -77,13 +77,18 @@ uvec4 temporalAccumulateFull(ivec2 px, uint K, uint packedNormal) {
   float tolerance = depthTolerance * length(ray);  // cutoff x distance to the camera
   // Two loops over uniform set masks, so a still camera (every set stored from it) never runs the
   // reprojection's arithmetic: lavapipe would run it for every set, masked, if both lived in one loop.
+  // Do-whiles check at the end, which spares the masked extra pass lavapipe makes through a for loop.
   uint others = validMask & ~(1u << set);
-  for (uint same = others & sameCamera; same != 0u; same &= same - 1u) {
+  uint same = others & sameCamera;
+  if (same != 0u) do {
     vec4 stored = setIndirect[uint(findLSB(same)) * layer + pixel];
     if (stored.a > 0.0 && abs(stored.a - depth) <= depthTolerance) s += vec4(stored.rgb, 1.0);
-  }
-  for (uint moved = others & ~sameCamera; moved != 0u; moved &= moved - 1u) {
+    same &= same - 1u;
+  } while (same != 0u);
+  uint moved = others & ~sameCamera;
+  if (moved != 0u) do {
     uint j = uint(findLSB(moved));
+    moved &= moved - 1u;
     TemporalSetCamera c = cameras[j];
     vec4 clip = c.viewProj * vec4(p, 1.0);
     ivec2 q = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * vec2(size)));
@@ -92,7 +97,7 @@ uvec4 temporalAccumulateFull(ivec2 px, uint K, uint packedNormal) {
     if (stored.a <= 0.0) continue;
     vec3 y = c.position.xyz + stored.a * (c.pixelRay0.xyz + float(q.x) * c.pixelRayStepX.xyz + float(q.y) * c.pixelRayStepY.xyz);
     if (length(y - p) <= tolerance) s += vec4(stored.rgb, 1.0);
-  }
+  } while (moved != 0u);
   sums[pixel] = s;
   sumDepths[pixel] = depth;
   return packFilterInput(depth, packedNormal, temporalAverage(s));
