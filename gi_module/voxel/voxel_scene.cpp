@@ -48,7 +48,7 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
   d.name = "voxelize";
   voxelize_ = Pipeline::graphics(ctx, d);
 
-  const Binding markB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}};
+  const Binding markB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
   mark_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_mark_comp), markB, 8, "svo_mark");
   const Binding levelB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS}};
   level_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_level_comp), levelB, 4, "svo_level");
@@ -62,6 +62,8 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
   const uint64_t pyramidBits = ((uint64_t(1) << (3 * (depth + 1))) - 1) / 7;
   occupancy_ = Buffer(ctx, (pyramidBits + 31) / 32 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                       MemoryUsage::GpuOnly, "svo occupancy pyramid");
+  staticOccupancy_ = Buffer(ctx, occupancy_.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                            MemoryUsage::GpuOnly, "svo static occupancy pyramid");
   const Binding marchB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
   march_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_march_comp), marchB, 32, "svo_march");
   const uint32_t noMarch[] = {0u};
@@ -198,6 +200,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   stats_.rebuilt = false;
   stats_.entitiesVoxelized = 0;
   if (!snapshot.assets) return;
+  ++frameIndex_;
   if (!haveVolume_) {
     volume_ = VoxelVolume::around(snapshot.sceneBounds, settings_.resolution, settings_.padding);
     haveVolume_ = true;
@@ -220,14 +223,17 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     if (highWater_ > 2 * used) compactRanges();
   }
   if (allDirty_) {
+    rebuildStaticOccupancy_ = true;
     relayout(snapshot);
     for (const auto& d : snapshot.draws) dirty_.insert(d.entity);
     allDirty_ = false;
     rebuildSvo_ = true;
   }
+  std::vector<ecs::Entity> removedNow;
   for (ecs::Entity e : removed_) {
     auto it = ranges_.find(e);
     if (it == ranges_.end()) continue;
+    removedNow.push_back(e);
     rangesToEmpty_.push_back(it->second);
     freeCounters_.push_back(it->second.counter);
     ranges_.erase(it);
@@ -264,6 +270,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   ensureCapacity(newHighWater);  // grows by copying: nothing already voxelized is lost
   for (auto& [e, r] : planned) {
     r.written = true;
+    r.lastVoxelizedFrame = frameIndex_;
     ++r.voxelizations;
     ranges_[e] = r;
     voxelizedThisFrame_.push_back(e);
@@ -280,6 +287,53 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     counters_ = std::move(grown);
   }
   stats_.entitiesVoxelized = uint32_t(drawsToVoxelize_.size());
+  if (rebuildSvo_) planOccupancy(removedNow);
+}
+
+void VoxelScene::planOccupancy(const std::vector<ecs::Entity>& removed) {
+  // The static pyramid is stale when one of its entities was voxelized again (moved, deformed) or
+  // removed; it is worth rebuilding when a moving entity has settled.
+  for (ecs::Entity e : voxelizedThisFrame_) rebuildStaticOccupancy_ |= staticEntities_.count(e) > 0;
+  for (ecs::Entity e : removed) rebuildStaticOccupancy_ |= staticEntities_.count(e) > 0;
+  for (const auto& [e, r] : ranges_) rebuildStaticOccupancy_ |= !isMoving(r) && !staticEntities_.count(e);
+  if (rebuildStaticOccupancy_) {
+    staticEntities_.clear();
+    for (const auto& [e, r] : ranges_)
+      if (!isMoving(r)) staticEntities_.insert(e);
+  }
+  // One chunk per mark workgroup (64 invocations x DYNGI_SVO_ITEMS_PER_INVOCATION slots), cut from the
+  // ranges: the static entities' first (only when the static pyramid is rebuilt), then the moving ones'.
+  const uint64_t chunkSlots = 64 * DYNGI_SVO_ITEMS_PER_INVOCATION;
+  std::vector<glm::uvec2> chunks;
+  stats_.slotsMarked = 0;
+  stats_.staticEntities = uint32_t(staticEntities_.size());
+  auto cut = [&](bool wantStatic) {
+    uint32_t n = 0;
+    for (const auto& [e, r] : ranges_) {
+      if (staticEntities_.count(e) != size_t(wantStatic)) continue;
+      stats_.slotsMarked += r.capacity;
+      for (uint64_t a = r.first; a < r.first + r.capacity; a += chunkSlots, ++n)
+        chunks.push_back(glm::uvec2(uint32_t(a), uint32_t(std::min(a + chunkSlots, r.first + r.capacity))));
+    }
+    return n;
+  };
+  staticChunks_ = rebuildStaticOccupancy_ ? cut(true) : 0;
+  movingChunks_ = cut(false);
+  const VkDeviceSize bytes = std::max<VkDeviceSize>(chunks.size() * sizeof(glm::uvec2), 16);
+  if (!markChunks_.valid() || markChunks_.size() < bytes) {
+    vkDeviceWaitIdle(ctx_.device());  // the last frame may still read the old list
+    markChunks_ = Buffer(ctx_, bytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "svo mark chunks");
+  }
+  if (!chunks.empty()) markChunks_.upload(chunks.data(), chunks.size() * sizeof(glm::uvec2));
+}
+
+void VoxelScene::recordMark(VkCommandBuffer cmd, const render::Buffer& target, uint32_t firstChunk, uint32_t chunkCount) {
+  if (chunkCount == 0) return;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mark_.handle());
+  DescriptorWrites().storageBuffer(0, fragments_.handle()).storageBuffer(1, target.handle()).storageBuffer(2, markChunks_.handle()).push(ctx_, cmd, mark_);
+  const uint32_t mp[2] = {firstChunk, volume_.depth()};
+  vkCmdPushConstants(cmd, mark_.layout(), kCS, 0, sizeof(mp), mp);
+  vkCmdDispatch(cmd, chunkCount, 1, 1);
 }
 
 bool VoxelScene::record(render::FrameContext& frame) {
@@ -338,17 +392,23 @@ bool VoxelScene::record(render::FrameContext& frame) {
     gpu::SvoCounters init{};
     init.groups = glm::uvec4(1, nodeGroupCapacity_, 0, 0);
     vkCmdUpdateBuffer(cmd, svoCounters_.handle(), 0, sizeof(init), &init);
-    vkCmdFillBuffer(cmd, occupancy_.handle(), 0, VK_WHOLE_SIZE, 0);
+    // 1. Every fragment marks its cells in the occupancy pyramid: the static entities' once into the
+    // static pyramid, which each build copies, then the moving entities' on top.
+    if (rebuildStaticOccupancy_) {
+      vkCmdFillBuffer(cmd, staticOccupancy_.handle(), 0, VK_WHOLE_SIZE, 0);
+      render::computeWriteBarrier(cmd);
+      recordMark(cmd, staticOccupancy_, 0, staticChunks_);
+      render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                            VK_ACCESS_2_TRANSFER_READ_BIT);
+      rebuildStaticOccupancy_ = false;
+    }
+    const VkBufferCopy whole{0, 0, occupancy_.size()};
+    vkCmdCopyBuffer(cmd, staticOccupancy_.handle(), occupancy_.handle(), 1, &whole);
     render::computeWriteBarrier(cmd);
-    // 1. Every fragment marks its cells in the occupancy pyramid.
+    recordMark(cmd, occupancy_, staticChunks_, movingChunks_);
+    render::computeWriteBarrier(cmd);
     const uint32_t slots = uint32_t(highWater_);
     const uint32_t perGroup = 64 * DYNGI_SVO_ITEMS_PER_INVOCATION;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mark_.handle());
-    DescriptorWrites().storageBuffer(0, fragments_.handle()).storageBuffer(1, occupancy_.handle()).push(ctx_, cmd, mark_);
-    const uint32_t mp[2] = {slots, depth};
-    vkCmdPushConstants(cmd, mark_.layout(), kCS, 0, sizeof(mp), mp);
-    vkCmdDispatch(cmd, std::max(dispatchGroups(slots, perGroup), 1u), 1, 1);
-    render::computeWriteBarrier(cmd);
     // 2. Top down, level by level: the occupied nodes get their children, flagged from the pyramid.
     for (uint32_t l = 0; l <= depth; ++l) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, level_.handle());

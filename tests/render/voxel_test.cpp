@@ -214,6 +214,50 @@ TEST_F(VoxelTest, MovingObjectsReVoxelizeOnlyThemselvesAndMatchARebuild) {
   EXPECT_FALSE(voxels->stats().rebuilt);
 }
 
+// The build keeps the occupancy of entities that have not moved lately and marks only the moving ones'
+// fragments on top. An entity of the kept occupancy that starts moving, one that stops and settles, one
+// that moves again: the SVO must equal a from-scratch build every time, and a build with one mover
+// must read that mover's fragments only.
+TEST_F(VoxelTest, KeptStaticOccupancyFollowsEntitiesThatStartAndStopMoving) {
+  sample::buildBuiltinScene("cornell", world, assets);
+  attachVoxels(64, 16);
+  step();
+  const uint32_t everyone = voxels->stats().staticEntities;
+  ASSERT_GT(everyone, 2u);
+  ecs::Entity shortBox{}, tallBox{};
+  world.each<scene::Name>([&](ecs::Entity e, const scene::Name& n) {
+    if (n.value == "short_box") shortBox = e;
+    if (n.value == "tall_box") tallBox = e;
+  });
+  ASSERT_TRUE(world.alive(shortBox) && world.alive(tallBox));
+  auto expectScratch = [&](const char* what) {
+    GridDiff d = diff(leaves(), scratchLeaves());
+    EXPECT_EQ(d.missing + d.extra, 0u) << what;
+  };
+  auto nudge = [&](ecs::Entity e, float dx) {
+    world.write<scene::Transform>(e).translation.x += dx;
+    step();
+  };
+  // The short box leaves the kept occupancy (rebuilt without it), then only its fragments are marked.
+  nudge(shortBox, 0.05f);
+  expectScratch("short box starts moving");
+  EXPECT_EQ(voxels->stats().staticEntities, everyone - 1);
+  nudge(shortBox, 0.05f);
+  expectScratch("short box keeps moving");
+  const uint64_t moverSlots = voxels->stats().slotsMarked;
+  EXPECT_GT(moverSlots, 0u);
+  EXPECT_LT(moverSlots * 4, voxels->stats().fragmentCapacity) << "a build with one mover marks the mover only";
+  // It settles; nothing is rebuilt while nothing moves. The tall box's first motion rebuilds the kept
+  // occupancy, now with the short box in it and without the tall box.
+  for (int f = 0; f < 61; ++f) step();
+  nudge(tallBox, -0.05f);
+  expectScratch("tall box starts moving, short box settled");
+  EXPECT_EQ(voxels->stats().staticEntities, everyone - 1);
+  nudge(shortBox, -0.1f);
+  expectScratch("short box moves again");
+  EXPECT_EQ(voxels->stats().staticEntities, everyone - 2);
+}
+
 // Fine meshes: the per-entity range estimate overshoots small triangles several times over. After the
 // first frame the ranges are compacted to what they hold (static entities exactly, moving ones with
 // their slack); the SVO must not change, and later motion must still match a from-scratch build.

@@ -2,13 +2,16 @@
 // SVO build, step 1: every voxel fragment marks its cell in the occupancy pyramid at every level, finest
 // first (DYNGI_SVO_LEVEL_BASE). A cell found marked already has its coarser cells marked (or being
 // marked by the invocation that set it), so most fragments stop after a level or two. Reads the entity
-// ranges in place: empty slots are skipped.
+// ranges in place, one chunk of slots per workgroup (the C++ side cuts them from the ranges it wants
+// marked: the static entities' into the static pyramid, the moving ones' into a copy of it); empty
+// slots are skipped.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) readonly buffer Fragments { uvec4 fragments[]; };
 layout(set = 0, binding = 1) buffer Occupancy { uint occupancy[]; };
-layout(push_constant) uniform Push { uint slots; uint depth; };
+layout(set = 0, binding = 2) readonly buffer Chunks { uvec2 chunks[]; };  // x first slot, y end slot
+layout(push_constant) uniform Push { uint firstChunk; uint depth; };
 void markFragment(uint i) {
   uint c = fragments[i].x;
   if (c == DYNGI_VOXEL_EMPTY) return;
@@ -22,6 +25,6 @@ void markFragment(uint i) {
   }
 }
 void main() {
-  uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
-  for (uint i = gl_GlobalInvocationID.x; i < slots; i += stride) markFragment(i);
+  uvec2 chunk = chunks[firstChunk + gl_WorkGroupID.x];
+  for (uint i = chunk.x + gl_LocalInvocationIndex; i < chunk.y; i += gl_WorkGroupSize.x) markFragment(i);
 }

@@ -43,6 +43,10 @@ struct VoxelStats {
   bool poolOverflow = false;         // SVO pool too small (occupancy then conservative)
   // Geometry outside the volume is clipped (not voxelized): no error, and no count either.
   bool rebuilt = false;              // the SVO was rebuilt this frame
+  // Of this frame's build: slots the mark pass read (the moving entities', plus the static ones' when
+  // the static occupancy was rebuilt) and entities the static occupancy holds.
+  uint64_t slotsMarked = 0;
+  uint32_t staticEntities = 0;
 };
 
 class VoxelScene final : public render::RenderFeature {
@@ -93,8 +97,17 @@ class VoxelScene final : public render::RenderFeature {
     uint32_t lastCount = 0;      // fragments written (read back after the frame)
     uint32_t voxelizations = 0;  // how often the entity was voxelized (more than once: it moves)
     uint64_t lastEstimate = 0;   // estimateFragments() when it was last voxelized (lastCount's pose)
+    uint64_t lastVoxelizedFrame = 0;
     bool written = false;
   };
+  // Moving: voxelized again (after its first time) within the last kSettleFrames frames. The others'
+  // occupancy is kept in staticOccupancy_ instead of being marked again every build.
+  static constexpr uint64_t kSettleFrames = 60;
+  bool isMoving(const Range& r) const { return r.voxelizations > 1 && frameIndex_ - r.lastVoxelizedFrame < kSettleFrames; }
+  // Decides which entities the static occupancy holds and which the build marks (prepare()).
+  void planOccupancy(const std::vector<ecs::Entity>& removed);
+  // Records the mark pass over `chunks` (slot ranges of up to one workgroup's work) into `target`.
+  void recordMark(VkCommandBuffer cmd, const render::Buffer& target, uint32_t firstChunk, uint32_t chunkCount);
   // Fragment storage of `slots` slots at least; kept fragments are copied, nothing is re-voxelized.
   void ensureCapacity(uint64_t slots);
   // Moves every range's fragments into a buffer sized by what they hold (see prepare()).
@@ -133,6 +146,15 @@ class VoxelScene final : public render::RenderFeature {
   render::Buffer fragments_, counters_, nodes_, levels_, svoCounters_, attributes_;
   render::Buffer nodeCells_;  // per node that may be subdivided: its cell (svo_expand.comp), sized like nodes_
   render::Buffer occupancy_;  // occupancy pyramid of every level (svo_mark.comp)
+  // The pyramid of the entities in staticEntities_ alone: a build starts from a copy of it and marks the
+  // moving entities' fragments only. Rebuilt when one of them moves or is removed, or when a moving
+  // entity has settled and can join.
+  render::Buffer staticOccupancy_;
+  std::unordered_set<ecs::Entity> staticEntities_;
+  bool rebuildStaticOccupancy_ = true;
+  render::Buffer markChunks_;               // uvec2 (first slot, end slot) per mark workgroup
+  uint32_t staticChunks_ = 0, movingChunks_ = 0;  // this frame's: the static ones first
+  uint64_t frameIndex_ = 0;
   render::Pipeline voxelize_, mark_, level_, expand_, leafAttributes_, march_, marchOff_, debug_;
   double dispatchMarch(const render::Pipeline& pipeline, const std::vector<Segment>& segments, std::vector<uint8_t>& out,
                        float epsVoxels);
