@@ -28,8 +28,8 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
   queueArgs_ = Buffer(ctx, sizeof(gpu::TemporalQueue),
                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                       MemoryUsage::GpuOnly, "temporal reprojection queue args");
-  const Binding b[] = {{0, kUBO, kCS},  {1, kSSBO, kCS},         {2, kSSBO, kCS}, {3, kSSBO, kCS},
-                       {4, kSSBO, kCS}, {5, kStorageImage, kCS}, {6, kSSBO, kCS}, {7, kSSBO, kCS}};
+  const Binding b[] = {{0, kUBO, kCS},          {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS},
+                       {4, kStorageImage, kCS}, {5, kSSBO, kCS}, {6, kSSBO, kCS}};
   reprojectPipeline_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_temporal_reproject_comp), b, sizeof(gpu::AccumulatePush), "temporal_reproject");
 }
 
@@ -61,7 +61,6 @@ void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t width, uint32
   const VkDeviceSize layer = VkDeviceSize(K) * K * sub.x * sub.y;
   setIndirect_ = Buffer(ctx, layer * sets_ * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set indirect + depth");
   sums_ = Buffer(ctx, layer * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sums");
-  sumDepths_ = Buffer(ctx, layer * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sum depths");
   queue_ = Buffer(ctx, layer * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal reprojection queue");
   setCameras_.assign(sets_, glm::mat4(0.0f));
   lastCamera_ = glm::mat4(0.0f);
@@ -187,8 +186,7 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     if (settings_.visibility == VisibilityBackend::Bvh) pc.info.z = 2u;
     if (settings_.visibility == VisibilityBackend::None) pc.info.z = 1u;
     pc.range = glm::uvec4(0u, perPixel, 0u, 0u);
-    IndirectGatherPass::TemporalBuffers tb{setIndirect_.handle(), cameras_.handle(), sums_.handle(), sumDepths_.handle(),
-                                           queue_.handle(),       queueArgs_.handle(), {}};
+    IndirectGatherPass::TemporalBuffers tb{setIndirect_.handle(), cameras_.handle(), sums_.handle(), queue_.handle(), queueArgs_.handle(), {}};
     tb.push.sets = glm::uvec4(sets_, currentSet_, validMask, sameCamera);
     const glm::uvec2 sub = subImageSize(t.width, t.height);
     tb.push.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, sub.x, sub.y);
@@ -223,10 +221,9 @@ void TemporalIndirect::recordReprojection(render::FrameContext& frame, const gpu
       .storageBuffer(1, setIndirect_.handle())
       .storageBuffer(2, cameras_.handle())
       .storageBuffer(3, sums_.handle())
-      .storageBuffer(4, sumDepths_.handle())
-      .storageImage(5, accumulated_.view())
-      .storageBuffer(6, queue_.handle())
-      .storageBuffer(7, queueArgs_.handle())
+      .storageImage(4, accumulated_.view())
+      .storageBuffer(5, queue_.handle())
+      .storageBuffer(6, queueArgs_.handle())
       .push(ctx_, cmd, reprojectPipeline_);
   vkCmdPushConstants(cmd, reprojectPipeline_.layout(), kCS, 0, sizeof(push), &push);
   if (queued) {

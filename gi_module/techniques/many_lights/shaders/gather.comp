@@ -24,9 +24,8 @@ layout(set = 0, binding = 6) readonly buffer VisibilityBits { uint visibleBits[]
 layout(set = 0, binding = 7) buffer SetIndirect { vec4 setIndirect[]; };
 layout(set = 0, binding = 8) readonly buffer Cameras { TemporalSetCamera cameras[]; };
 layout(set = 0, binding = 9) buffer Sums { vec4 sums[]; };
-layout(set = 0, binding = 10) buffer SumDepths { float sumDepths[]; };
-layout(set = 0, binding = 11) writeonly buffer Queue { uint queuedPixels[]; };  // x | y << 16
-layout(set = 0, binding = 12) buffer QueueArgs { TemporalQueue queue; };
+layout(set = 0, binding = 10) writeonly buffer Queue { uint queuedPixels[]; };  // x | y << 16
+layout(set = 0, binding = 11) buffer QueueArgs { TemporalQueue queue; };
 layout(push_constant) uniform Push { GatherPush pc; AccumulatePush acc; };
 #include "svo_traverse.glsl"
 #include "filter_input.glsl"

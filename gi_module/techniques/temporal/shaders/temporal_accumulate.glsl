@@ -1,7 +1,7 @@
 // Temporal accumulation of one pixel, in two parts.
 //
-// Per pixel the running sum (rgb) and the number of sets in it (a) are kept with the view depth they
-// refer to. The gather, right after it computed the pixel's light for the set gathered this frame (so the
+// Per pixel the running sum (rgb) is kept with the view depth it refers to and the number of sets in it
+// (sums[].a, temporalSumTag). The gather, right after it computed the pixel's light for the set gathered this frame (so the
 // light never goes through an image), stores it and calls temporalAccumulateIncremental: when the camera
 // has not moved since the last frame and the pixel still shows the same surface (same depth), only set
 // `set` changed and the sum is updated in O(1) (old value out, new value in). Every other pixel is queued
@@ -20,7 +20,7 @@
 //
 // Needs before inclusion: FrameUniforms `frame`, filter_input.glsl, AccumulatePush `acc`, and the
 // buffers setIndirect (vec4 per set and pixel: rgb light, a view depth, <= 0 none), cameras
-// (TemporalSetCamera per set), sums (vec4 per pixel: rgb sum, a sets counted), sumDepths (float).
+// (TemporalSetCamera per set), sums (vec4 per pixel: rgb sum, a temporalSumTag).
 
 uint temporalIndex(ivec2 q, uint K) {
   uvec2 sub = uvec2(q) / K, subSize = acc.mode.zw;
@@ -28,9 +28,17 @@ uint temporalIndex(ivec2 q, uint K) {
   return (s * subSize.y + sub.y) * subSize.x + sub.x;
 }
 
+// A sum's tag: the view depth it refers to with the count of sets in it in the low 6 mantissa bits (T <=
+// 32), so that the gather's O(1) update reads and writes one vec4 per pixel. Depths that differ only in
+// those bits (7.6e-6 relative) count as the same surface, far inside the reprojection cut-off.
+const uint kSumCountBits = 63u;
+float temporalSumTag(float depth, uint count) { return uintBitsToFloat((floatBitsToUint(depth) & ~kSumCountBits) | count); }
+bool temporalSumIsFor(vec4 s, float depth) { return (floatBitsToUint(s.a) & ~kSumCountBits) == (floatBitsToUint(depth) & ~kSumCountBits); }
+uint temporalSumCount(vec4 s) { return floatBitsToUint(s.a) & kSumCountBits; }
+
 uint temporalLayerSize(uint K) { return acc.mode.z * acc.mode.w * K * K; }
 
-vec3 temporalAverage(vec4 s) { return s.a > 0.0 ? s.rgb * float(acc.sets.x) / s.a : vec3(0.0); }
+vec3 temporalAverage(vec3 sum, uint count) { return count > 0u ? sum * float(acc.sets.x) / float(count) : vec3(0.0); }
 
 // The gather's part for pixel px: stores newValue, this frame's light for set acc.sets.y at a surface of
 // view depth `depth` (<= 0: none). Returns true with the filter input (filter_input.glsl) in `result`
@@ -45,19 +53,19 @@ bool temporalAccumulateIncremental(ivec2 px, uint K, vec3 newValue, float depth,
   setIndirect[ik] = vec4(newValue, depth > 0.0 ? depth : -1.0);
   result = uvec4(0u);
   if (depth <= 0.0) {
-    sums[pixel] = vec4(0.0);
-    sumDepths[pixel] = -1.0;
+    sums[pixel] = vec4(0.0);  // a tag no surface's depth has
     return true;
   }
-  if (acc.mode.x == 0u || sumDepths[pixel] != depth) return false;
+  vec4 s = sums[pixel];
+  if (acc.mode.x == 0u || !temporalSumIsFor(s, depth)) return false;
   // Only set `set` changed: take its old sample out (if the full pass had counted it) and put the new one
   // in. The test is the full pass's test for a set stored from this camera.
-  vec4 s = sums[pixel];
+  uint count = temporalSumCount(s);
   if (acc.mode.y != 0u && oldValue.a > 0.0 && abs(oldValue.a - depth) <= acc.params.x * depth) s.rgb -= oldValue.rgb;
-  else s.a += 1.0;
+  else count += 1u;
   s.rgb += newValue;
-  sums[pixel] = s;
-  result = packFilterInput(depth, packedNormal, temporalAverage(s));
+  sums[pixel] = vec4(s.rgb, temporalSumTag(depth, count));
+  result = packFilterInput(depth, packedNormal, temporalAverage(s.rgb, count));
   return true;
 }
 
@@ -71,7 +79,8 @@ uvec4 temporalAccumulateFull(ivec2 px, uint K, uint packedNormal) {
   vec4 own = setIndirect[set * layer + pixel];
   float depth = own.a;
   float depthTolerance = acc.params.x * depth;
-  vec4 s = vec4(own.rgb, 1.0);
+  vec3 sum = own.rgb;
+  uint count = 1u;
   vec3 ray = pixelRay(px);
   vec3 p = frame.cameraPos.xyz + depth * ray;
   float tolerance = depthTolerance * length(ray);  // cutoff x distance to the camera
@@ -82,7 +91,9 @@ uvec4 temporalAccumulateFull(ivec2 px, uint K, uint packedNormal) {
   uint same = others & sameCamera;
   if (same != 0u) do {
     vec4 stored = setIndirect[uint(findLSB(same)) * layer + pixel];
-    if (stored.a > 0.0 && abs(stored.a - depth) <= depthTolerance) s += vec4(stored.rgb, 1.0);
+    bool counts = stored.a > 0.0 && abs(stored.a - depth) <= depthTolerance;
+    sum += counts ? stored.rgb : vec3(0.0);
+    count += counts ? 1u : 0u;
     same &= same - 1u;
   } while (same != 0u);
   uint moved = others & ~sameCamera;
@@ -96,9 +107,10 @@ uvec4 temporalAccumulateFull(ivec2 px, uint K, uint packedNormal) {
     vec4 stored = inside ? setIndirect[j * layer + temporalIndex(q, K)] : vec4(0.0);
     if (stored.a <= 0.0) continue;
     vec3 y = c.position.xyz + stored.a * (c.pixelRay0.xyz + float(q.x) * c.pixelRayStepX.xyz + float(q.y) * c.pixelRayStepY.xyz);
-    if (length(y - p) <= tolerance) s += vec4(stored.rgb, 1.0);
+    if (length(y - p) > tolerance) continue;
+    sum += stored.rgb;
+    ++count;
   } while (moved != 0u);
-  sums[pixel] = s;
-  sumDepths[pixel] = depth;
-  return packFilterInput(depth, packedNormal, temporalAverage(s));
+  sums[pixel] = vec4(sum, temporalSumTag(depth, count));
+  return packFilterInput(depth, packedNormal, temporalAverage(sum, count));
 }

@@ -11,10 +11,9 @@ layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) buffer SetIndirect { vec4 setIndirect[]; };
 layout(set = 0, binding = 2) readonly buffer Cameras { TemporalSetCamera cameras[]; };
 layout(set = 0, binding = 3) buffer Sums { vec4 sums[]; };
-layout(set = 0, binding = 4) buffer SumDepths { float sumDepths[]; };
-layout(set = 0, binding = 5, rgba32ui) uniform uimage2D filterInput;  // filter_input.glsl's packing
-layout(set = 0, binding = 6) readonly buffer Queue { uint queuedPixels[]; };  // x | y << 16
-layout(set = 0, binding = 7) readonly buffer QueueArgs { TemporalQueue queue; };
+layout(set = 0, binding = 4, rgba32ui) uniform uimage2D filterInput;  // filter_input.glsl's packing
+layout(set = 0, binding = 5) readonly buffer Queue { uint queuedPixels[]; };  // x | y << 16
+layout(set = 0, binding = 6) readonly buffer QueueArgs { TemporalQueue queue; };
 layout(push_constant) uniform Push { AccumulatePush acc; };
 #include "filter_input.glsl"
 #include "temporal_accumulate.glsl"
