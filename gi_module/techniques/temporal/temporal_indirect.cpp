@@ -59,7 +59,7 @@ void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t width, uint32
   const uint32_t K = interleave();
   const glm::uvec2 sub = subImageSize(width, height);
   const VkDeviceSize layer = VkDeviceSize(K) * K * sub.x * sub.y;
-  setIndirect_ = Buffer(ctx, layer * sets_ * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set indirect + depth");
+  setIndirect_ = Buffer(ctx, layer * sets_ * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set samples (rgb9e5 + depth)");
   sums_ = Buffer(ctx, layer * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sums");
   queue_ = Buffer(ctx, layer * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal reprojection queue");
   setCameras_.assign(sets_, glm::mat4(0.0f));

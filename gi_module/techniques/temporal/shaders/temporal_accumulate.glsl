@@ -19,7 +19,7 @@
 // walk, so a workgroup reads and writes contiguous memory.
 //
 // Needs before inclusion: FrameUniforms `frame`, filter_input.glsl, AccumulatePush `acc`, and the
-// buffers setIndirect (vec4 per set and pixel: rgb light, a view depth, <= 0 none), cameras
+// buffers setIndirect (uvec2 per set and pixel, setSample()), cameras
 // (TemporalSetCamera per set), sums (vec4 per pixel: rgb sum, a temporalSumTag).
 
 uint temporalIndex(ivec2 q, uint K) {
@@ -36,6 +36,30 @@ float temporalSumTag(float depth, uint count) { return uintBitsToFloat((floatBit
 bool temporalSumIsFor(vec4 s, float depth) { return (floatBitsToUint(s.a) & ~kSumCountBits) == (floatBitsToUint(depth) & ~kSumCountBits); }
 uint temporalSumCount(vec4 s) { return floatBitsToUint(s.a) & kSumCountBits; }
 
+// A set's sample: x its light as RGB9E5 (shared exponent: 9 bits per channel, 0.2% of the largest),
+// y the view depth it was gathered at (float bits; <= 0: no surface). Eight bytes instead of a vec4's
+// sixteen: lavapipe reads and writes storage buffers one lane and one component at a time.
+uint packRgb9e5(vec3 c) {
+  const float maxValue = 65408.0;  // (511 / 512) 2^16
+  c = clamp(c, vec3(0.0), vec3(maxValue));
+  float m = max(c.r, max(c.g, c.b));
+  int e = max(-16, int(floor(log2(max(m, 1e-30))))) + 16;  // biased exponent before rounding
+  float scale = exp2(float(e - 15 - 9));
+  if (floor(m / scale + 0.5) >= 512.0) {
+    ++e;
+    scale *= 2.0;
+  }
+  uvec3 q = uvec3(min(floor(c / scale + 0.5), vec3(511.0)));
+  return q.r | (q.g << 9) | (q.b << 18) | (uint(e) << 27);
+}
+vec3 unpackRgb9e5(uint v) {
+  return vec3(uvec3(v, v >> 9, v >> 18) & 511u) * exp2(float(int(v >> 27) - 15 - 9));
+}
+vec4 setSample(uint index) {
+  uvec2 v = setIndirect[index];
+  return vec4(unpackRgb9e5(v.x), uintBitsToFloat(v.y));
+}
+
 uint temporalLayerSize(uint K) { return acc.mode.z * acc.mode.w * K * K; }
 
 vec3 temporalAverage(vec3 sum, uint count) { return count > 0u ? sum * float(acc.sets.x) / float(count) : vec3(0.0); }
@@ -49,8 +73,10 @@ bool temporalAccumulateIncremental(ivec2 px, uint K, vec3 newValue, float depth,
   uint pixel = temporalIndex(px, K);
   // Store this frame's set (old value kept for the incremental update).
   uint ik = set * temporalLayerSize(K) + pixel;
-  vec4 oldValue = setIndirect[ik];
-  setIndirect[ik] = vec4(newValue, depth > 0.0 ? depth : -1.0);
+  vec4 oldValue = setSample(ik);
+  uint packedValue = packRgb9e5(newValue);
+  setIndirect[ik] = uvec2(packedValue, floatBitsToUint(depth > 0.0 ? depth : -1.0));
+  newValue = unpackRgb9e5(packedValue);  // what is stored is what the sum holds: it comes out exactly
   result = uvec4(0u);
   if (depth <= 0.0) {
     sums[pixel] = vec4(0.0);  // a tag no surface's depth has
@@ -76,7 +102,7 @@ uvec4 temporalAccumulateFull(ivec2 px, uint K, uint packedNormal) {
   const uint layer = temporalLayerSize(K);
   const uint set = acc.sets.y, validMask = acc.sets.z, sameCamera = acc.sets.w;
   uint pixel = temporalIndex(px, K);
-  vec4 own = setIndirect[set * layer + pixel];
+  vec4 own = setSample(set * layer + pixel);
   float depth = own.a;
   float depthTolerance = acc.params.x * depth;
   vec3 sum = own.rgb;
@@ -90,7 +116,7 @@ uvec4 temporalAccumulateFull(ivec2 px, uint K, uint packedNormal) {
   uint others = validMask & ~(1u << set);
   uint same = others & sameCamera;
   if (same != 0u) do {
-    vec4 stored = setIndirect[uint(findLSB(same)) * layer + pixel];
+    vec4 stored = setSample(uint(findLSB(same)) * layer + pixel);
     bool counts = stored.a > 0.0 && abs(stored.a - depth) <= depthTolerance;
     sum += counts ? stored.rgb : vec3(0.0);
     count += counts ? 1u : 0u;
@@ -104,7 +130,7 @@ uvec4 temporalAccumulateFull(ivec2 px, uint K, uint packedNormal) {
     vec4 clip = c.viewProj * vec4(p, 1.0);
     ivec2 q = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * vec2(size)));
     bool inside = clip.w > 0.0 && all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
-    vec4 stored = inside ? setIndirect[j * layer + temporalIndex(q, K)] : vec4(0.0);
+    vec4 stored = inside ? setSample(j * layer + temporalIndex(q, K)) : vec4(0.0);
     if (stored.a <= 0.0) continue;
     vec3 y = c.position.xyz + stored.a * (c.pixelRay0.xyz + float(q.x) * c.pixelRayStepX.xyz + float(q.y) * c.pixelRayStepY.xyz);
     if (length(y - p) > tolerance) continue;
