@@ -3,7 +3,9 @@
 
 #include <cmath>
 
+#include "dyngi/engine/render/image_metrics.h"
 #include "dyngi/engine/scene/light_units.h"
+#include "dyngi/engine/scene/transform_system.h"
 #include "render/render_fixture.h"
 #include "scenes/builtin_scenes.h"
 
@@ -142,4 +144,52 @@ TEST_F(CornellRender, NothingAboveTheSpotConeIsLit) {
     }
   }
   EXPECT_GT(ceiling, 100);
+}
+
+// The shadow map is kept while no light view and no caster changed, and redrawn (only the layers that
+// need it) when something did: each frame must equal what a fresh renderer draws for the same snapshot.
+TEST_F(RenderTest, ShadowMapIsKeptWhileNothingMovesAndRedrawnWhenSomethingDoes) {
+  ecs::World world;
+  scene::AssetStore assets;
+  sample::buildBuiltinScene("cornell", world, assets);
+  ecs::Scheduler scheduler;
+  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
+  render::Renderer renderer(context());
+  renderer.resize(96, 96);
+  uint64_t frameIndex = 0;
+  auto step = [&] {
+    scheduler.runFrame(world, ecs::FrameTime{1.0 / 60, double(frameIndex) / 60, frameIndex});
+    render::RenderSnapshot s = render::extractSnapshot(world, assets, frameIndex++);
+    renderer.render(s);
+    bool drewShadows = false;
+    for (const auto& [name, ms] : renderer.lastStats().gpuMs) drewShadows |= name == "shadow";
+    // The same snapshot through a renderer that has never seen a frame.
+    render::Renderer fresh(context());
+    fresh.resize(96, 96);
+    fresh.render(s);
+    double rel = render::relativeMse(renderer.readback(render::TargetId::Hdr), fresh.readback(render::TargetId::Hdr));
+    return std::pair{drewShadows, rel};
+  };
+  auto named = [&](const std::string& n) {
+    ecs::Entity found{};
+    world.each<scene::Name>([&](ecs::Entity e, const scene::Name& nm) { if (nm.value == n) found = e; });
+    return found;
+  };
+  auto [first, rel0] = step();
+  EXPECT_TRUE(first);
+  EXPECT_LT(rel0, 1e-12);
+  auto [still, rel1] = step();
+  EXPECT_FALSE(still) << "nothing moved: the shadow map is kept";
+  EXPECT_LT(rel1, 1e-12);
+  world.write<scene::Transform>(named("tall_box")).translation.x += 0.2f;
+  auto [boxMoved, rel2] = step();
+  EXPECT_TRUE(boxMoved);
+  EXPECT_LT(rel2, 1e-12) << "the moved box's shadow moved with it";
+  world.write<scene::Transform>(named("spot")).translation.z += 0.1f;
+  auto [lightMoved, rel3] = step();
+  EXPECT_TRUE(lightMoved);
+  EXPECT_LT(rel3, 1e-12) << "the moved light's shadow map was redrawn";
+  auto [stillAgain, rel4] = step();
+  EXPECT_FALSE(stillAgain);
+  EXPECT_LT(rel4, 1e-12);
 }

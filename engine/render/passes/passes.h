@@ -10,7 +10,8 @@
 namespace dyngi::render {
 
 // Builds the light list and renders one depth layer per spot/directional light and six per point
-// light into a 2D-array shadow map.
+// light into a 2D-array shadow map. A layer is kept from the last frame when its light's view and every
+// shadow caster (mesh, version, transform) are unchanged: a still scene renders no shadows at all.
 class ShadowPass {
  public:
   static constexpr const char* kName = "shadow";
@@ -30,6 +31,7 @@ class ShadowPass {
   const Buffer& matrices() const { return matrices_; }
   Image& shadowMap() { return shadowMap_; }
   uint32_t lightCount() const { return lightCount_; }
+  uint32_t layersRenderedLastFrame() const { return layersRendered_; }
   VkSampler compareSampler() const { return compareSampler_; }
   ~ShadowPass();
 
@@ -43,6 +45,17 @@ class ShadowPass {
   VkSampler compareSampler_ = VK_NULL_HANDLE;
   uint32_t lightCount_ = 0;
   std::vector<glm::mat4> layerMatrices_;
+  // What the shadow map holds: each layer's view, and the casters drawn into it.
+  struct Caster {
+    scene::MeshId mesh;
+    uint32_t version;
+    glm::mat4 model;
+    bool operator==(const Caster&) const = default;
+  };
+  std::vector<glm::mat4> renderedMatrices_;
+  std::vector<Caster> renderedCasters_;
+  bool rendered_ = false;
+  uint32_t layersRendered_ = 0;
   bool warnedCapacity_ = false;
 };
 

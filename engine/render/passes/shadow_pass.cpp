@@ -72,13 +72,29 @@ void ShadowPass::prepare(const RenderSnapshot& snapshot) {
 }
 
 void ShadowPass::execute(FrameContext& frame) {
+  std::vector<Caster> casters;
+  for (size_t i = 0; i < frame.snapshot.draws.size(); ++i) {
+    const DrawItem& d = frame.snapshot.draws[i];
+    const GpuMesh* mesh = frame.meshes[i];
+    if (d.castShadows && mesh && mesh->indexCount > 0) casters.push_back({d.mesh, mesh->version, d.model});
+  }
+  // Layers to draw: all when any caster changed, else those whose light view changed.
+  const bool castersChanged = !rendered_ || casters != renderedCasters_;
+  std::vector<uint32_t> layers;
+  for (uint32_t layer = 0; layer < layerMatrices_.size(); ++layer)
+    if (castersChanged || layer >= renderedMatrices_.size() || renderedMatrices_[layer] != layerMatrices_[layer]) layers.push_back(layer);
+  layersRendered_ = uint32_t(layers.size());
+  if (rendered_ && layers.empty()) return;  // the shadow map is current
+  rendered_ = true;
+  renderedCasters_ = std::move(casters);
+  renderedMatrices_ = layerMatrices_;
   ScopedPass scope(ctx_, frame.timer, frame.cmd, kName);
   VkCommandBuffer cmd = frame.cmd;
   shadowMap_.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
   uint32_t size = settings_.mapSize;
-  for (uint32_t layer = 0; layer < layerMatrices_.size(); ++layer) {
+  for (uint32_t layer : layers) {
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = shadowMap_.layerView(layer);
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
