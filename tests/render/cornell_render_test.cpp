@@ -192,4 +192,13 @@ TEST_F(RenderTest, ShadowMapIsKeptWhileNothingMovesAndRedrawnWhenSomethingDoes) 
   auto [stillAgain, rel4] = step();
   EXPECT_FALSE(stillAgain);
   EXPECT_LT(rel4, 1e-12);
+  // A box that keeps moving under a still light: the layer is the cached static casters plus the box;
+  // then the light moves too (drawn whole), then stops (the cache is redrawn for the new view).
+  for (int f = 0; f < 8; ++f) {
+    world.write<scene::Transform>(named("short_box")).translation.z += 0.03f;
+    if (f >= 3 && f < 5) world.write<scene::Transform>(named("spot")).translation.x += 0.05f;
+    auto [drew, rel] = step();
+    EXPECT_TRUE(drew);
+    EXPECT_LT(rel, 1e-12) << "moving box, frame " << f;
+  }
 }

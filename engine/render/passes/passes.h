@@ -2,6 +2,7 @@
 // The engine's built-in passes, one class each. Every pass has a name (its timestamp, debug label and
 // key in stats), a Settings struct with defaults, and execute(FrameContext&).
 #include <functional>
+#include <unordered_map>
 #include <vector>
 
 #include "dyngi/engine/render/frame_context.h"
@@ -11,7 +12,9 @@ namespace dyngi::render {
 
 // Builds the light list and renders one depth layer per spot/directional light and six per point
 // light into a 2D-array shadow map. A layer is kept from the last frame when its light's view and every
-// shadow caster (mesh, version, transform) are unchanged: a still scene renders no shadows at all.
+// shadow caster (mesh, version, transform) are unchanged: a still scene renders no shadows at all. Under
+// a still light with casters moving, a layer is a copy of a cached layer holding the static casters,
+// with the moving ones drawn on top.
 class ShadowPass {
  public:
   static constexpr const char* kName = "shadow";
@@ -47,6 +50,7 @@ class ShadowPass {
   std::vector<glm::mat4> layerMatrices_;
   // What the shadow map holds: each layer's view, and the casters drawn into it.
   struct Caster {
+    scene::Entity entity;
     scene::MeshId mesh;
     uint32_t version;
     glm::mat4 model;
@@ -56,6 +60,16 @@ class ShadowPass {
   std::vector<Caster> renderedCasters_;
   bool rendered_ = false;
   uint32_t layersRendered_ = 0;
+  // Static casters (unchanged for kSettleFrames frames) of a still light are drawn once into a cached
+  // layer; while only moving casters change, a layer is that copy plus the moving casters.
+  static constexpr uint64_t kSettleFrames = 60;
+  uint64_t frameCounter_ = 0;
+  std::unordered_map<scene::Entity, uint64_t> casterChangedAt_;  // frame its key last changed (0: never)
+  Image staticCache_;                        // one layer per shadow layer in use, made on first need
+  std::vector<glm::mat4> cacheMatrices_;     // the view each cached layer was drawn with
+  std::vector<std::vector<Caster>> cacheCasters_;  // the static casters drawn into it
+  void drawCasters(VkCommandBuffer cmd, VkImageView target, const glm::mat4& viewProj, const FrameContext& frame,
+                   const std::vector<size_t>& draws, bool clear);
   bool warnedCapacity_ = false;
 };
 
