@@ -40,7 +40,7 @@ void IndirectGatherPass::record(render::FrameContext& frame, VkBuffer vpls, VkBu
       .storageBuffer(4, nodes)
       .storageImage(5, raw.view())
       .storageBuffer(6, bits)
-      .storageBuffer(7, acc ? temporal->setIndirect : vpls)
+      .storageBuffer(7, acc ? temporal->setSamples : vpls)
       .storageBuffer(8, acc ? temporal->cameras : vpls)
       .storageBuffer(9, acc ? temporal->sums : vpls)
       .storageBuffer(10, acc ? temporal->queue : vpls)

@@ -59,7 +59,7 @@ void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t width, uint32
   const uint32_t K = interleave();
   const glm::uvec2 sub = subImageSize(width, height);
   const VkDeviceSize layer = VkDeviceSize(K) * K * sub.x * sub.y;
-  setIndirect_ = Buffer(ctx, layer * sets_ * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set samples (rgb9e5 + depth)");
+  setSamples_ = Buffer(ctx, layer * sets_ * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set samples (rgb9e5 + depth)");
   sums_ = Buffer(ctx, layer * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sums");
   queue_ = Buffer(ctx, layer * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal reprojection queue");
   setCameras_.assign(sets_, glm::mat4(0.0f));
@@ -186,7 +186,7 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     if (settings_.visibility == VisibilityBackend::Bvh) pc.info.z = 2u;
     if (settings_.visibility == VisibilityBackend::None) pc.info.z = 1u;
     pc.range = glm::uvec4(0u, perPixel, 0u, 0u);
-    IndirectGatherPass::TemporalBuffers tb{setIndirect_.handle(), cameras_.handle(), sums_.handle(), queue_.handle(), queueArgs_.handle(), {}};
+    IndirectGatherPass::TemporalBuffers tb{setSamples_.handle(), cameras_.handle(), sums_.handle(), queue_.handle(), queueArgs_.handle(), {}};
     tb.push.sets = glm::uvec4(sets_, currentSet_, validMask, sameCamera);
     const glm::uvec2 sub = subImageSize(t.width, t.height);
     tb.push.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, sub.x, sub.y);
@@ -218,7 +218,7 @@ void TemporalIndirect::recordReprojection(render::FrameContext& frame, const gpu
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, reprojectPipeline_.handle());
   DescriptorWrites()
       .uniformBuffer(0, frame.frameUniforms.handle())
-      .storageBuffer(1, setIndirect_.handle())
+      .storageBuffer(1, setSamples_.handle())
       .storageBuffer(2, cameras_.handle())
       .storageBuffer(3, sums_.handle())
       .storageImage(4, accumulated_.view())

@@ -79,7 +79,7 @@ class TemporalIndirect final : public render::RenderFeature {
   uint64_t frameCounter_ = 0;
   std::vector<int64_t> lastRendered_;   // frame each set was last gathered (-1: never)
   std::vector<TemporalVpl> setVpls_;  // CPU copy of the VPLs uploaded this frame
-  render::Buffer vpls_, cameras_, bits_, setIndirect_, sums_;
+  render::Buffer vpls_, cameras_, bits_, setSamples_, sums_;
   render::Buffer queue_, queueArgs_;  // pixels queued for the full reprojection, and their count (TemporalQueue)
   render::Pipeline reprojectPipeline_;
   glm::mat4 lastCamera_{0.0f};

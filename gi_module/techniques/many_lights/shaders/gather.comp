@@ -21,7 +21,7 @@ layout(set = 0, binding = 4) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = 5, rgba32ui) uniform writeonly uimage2D outRaw;  // filter_input.glsl's packing
 layout(set = 0, binding = 6) readonly buffer VisibilityBits { uint visibleBits[]; };  // visibility mode 2
 // Temporal accumulation only (kAccumulate).
-layout(set = 0, binding = 7) buffer SetIndirect { uvec2 setIndirect[]; };
+layout(set = 0, binding = 7) buffer SetSamples { uvec2 setSamples[]; };
 layout(set = 0, binding = 8) readonly buffer Cameras { TemporalSetCamera cameras[]; };
 layout(set = 0, binding = 9) buffer Sums { vec4 sums[]; };
 layout(set = 0, binding = 10) writeonly buffer Queue { uint queuedPixels[]; };  // x | y << 16

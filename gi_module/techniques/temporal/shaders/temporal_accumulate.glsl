@@ -19,7 +19,7 @@
 // walk, so a workgroup reads and writes contiguous memory.
 //
 // Needs before inclusion: FrameUniforms `frame`, filter_input.glsl, AccumulatePush `acc`, and the
-// buffers setIndirect (uvec2 per set and pixel, setSample()), cameras
+// buffers setSamples (uvec2 per set and pixel, setSample()), cameras
 // (TemporalSetCamera per set), sums (vec4 per pixel: rgb sum, a temporalSumTag).
 
 uint temporalIndex(ivec2 q, uint K) {
@@ -56,7 +56,7 @@ vec3 unpackRgb9e5(uint v) {
   return vec3(uvec3(v, v >> 9, v >> 18) & 511u) * exp2(float(int(v >> 27) - 15 - 9));
 }
 vec4 setSample(uint index) {
-  uvec2 v = setIndirect[index];
+  uvec2 v = setSamples[index];
   return vec4(unpackRgb9e5(v.x), uintBitsToFloat(v.y));
 }
 
@@ -75,7 +75,7 @@ bool temporalAccumulateIncremental(ivec2 px, uint K, vec3 newValue, float depth,
   uint ik = set * temporalLayerSize(K) + pixel;
   vec4 oldValue = setSample(ik);
   uint packedValue = packRgb9e5(newValue);
-  setIndirect[ik] = uvec2(packedValue, floatBitsToUint(depth > 0.0 ? depth : -1.0));
+  setSamples[ik] = uvec2(packedValue, floatBitsToUint(depth > 0.0 ? depth : -1.0));
   newValue = unpackRgb9e5(packedValue);  // what is stored is what the sum holds: it comes out exactly
   result = uvec4(0u);
   if (depth <= 0.0) {

@@ -8,7 +8,7 @@
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = 1) buffer SetIndirect { uvec2 setIndirect[]; };
+layout(set = 0, binding = 1) buffer SetSamples { uvec2 setSamples[]; };
 layout(set = 0, binding = 2) readonly buffer Cameras { TemporalSetCamera cameras[]; };
 layout(set = 0, binding = 3) buffer Sums { vec4 sums[]; };
 layout(set = 0, binding = 4, rgba32ui) uniform uimage2D filterInput;  // filter_input.glsl's packing
@@ -35,7 +35,7 @@ void main() {
     px = ivec2(uvec2(r % subSize.x, r / subSize.x) * K + uvec2(s % K, s / K));
   }
   if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return;
-  if (uintBitsToFloat(setIndirect[acc.sets.y * temporalLayerSize(K) + temporalIndex(px, K)].y) <= 0.0) return;  // no surface: the gather wrote it
+  if (uintBitsToFloat(setSamples[acc.sets.y * temporalLayerSize(K) + temporalIndex(px, K)].y) <= 0.0) return;  // no surface: the gather wrote it
   uvec4 stored = imageLoad(filterInput, px);
   imageStore(filterInput, px, temporalAccumulateFull(px, K, stored.y));
 }
