@@ -20,7 +20,8 @@ std::string usage() {
          "  --temporal T                           temporal VPL sets for svo/bvh (default 16; 1 = all VPLs every frame)\n"
          "  --reshoot N                            VPLs reshot per frame (default: VPLs / T)\n"
          "  --vpl-source paths|rsm                 incremental light paths (default) or per-frame RSM sampling (svo)\n"
-         "  --animate NAME                         static | moving-spot | rotating-object | walking-fox (benchmark scenes)\n"
+         "  --animate NAME                         static | moving-spot | rotating-object | moving-camera |\n"
+         "                                         walking-fox (benchmark scenes)\n"
          "  --vpls N                               VPLs for --gi svo (default 512)\n"
          "  --interleave K                         K x K interleaved sub-images (default 4)\n"
          "  --clamp B                              distance clamp B in world units^2 (default 0.01)\n"
@@ -140,8 +141,9 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
       }
     } else if (a == "--animate") {
       if (!value(o.animate)) return std::nullopt;
-      if (o.animate != "static" && o.animate != "moving-spot" && o.animate != "rotating-object" && o.animate != "walking-fox") {
-        error = "unknown --animate '" + o.animate + "' (available: static, moving-spot, rotating-object, walking-fox)";
+      if (o.animate != "static" && o.animate != "moving-spot" && o.animate != "rotating-object" && o.animate != "moving-camera" &&
+          o.animate != "walking-fox") {
+        error = "unknown --animate '" + o.animate + "' (available: static, moving-spot, rotating-object, moving-camera, walking-fox)";
         return std::nullopt;
       }
     } else if (a == "--vpls" || a == "--interleave") {

@@ -110,6 +110,20 @@ std::string buildAnimatedScene(const std::string& name, ecs::World& w, AssetStor
     w.flushCommands();
     return {};
   }
+  if (name == "moving-camera") {
+    // A camera strafing sideways (a player walking past): every pixel moves every frame, so the temporal
+    // technique reprojects every set for every pixel.
+    w.each<ActiveCamera, Transform>([&](Entity e, const ActiveCamera&, const Transform& t) {
+      ScriptedMotion m;
+      m.origin = t.translation;
+      m.baseRotation = t.rotation;
+      m.oscillation = {0.3f, 0.0f, 0.0f};
+      m.oscillationHz = 0.25f;
+      w.commands().add(e, m);
+    });
+    w.flushCommands();
+    return {};
+  }
   if (name == "rotating-object") {
     Entity pivot = w.create();
     Transform pt;
