@@ -109,7 +109,10 @@ struct GatherPush {
 
 #define DYNGI_MAX_RSM_LAYERS 24
 
-// The camera a temporal set's indirect buffer was gathered from (storage buffer, one per set): enough to
+// Temporal sets at most (set counts in bit masks; the set cameras are a uniform array of this size).
+#define DYNGI_MAX_TEMPORAL_SETS 32
+
+// The camera a temporal set's indirect buffer was gathered from (uniform array, one per set): enough to
 // project a point into it and to rebuild the point a stored pixel's view depth stands for (the pixel rays
 // of engine FrameUniforms).
 #ifdef __cplusplus

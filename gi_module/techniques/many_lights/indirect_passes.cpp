@@ -15,7 +15,7 @@ IndirectGatherPass::IndirectGatherPass(render::VulkanContext& ctx, bool accumula
                        {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},         {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
                        {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},         {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},
                        {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},         {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},
-                       {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},        {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS}};
+                       {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS}};
   const uint32_t spec[] = {accumulate ? 1u : 0u};
   pipeline_ = render::Pipeline::compute(ctx, DYNGI_SHADER(spv_gather_comp), b, sizeof(gpu::GatherPush) + sizeof(gpu::AccumulatePush),
                                         accumulate ? "indirect_gather_accumulate" : "indirect_gather", spec);
@@ -41,10 +41,9 @@ void IndirectGatherPass::record(render::FrameContext& frame, VkBuffer vpls, VkBu
       .storageImage(5, raw.view())
       .storageBuffer(6, bits)
       .storageBuffer(7, acc ? temporal->setSamples : vpls)
-      .storageBuffer(8, acc ? temporal->cameras : vpls)
-      .storageBuffer(9, acc ? temporal->sums : vpls)
-      .storageBuffer(10, acc ? temporal->queue : vpls)
-      .storageBuffer(11, acc ? temporal->queueArgs : vpls)
+      .storageBuffer(8, acc ? temporal->sums : vpls)
+      .storageBuffer(9, acc ? temporal->queue : vpls)
+      .storageBuffer(10, acc ? temporal->queueArgs : vpls)
       .push(ctx_, cmd, pipeline_);
   vkCmdPushConstants(cmd, pipeline_.layout(), kCS, 0, sizeof(pc), &pc);
   if (acc) vkCmdPushConstants(cmd, pipeline_.layout(), kCS, sizeof(pc), sizeof(temporal->push), &temporal->push);

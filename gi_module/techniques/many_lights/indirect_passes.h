@@ -14,7 +14,7 @@ class IndirectGatherPass {
   IndirectGatherPass(render::VulkanContext& ctx, bool accumulate = false);
   // The temporal technique's buffers (accumulate only).
   struct TemporalBuffers {
-    VkBuffer setSamples = VK_NULL_HANDLE, cameras = VK_NULL_HANDLE, sums = VK_NULL_HANDLE;
+    VkBuffer setSamples = VK_NULL_HANDLE, sums = VK_NULL_HANDLE;
     VkBuffer queue = VK_NULL_HANDLE, queueArgs = VK_NULL_HANDLE;  // pixels queued for the full reprojection
     gpu::AccumulatePush push{};
   };

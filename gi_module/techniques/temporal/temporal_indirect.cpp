@@ -17,18 +17,20 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
     : ctx_(ctx), paths_(paths), voxels_(voxels), bvh_(bvh), settings_(settings) {
   if (settings.visibility == VisibilityBackend::Svo && !voxels) throw std::invalid_argument("SVO visibility needs a VoxelScene");
   if (settings.visibility == VisibilityBackend::Bvh && !bvh) throw std::invalid_argument("BVH visibility needs an EmbreeScene");
-  sets_ = std::min(paths.settings().temporalSets, 32u);
+  sets_ = std::min(paths.settings().temporalSets, uint32_t(DYNGI_MAX_TEMPORAL_SETS));
   perSet_ = (paths.settings().count + sets_ - 1) / sets_;
   lastRendered_.assign(sets_, -1);
   gatherPass_ = std::make_unique<IndirectGatherPass>(ctx, /*accumulate=*/true);
   filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
   vpls_ = Buffer(ctx, VkDeviceSize(perSet_) * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "temporal vpls");
-  cameras_ = Buffer(ctx, VkDeviceSize(sets_) * sizeof(gpu::TemporalSetCamera), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "set cameras");
+  // Sized as the reprojection shader declares it (a uniform array).
+  cameras_ = Buffer(ctx, DYNGI_MAX_TEMPORAL_SETS * sizeof(gpu::TemporalSetCamera), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUsage::Upload,
+                    "set cameras");
   bits_ = Buffer(ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "visibility bits");
   queueArgs_ = Buffer(ctx, sizeof(gpu::TemporalQueue),
                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                       MemoryUsage::GpuOnly, "temporal reprojection queue args");
-  const Binding b[] = {{0, kUBO, kCS},          {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS},
+  const Binding b[] = {{0, kUBO, kCS},          {1, kSSBO, kCS}, {2, kUBO, kCS}, {3, kSSBO, kCS},
                        {4, kStorageImage, kCS}, {5, kSSBO, kCS}, {6, kSSBO, kCS}};
   reprojectPipeline_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_temporal_reproject_comp), b, sizeof(gpu::AccumulatePush), "temporal_reproject");
 }
@@ -186,7 +188,7 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     if (settings_.visibility == VisibilityBackend::Bvh) pc.info.z = 2u;
     if (settings_.visibility == VisibilityBackend::None) pc.info.z = 1u;
     pc.range = glm::uvec4(0u, perPixel, 0u, 0u);
-    IndirectGatherPass::TemporalBuffers tb{setSamples_.handle(), cameras_.handle(), sums_.handle(), queue_.handle(), queueArgs_.handle(), {}};
+    IndirectGatherPass::TemporalBuffers tb{setSamples_.handle(), sums_.handle(), queue_.handle(), queueArgs_.handle(), {}};
     tb.push.sets = glm::uvec4(sets_, currentSet_, validMask, sameCamera);
     const glm::uvec2 sub = subImageSize(t.width, t.height);
     tb.push.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, sub.x, sub.y);
@@ -219,7 +221,7 @@ void TemporalIndirect::recordReprojection(render::FrameContext& frame, const gpu
   DescriptorWrites()
       .uniformBuffer(0, frame.frameUniforms.handle())
       .storageBuffer(1, setSamples_.handle())
-      .storageBuffer(2, cameras_.handle())
+      .uniformBuffer(2, cameras_.handle())
       .storageBuffer(3, sums_.handle())
       .storageImage(4, accumulated_.view())
       .storageBuffer(5, queue_.handle())

@@ -22,10 +22,9 @@ layout(set = 0, binding = 5, rgba32ui) uniform writeonly uimage2D outRaw;  // fi
 layout(set = 0, binding = 6) readonly buffer VisibilityBits { uint visibleBits[]; };  // visibility mode 2
 // Temporal accumulation only (kAccumulate).
 layout(set = 0, binding = 7) buffer SetSamples { uvec2 setSamples[]; };
-layout(set = 0, binding = 8) readonly buffer Cameras { TemporalSetCamera cameras[]; };
-layout(set = 0, binding = 9) buffer Sums { vec4 sums[]; };
-layout(set = 0, binding = 10) writeonly buffer Queue { uint queuedPixels[]; };  // x | y << 16
-layout(set = 0, binding = 11) buffer QueueArgs { TemporalQueue queue; };
+layout(set = 0, binding = 8) buffer Sums { vec4 sums[]; };
+layout(set = 0, binding = 9) writeonly buffer Queue { uint queuedPixels[]; };  // x | y << 16
+layout(set = 0, binding = 10) buffer QueueArgs { TemporalQueue queue; };
 layout(push_constant) uniform Push { GatherPush pc; AccumulatePush acc; };
 #include "svo_traverse.glsl"
 #include "filter_input.glsl"

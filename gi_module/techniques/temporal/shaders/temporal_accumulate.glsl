@@ -95,6 +95,30 @@ bool temporalAccumulateIncremental(ivec2 px, uint K, vec3 newValue, float depth,
   return true;
 }
 
+#ifdef DYNGI_TEMPORAL_REPROJECT
+// Set j's sample at this pixel (index `pixel` in a layer of `layer`), stored from the current camera: it
+// counts when its depth is within the cut-off of this pixel's.
+void addSameCameraSample(uint j, uint pixel, uint layer, float depth, float depthTolerance, inout vec3 sum, inout uint count) {
+  vec4 stored = setSample(j * layer + pixel);
+  bool counts = stored.a > 0.0 && abs(stored.a - depth) <= depthTolerance;
+  sum += counts ? stored.rgb : vec3(0.0);
+  count += counts ? 1u : 0u;
+}
+
+// Set j's sample where world point p falls in its camera `cam`: it counts when the surface it was
+// gathered for lies within `tolerance` of p.
+void addReprojectedSample(uint j, TemporalSetCamera cam, vec3 p, float tolerance, ivec2 size, uint K, uint layer, inout vec3 sum,
+                          inout uint count) {
+  vec4 clip = cam.viewProj * vec4(p, 1.0);
+  ivec2 q = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * vec2(size)));
+  bool inside = clip.w > 0.0 && all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
+  vec4 stored = inside ? setSample(j * layer + temporalIndex(q, K)) : vec4(0.0);
+  vec3 y = cam.position.xyz + stored.a * (cam.pixelRay0.xyz + float(q.x) * cam.pixelRayStepX.xyz + float(q.y) * cam.pixelRayStepY.xyz);
+  bool counts = stored.a > 0.0 && length(y - p) <= tolerance;
+  sum += counts ? stored.rgb : vec3(0.0);
+  count += counts ? 1u : 0u;
+}
+
 // The full reprojection for pixel px, whose light for this frame's set the gather stored; returns the
 // filter input (filter_input.glsl).
 uvec4 temporalAccumulateFull(ivec2 px, uint K, uint packedNormal) {
@@ -110,33 +134,22 @@ uvec4 temporalAccumulateFull(ivec2 px, uint K, uint packedNormal) {
   vec3 ray = pixelRay(px);
   vec3 p = frame.cameraPos.xyz + depth * ray;
   float tolerance = depthTolerance * length(ray);  // cutoff x distance to the camera
+  uint others = validMask & ~(1u << set);
   // Two loops over uniform set masks, so a still camera (every set stored from it) never runs the
   // reprojection's arithmetic: lavapipe would run it for every set, masked, if both lived in one loop.
   // Do-whiles check at the end, which spares the masked extra pass lavapipe makes through a for loop.
-  uint others = validMask & ~(1u << set);
   uint same = others & sameCamera;
   if (same != 0u) do {
-    vec4 stored = setSample(uint(findLSB(same)) * layer + pixel);
-    bool counts = stored.a > 0.0 && abs(stored.a - depth) <= depthTolerance;
-    sum += counts ? stored.rgb : vec3(0.0);
-    count += counts ? 1u : 0u;
+    addSameCameraSample(uint(findLSB(same)), pixel, layer, depth, depthTolerance, sum, count);
     same &= same - 1u;
   } while (same != 0u);
   uint moved = others & ~sameCamera;
   if (moved != 0u) do {
     uint j = uint(findLSB(moved));
     moved &= moved - 1u;
-    TemporalSetCamera c = cameras[j];
-    vec4 clip = c.viewProj * vec4(p, 1.0);
-    ivec2 q = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * vec2(size)));
-    bool inside = clip.w > 0.0 && all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
-    vec4 stored = inside ? setSample(j * layer + temporalIndex(q, K)) : vec4(0.0);
-    if (stored.a <= 0.0) continue;
-    vec3 y = c.position.xyz + stored.a * (c.pixelRay0.xyz + float(q.x) * c.pixelRayStepX.xyz + float(q.y) * c.pixelRayStepY.xyz);
-    if (length(y - p) > tolerance) continue;
-    sum += stored.rgb;
-    ++count;
+    addReprojectedSample(j, cameras[j], p, tolerance, size, K, layer, sum, count);
   } while (moved != 0u);
   sums[pixel] = vec4(sum, temporalSumTag(depth, count));
   return packFilterInput(depth, packedNormal, temporalAverage(sum, count));
 }
+#endif  // DYNGI_TEMPORAL_REPROJECT

@@ -9,12 +9,15 @@
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) buffer SetSamples { uvec2 setSamples[]; };
-layout(set = 0, binding = 2) readonly buffer Cameras { TemporalSetCamera cameras[]; };
+// A uniform buffer: every lane reads the same set's camera, which lavapipe then loads once per lane
+// group instead of lane by lane (as a storage buffer).
+layout(set = 0, binding = 2) uniform Cameras { TemporalSetCamera cameras[DYNGI_MAX_TEMPORAL_SETS]; };
 layout(set = 0, binding = 3) buffer Sums { vec4 sums[]; };
 layout(set = 0, binding = 4, rgba32ui) uniform uimage2D filterInput;  // filter_input.glsl's packing
 layout(set = 0, binding = 5) readonly buffer Queue { uint queuedPixels[]; };  // x | y << 16
 layout(set = 0, binding = 6) readonly buffer QueueArgs { TemporalQueue queue; };
 layout(push_constant) uniform Push { AccumulatePush acc; };
+#define DYNGI_TEMPORAL_REPROJECT
 #include "filter_input.glsl"
 #include "temporal_accumulate.glsl"
 
