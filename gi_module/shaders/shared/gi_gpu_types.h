@@ -136,10 +136,9 @@ struct AccumulatePush {
   uvec4 sets;           // x set count, y the set gathered this frame, z sets stored at least once (bits),
                         // w sets stored from the current camera (bits)
   uvec4 mode;           // x 1: incremental (camera as last frame, set y last stored from it, sums current),
-                        // y 1: set y held a sample before this frame, zw sub-image size of the per-pixel
-                        // buffers' layout (ceil(width / K), ceil(height / K))
+                        // y 1: set y held a sample before this frame, z 1: the gather queues the pixels
+                        // the reprojection pass takes, 0: that pass takes every pixel; w unused
   vec4 params;          // x reprojection cut-off (relative to the view distance)
-  uvec4 grid;           // x interleave K, y 1: the reprojection pass runs over the queued pixels, 0: over all
 };
 
 // The pixels the gather queues for the full reprojection (storage buffer, reset every frame); its first
@@ -159,7 +158,7 @@ static_assert(sizeof(GpuVpl) == 48);
 static_assert(sizeof(RsmPush) == 96);
 static_assert(sizeof(GatherPush) == 64);
 static_assert(sizeof(TemporalSetCamera) == 128);
-static_assert(sizeof(AccumulatePush) == 64);
+static_assert(sizeof(AccumulatePush) == 48);
 static_assert(sizeof(TemporalQueue) == 16);
 static_assert(sizeof(SvoLevel) == 32);
 static_assert(sizeof(SvoCounters) == 16);

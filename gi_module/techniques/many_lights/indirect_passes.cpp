@@ -13,12 +13,26 @@ IndirectGatherPass::IndirectGatherPass(render::VulkanContext& ctx, bool accumula
   const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS},
                        {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS}, {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},
                        {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},         {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
-                       {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},         {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},
-                       {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},         {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},
+                       {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},         {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
+                       {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},          {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},
                        {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS}};
   const uint32_t spec[] = {accumulate ? 1u : 0u};
   pipeline_ = render::Pipeline::compute(ctx, DYNGI_SHADER(spv_gather_comp), b, sizeof(gpu::GatherPush) + sizeof(gpu::AccumulatePush),
                                         accumulate ? "indirect_gather_accumulate" : "indirect_gather", spec);
+  if (!accumulate) {
+    // The temporal images' bindings must hold images of their declared kind even when never used.
+    auto unused = [&](VkFormat f, VkImageViewType type, const char* name) {
+      render::ImageDesc d;
+      d.format = f;
+      d.layers = type == VK_IMAGE_VIEW_TYPE_2D_ARRAY ? 2 : 1;
+      d.viewType = type;
+      d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+      d.name = name;
+      return render::Image(ctx, d);
+    };
+    unusedSetSamples_ = unused(VK_FORMAT_R32_UINT, VK_IMAGE_VIEW_TYPE_2D_ARRAY, "unused set samples");
+    unusedSums_ = unused(VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_VIEW_TYPE_2D, "unused sums");
+  }
 }
 
 void IndirectGatherPass::record(render::FrameContext& frame, VkBuffer vpls, VkBuffer nodes, VkBuffer bits, render::Image& raw,
@@ -29,6 +43,9 @@ void IndirectGatherPass::record(render::FrameContext& frame, VkBuffer vpls, VkBu
   for (render::Image* in : {&t.position, &t.normal})
     in->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   raw.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  for (render::Image* unused : {&unusedSetSamples_, &unusedSums_})
+    if (unused->valid() && unused->layout() != VK_IMAGE_LAYOUT_GENERAL)
+      unused->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
   const bool acc = accumulate_ && temporal;
   // Without accumulation the temporal bindings are never read; any valid buffer keeps them defined.
@@ -40,8 +57,8 @@ void IndirectGatherPass::record(render::FrameContext& frame, VkBuffer vpls, VkBu
       .storageBuffer(4, nodes)
       .storageImage(5, raw.view())
       .storageBuffer(6, bits)
-      .storageBuffer(7, acc ? temporal->setSamples : vpls)
-      .storageBuffer(8, acc ? temporal->sums : vpls)
+      .storageImage(7, acc ? temporal->setSamples : unusedSetSamples_.view())
+      .storageImage(8, acc ? temporal->sums : unusedSums_.view())
       .storageBuffer(9, acc ? temporal->queue : vpls)
       .storageBuffer(10, acc ? temporal->queueArgs : vpls)
       .push(ctx_, cmd, pipeline_);

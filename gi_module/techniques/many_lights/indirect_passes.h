@@ -14,7 +14,7 @@ class IndirectGatherPass {
   IndirectGatherPass(render::VulkanContext& ctx, bool accumulate = false);
   // The temporal technique's buffers (accumulate only).
   struct TemporalBuffers {
-    VkBuffer setSamples = VK_NULL_HANDLE, sums = VK_NULL_HANDLE;
+    VkImageView setSamples = VK_NULL_HANDLE, sums = VK_NULL_HANDLE;  // storage images, in GENERAL layout
     VkBuffer queue = VK_NULL_HANDLE, queueArgs = VK_NULL_HANDLE;  // pixels queued for the full reprojection
     gpu::AccumulatePush push{};
   };
@@ -27,6 +27,7 @@ class IndirectGatherPass {
   render::VulkanContext& ctx_;
   render::Pipeline pipeline_;
   bool accumulate_ = false;
+  render::Image unusedSetSamples_, unusedSums_;  // bound in place of the temporal images without accumulation
 };
 
 class IndirectFilterPass {

@@ -30,7 +30,7 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
   queueArgs_ = Buffer(ctx, sizeof(gpu::TemporalQueue),
                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                       MemoryUsage::GpuOnly, "temporal reprojection queue args");
-  const Binding b[] = {{0, kUBO, kCS},          {1, kSSBO, kCS}, {2, kUBO, kCS}, {3, kSSBO, kCS},
+  const Binding b[] = {{0, kUBO, kCS},          {1, kStorageImage, kCS}, {2, kUBO, kCS}, {3, kStorageImage, kCS},
                        {4, kStorageImage, kCS}, {5, kSSBO, kCS}, {6, kSSBO, kCS}};
   reprojectPipeline_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_temporal_reproject_comp), b, sizeof(gpu::AccumulatePush), "temporal_reproject");
 }
@@ -56,14 +56,9 @@ void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t width, uint32
     return Image(ctx, d);
   };
   accumulated_ = make(VK_FORMAT_R32G32B32A32_UINT, 1, "temporal accumulated");  // filter_input.glsl's packing
-  // Per-pixel buffers in sub-image-major order (temporal_accumulate.glsl): K^2 sub-images of
-  // ceil(width / K) x ceil(height / K).
-  const uint32_t K = interleave();
-  const glm::uvec2 sub = subImageSize(width, height);
-  const VkDeviceSize layer = VkDeviceSize(K) * K * sub.x * sub.y;
-  setSamples_ = Buffer(ctx, layer * sets_ * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal set samples (rgb9e5 + depth)");
-  sums_ = Buffer(ctx, layer * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal sums");
-  queue_ = Buffer(ctx, layer * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal reprojection queue");
+  setSamples_ = make(VK_FORMAT_R32_UINT, 2 * sets_, "temporal set samples (rgb9e5, depth)");
+  sums_ = make(VK_FORMAT_R32G32B32A32_SFLOAT, 1, "temporal sums");
+  queue_ = Buffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal reprojection queue");
   setCameras_.assign(sets_, glm::mat4(0.0f));
   lastCamera_ = glm::mat4(0.0f);
   std::fill(lastRendered_.begin(), lastRendered_.end(), -1);  // stored buffers are gone
@@ -150,7 +145,6 @@ void TemporalIndirect::computeBvhVisibility(render::FrameContext& frame, uint32_
 bool TemporalIndirect::record(render::FrameContext& frame) {
   if (!accumulated_.valid()) return false;
   if (settings_.visibility == VisibilityBackend::Svo && !voxels_->hasVolume()) return false;
-  render::RenderTargets& t = frame.targets;
   const uint32_t K = interleave(), K2 = K * K;
   const uint32_t perPixel = (perSet_ + K2 - 1) / K2;
   // (No ScopedPass here: the mid-frame submit would split a debug label across command buffers; the
@@ -188,14 +182,15 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     if (settings_.visibility == VisibilityBackend::Bvh) pc.info.z = 2u;
     if (settings_.visibility == VisibilityBackend::None) pc.info.z = 1u;
     pc.range = glm::uvec4(0u, perPixel, 0u, 0u);
-    IndirectGatherPass::TemporalBuffers tb{setSamples_.handle(), sums_.handle(), queue_.handle(), queueArgs_.handle(), {}};
+    for (render::Image* img : {&setSamples_, &sums_})
+      img->transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    IndirectGatherPass::TemporalBuffers tb{setSamples_.view(), sums_.view(), queue_.handle(), queueArgs_.handle(), {}};
     tb.push.sets = glm::uvec4(sets_, currentSet_, validMask, sameCamera);
-    const glm::uvec2 sub = subImageSize(t.width, t.height);
-    tb.push.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, sub.x, sub.y);
-    tb.push.params = glm::vec4(settings_.reprojectionCutoff, 0.0f, 0.0f, 0.0f);
     // With an unchanged camera the gather queues the few pixels whose surface changed; otherwise every
     // pixel needs the full reprojection and the pass runs over all of them.
-    tb.push.grid = glm::uvec4(K, incremental ? 1u : 0u, 0u, 0u);
+    tb.push.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, incremental ? 1u : 0u, 0u);
+    tb.push.params = glm::vec4(settings_.reprojectionCutoff, 0.0f, 0.0f, 0.0f);
     if (incremental) {
       const gpu::TemporalQueue empty{glm::uvec4(0u, 1u, 1u, 0u)};
       vkCmdUpdateBuffer(frame.cmd, queueArgs_.handle(), 0, sizeof(empty), &empty);
@@ -220,9 +215,9 @@ void TemporalIndirect::recordReprojection(render::FrameContext& frame, const gpu
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, reprojectPipeline_.handle());
   DescriptorWrites()
       .uniformBuffer(0, frame.frameUniforms.handle())
-      .storageBuffer(1, setSamples_.handle())
+      .storageImage(1, setSamples_.view())
       .uniformBuffer(2, cameras_.handle())
-      .storageBuffer(3, sums_.handle())
+      .storageImage(3, sums_.view())
       .storageImage(4, accumulated_.view())
       .storageBuffer(5, queue_.handle())
       .storageBuffer(6, queueArgs_.handle())
@@ -231,7 +226,7 @@ void TemporalIndirect::recordReprojection(render::FrameContext& frame, const gpu
   if (queued) {
     vkCmdDispatchIndirect(cmd, queueArgs_.handle(), 0);
   } else {
-    const uint64_t pixels = uint64_t(push.grid.x) * push.grid.x * push.mode.z * push.mode.w;
+    const uint64_t pixels = uint64_t(frame.targets.width) * frame.targets.height;
     vkCmdDispatch(cmd, uint32_t((pixels + 63) / 64), 1, 1);
   }
 }

@@ -79,17 +79,15 @@ class TemporalIndirect final : public render::RenderFeature {
   uint64_t frameCounter_ = 0;
   std::vector<int64_t> lastRendered_;   // frame each set was last gathered (-1: never)
   std::vector<TemporalVpl> setVpls_;  // CPU copy of the VPLs uploaded this frame
-  render::Buffer vpls_, cameras_, bits_, setSamples_, sums_;
+  render::Buffer vpls_, cameras_, bits_;
+  // Per pixel (temporal_accumulate.glsl): each set's sample (two r32ui layers a set: light, depth) and
+  // the running sum with its depth and set count.
+  render::Image setSamples_, sums_;
   render::Buffer queue_, queueArgs_;  // pixels queued for the full reprojection, and their count (TemporalQueue)
   render::Pipeline reprojectPipeline_;
   glm::mat4 lastCamera_{0.0f};
   render::Image accumulated_;  // the gather's accumulated light, the filter's input
-  // Size of one of the K x K sub-images the per-pixel buffers are laid out in.
   uint32_t interleave() const { return std::clamp(settings_.interleave, 1u, 8u); }  // K
-  glm::uvec2 subImageSize(uint32_t width, uint32_t height) const {
-    const uint32_t K = interleave();
-    return {(width + K - 1) / K, (height + K - 1) / K};
-  }
   std::vector<glm::mat4> setCameras_;   // CPU copy: which sets were stored from the current camera
   std::unique_ptr<class IndirectGatherPass> gatherPass_;
   std::unique_ptr<class IndirectFilterPass> filterPass_;

@@ -21,8 +21,8 @@ layout(set = 0, binding = 4) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = 5, rgba32ui) uniform writeonly uimage2D outRaw;  // filter_input.glsl's packing
 layout(set = 0, binding = 6) readonly buffer VisibilityBits { uint visibleBits[]; };  // visibility mode 2
 // Temporal accumulation only (kAccumulate).
-layout(set = 0, binding = 7) buffer SetSamples { uvec2 setSamples[]; };
-layout(set = 0, binding = 8) buffer Sums { vec4 sums[]; };
+layout(set = 0, binding = 7, r32ui) uniform uimage2DArray setSamples;
+layout(set = 0, binding = 8, rgba32f) uniform image2D sums;
 layout(set = 0, binding = 9) writeonly buffer Queue { uint queuedPixels[]; };  // x | y << 16
 layout(set = 0, binding = 10) buffer QueueArgs { TemporalQueue queue; };
 layout(push_constant) uniform Push { GatherPush pc; AccumulatePush acc; };
@@ -87,8 +87,8 @@ void main() {
   uvec4 result = depth > 0.0 ? packFilterInput(depth, packedNormal, light) : uvec4(0u);
   if (kAccumulate) {
     uvec4 accumulated;
-    if (temporalAccumulateIncremental(px, K, light, depth, packedNormal, accumulated)) result = accumulated;
-    else if (acc.grid.y != 0u) {
+    if (temporalAccumulateIncremental(px, light, depth, packedNormal, accumulated)) result = accumulated;
+    else if (acc.mode.z != 0u) {
       // Queue the pixel for the full reprojection (temporal_reproject.comp); without a queue that pass
       // runs over every pixel.
       uint slot = atomicAdd(queue.dispatchAndCount.w, 1u);
