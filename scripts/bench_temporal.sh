@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Frame time against the temporal set count T (1, 4, 8, 16, 32) at 512 VPLs, 4x4 interleaving, SVO
-# visibility, for the scripted scenes static, moving-spot and rotating-object; then the image error of
+# visibility, for the scripted scenes static, moving-spot, rotating-object and moving-camera (every pixel
+# reprojected from every set each frame); then the image error of
 # T = 16 against T = 1 relative to the path tracer (static scene, converged).
 # Each configuration runs RUNS times and the table shows the median of the runs' medians: on this shared
 # 2-core machine one run's median moves by 10-25% from run to run.
@@ -19,7 +20,7 @@ echo
 # Runs are interleaved (run r of every T before run r + 1) so a slow phase of the machine hits all T
 # alike, and the T=16 / T=1 ratio is taken per run, then its median.
 for r in $(seq 1 "$RUNS"); do
-  for scene in static moving-spot rotating-object; do
+  for scene in static moving-spot rotating-object moving-camera; do
     for T in 1 4 8 16 32; do
       warm=$((T + 2))  # left out of the medians: filling the pool and rendering every set once
       $BIN/dyngi_sample --headless --animate $scene --gi svo --vpls 512 --temporal $T --frames $((warm + FRAMES)) --warmup $warm \
@@ -31,7 +32,7 @@ python3 - "$RUNS" <<'PY'
 import json, statistics, sys
 runs = range(1, int(sys.argv[1]) + 1)
 ms = lambda s, T, r: json.load(open(f"out/bench/temporal_{s}_{T}_{r}.json"))["frame_ms"]["median"]
-scenes, Ts = ("static", "moving-spot", "rotating-object"), (1, 4, 8, 16, 32)
+scenes, Ts = ("static", "moving-spot", "rotating-object", "moving-camera"), (1, 4, 8, 16, 32)
 print("| scene | " + " | ".join(f"T={T}" for T in Ts) + " | T=16 / T=1 |")
 print("| --- | " + " | ".join("---:" for _ in Ts) + " | ---: |")
 for s in scenes:

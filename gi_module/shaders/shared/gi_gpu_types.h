@@ -135,9 +135,9 @@ struct AccumulatePush {
 #endif
   uvec4 sets;           // x set count, y the set gathered this frame, z sets stored at least once (bits),
                         // w sets stored from the current camera (bits)
-  uvec4 mode;           // x 1: incremental (camera as last frame, set y last stored from it, sums current),
-                        // y 1: set y held a sample before this frame, z 1: the gather queues the pixels
-                        // the reprojection pass takes, 0: that pass takes every pixel; w unused
+  uvec4 mode;           // x 1: incremental (camera as last frame, set y last stored from it, sums current;
+                        // the gather queues the pixels the reprojection takes), 0: the reprojection takes
+                        // every pixel; y 1: set y held a sample before this frame; zw unused
   vec4 params;          // x reprojection cut-off (relative to the view distance)
 };
 

@@ -189,7 +189,7 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     tb.push.sets = glm::uvec4(sets_, currentSet_, validMask, sameCamera);
     // With an unchanged camera the gather queues the few pixels whose surface changed; otherwise every
     // pixel needs the full reprojection and the pass runs over all of them.
-    tb.push.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, incremental ? 1u : 0u, 0u);
+    tb.push.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, 0u, 0u);
     tb.push.params = glm::vec4(settings_.reprojectionCutoff, 0.0f, 0.0f, 0.0f);
     if (incremental) {
       const gpu::TemporalQueue empty{glm::uvec4(0u, 1u, 1u, 0u)};

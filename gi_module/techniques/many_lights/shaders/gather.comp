@@ -88,7 +88,7 @@ void main() {
   if (kAccumulate) {
     uvec4 accumulated;
     if (temporalAccumulateIncremental(px, light, depth, packedNormal, accumulated)) result = accumulated;
-    else if (acc.mode.z != 0u) {
+    else if (acc.mode.x != 0u) {
       // Queue the pixel for the full reprojection (temporal_reproject.comp); without a queue that pass
       // runs over every pixel.
       uint slot = atomicAdd(queue.dispatchAndCount.w, 1u);

@@ -1,7 +1,7 @@
 #version 460
 // The temporal technique's full reprojection (temporal_accumulate.glsl's temporalAccumulateFull) for the
-// pixels the gather could not update incrementally: the queued ones (mode.z = 1, dispatched indirectly
-// from the queue's count), or every pixel when the camera moved (mode.z = 0, one thread per pixel in
+// pixels the gather could not update incrementally: the queued ones (mode.x = 1, dispatched indirectly
+// from the queue's count), or every pixel when the camera moved (mode.x = 0, one thread per pixel in
 // row order). Overwrites those pixels' filter input.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
@@ -24,7 +24,7 @@ layout(push_constant) uniform Push { AccumulatePush acc; };
 void main() {
   uint id = gl_GlobalInvocationID.x, width = frame.sizeAndCount.x;
   ivec2 px;
-  if (acc.mode.z != 0u) {
+  if (acc.mode.x != 0u) {
     if (id >= queue.dispatchAndCount.w) return;
     uint packedPx = queuedPixels[id];
     px = ivec2(packedPx & 0xffffu, packedPx >> 16);
