@@ -95,33 +95,33 @@ void buildBuiltinScene(const std::string& name, ecs::World& w, AssetStore& asset
   w.add(cam, Name{"camera"});
 }
 
+namespace {
+// Every entity with component C oscillates about where it stands (amplitude in world units, in Hz).
+template <class C>
+void oscillateAll(ecs::World& w, glm::vec3 amplitude, float hz) {
+  w.each<C, Transform>([&](Entity e, const C&, const Transform& t) {
+    ScriptedMotion m;
+    m.origin = t.translation;
+    m.baseRotation = t.rotation;
+    m.oscillation = amplitude;
+    m.oscillationHz = hz;
+    w.commands().add(e, m);
+  });
+  w.flushCommands();
+}
+}  // namespace
+
 std::string buildAnimatedScene(const std::string& name, ecs::World& w, AssetStore& assets, const std::string& sharedScenesDir) {
   buildBuiltinScene("cornell", w, assets);
   if (name == "static") return {};
   if (name == "moving-spot") {
-    w.each<Light, Transform>([&](Entity e, const Light&, const Transform& t) {
-      ScriptedMotion m;
-      m.origin = t.translation;
-      m.baseRotation = t.rotation;
-      m.oscillation = {0.6f, 0.0f, 0.0f};
-      m.oscillationHz = 0.25f;
-      w.commands().add(e, m);
-    });
-    w.flushCommands();
+    oscillateAll<Light>(w, {0.6f, 0.0f, 0.0f}, 0.25f);
     return {};
   }
   if (name == "moving-camera") {
     // A camera strafing sideways (a player walking past): every pixel moves every frame, so the temporal
     // technique reprojects every set for every pixel.
-    w.each<ActiveCamera, Transform>([&](Entity e, const ActiveCamera&, const Transform& t) {
-      ScriptedMotion m;
-      m.origin = t.translation;
-      m.baseRotation = t.rotation;
-      m.oscillation = {0.3f, 0.0f, 0.0f};
-      m.oscillationHz = 0.25f;
-      w.commands().add(e, m);
-    });
-    w.flushCommands();
+    oscillateAll<ActiveCamera>(w, {0.3f, 0.0f, 0.0f}, 0.25f);
     return {};
   }
   if (name == "rotating-object") {
