@@ -357,10 +357,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
       ri.layerCount = 1;
       vkCmdBeginRendering(cmd, &ri);
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, voxelize_.handle());
-      VkViewport vp{0, 0, float(res), float(res), 0, 1};
-      VkRect2D sc{{0, 0}, {res, res}};
-      vkCmdSetViewport(cmd, 0, 1, &vp);
-      vkCmdSetScissor(cmd, 0, 1, &sc);
+      render::setFullViewport(cmd, res, res);
       const glm::mat4 toVoxel = volume_.worldToVoxelMatrix();
       for (size_t i : drawsToVoxelize_) {
         const render::DrawItem& d = frame.snapshot.draws[i];

@@ -58,10 +58,7 @@ void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
   ri.pDepthAttachment = &depth;
   vkCmdBeginRendering(cmd, &ri);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.handle());
-  VkViewport vp{0, 0, float(t.width), float(t.height), 0, 1};
-  VkRect2D sc{{0, 0}, {t.width, t.height}};
-  vkCmdSetViewport(cmd, 0, 1, &vp);
-  vkCmdSetScissor(cmd, 0, 1, &sc);
+  setFullViewport(cmd, t.width, t.height);
   for (size_t i = 0; i < frame.snapshot.draws.size(); ++i) {
     const DrawItem& d = frame.snapshot.draws[i];
     const GpuMesh* mesh = frame.meshes[i];

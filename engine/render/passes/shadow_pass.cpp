@@ -86,10 +86,7 @@ void ShadowPass::drawCasters(VkCommandBuffer cmd, VkImageView target, const glm:
   ri.pDepthAttachment = &depth;
   vkCmdBeginRendering(cmd, &ri);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.handle());
-  VkViewport vp{0, 0, float(size), float(size), 0, 1};
-  VkRect2D sc{{0, 0}, {size, size}};
-  vkCmdSetViewport(cmd, 0, 1, &vp);
-  vkCmdSetScissor(cmd, 0, 1, &sc);
+  setFullViewport(cmd, size, size);
   vkCmdSetDepthBias(cmd, settings_.depthBiasConstant, 0.0f, settings_.depthBiasSlope);
   for (size_t i : draws) {
     glm::mat4 m = viewProj * frame.snapshot.draws[i].model;

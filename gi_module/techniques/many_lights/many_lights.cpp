@@ -163,10 +163,7 @@ bool ManyLights::record(render::FrameContext& frame) {
       vkCmdBeginRendering(cmd, &ri);
       if (layer < rsmLayersUsed_) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, rsm_.handle());
-        VkViewport vp{0, 0, float(res), float(res), 0, 1};
-        VkRect2D sc{{0, 0}, {res, res}};
-        vkCmdSetViewport(cmd, 0, 1, &vp);
-        vkCmdSetScissor(cmd, 0, 1, &sc);
+        render::setFullViewport(cmd, res, res);
         for (size_t i = 0; i < frame.snapshot.draws.size(); ++i) {
           const render::DrawItem& dr = frame.snapshot.draws[i];
           const render::GpuMesh* mesh = frame.meshes[i];

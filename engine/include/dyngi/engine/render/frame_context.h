@@ -40,6 +40,14 @@ struct GpuMesh {
   uint32_t version = 0;
 };
 
+// Viewport (depth 0..1) and scissor covering a width x height target: every pass draws to its whole target.
+inline void setFullViewport(VkCommandBuffer cmd, uint32_t width, uint32_t height) {
+  VkViewport vp{0, 0, float(width), float(height), 0, 1};
+  VkRect2D sc{{0, 0}, {width, height}};
+  vkCmdSetViewport(cmd, 0, 1, &vp);
+  vkCmdSetScissor(cmd, 0, 1, &sc);
+}
+
 // Binds a mesh's vertex and index buffers and draws it (one instance).
 inline void drawMesh(VkCommandBuffer cmd, const GpuMesh& mesh) {
   VkDeviceSize offset = 0;
