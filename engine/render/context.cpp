@@ -172,11 +172,13 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   f12.pNext = &f13;
   VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   f2.pNext = &f12;
-  // Optional features later stages use (voxelization), enabled when present.
+  // Optional features later stages use (voxelization; rg32ui storage images in the indirect gather),
+  // enabled when present.
   f2.features.geometryShader = supported.geometryShader;
   f2.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
   f2.features.shaderInt64 = supported.shaderInt64;
   f2.features.samplerAnisotropy = supported.samplerAnisotropy;
+  f2.features.shaderStorageImageExtendedFormats = supported.shaderStorageImageExtendedFormats;
 
   std::vector<const char*> devExts = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
   if (options.requireSwapchain) devExts.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
@@ -192,6 +194,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   dci.enabledExtensionCount = uint32_t(devExts.size());
   dci.ppEnabledExtensionNames = devExts.data();
   DYNGI_VK(vkCreateDevice(physical_, &dci, nullptr, &device_));
+  enabledFeatures_ = f2.features;
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
   pushDescriptorSet_ = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
   if (!pushDescriptorSet_) throw VulkanError("vkCmdPushDescriptorSetKHR not found");

@@ -10,10 +10,10 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gPosition;
-layout(set = 0, binding = 2) uniform sampler2D gNormal;
-layout(set = 0, binding = 3) uniform sampler2D gAlbedo;
-layout(set = 0, binding = 4) uniform sampler2D gEmissive;
+layout(set = 0, binding = 1, rgba32f) uniform readonly image2D gPosition;
+layout(set = 0, binding = 2, rgba16f) uniform readonly image2D gNormal;
+layout(set = 0, binding = 3, rgba8) uniform readonly image2D gAlbedo;
+layout(set = 0, binding = 4, rgba16f) uniform readonly image2D gEmissive;
 layout(set = 0, binding = 5) readonly buffer Lights { GpuLight lights[]; };
 layout(set = 0, binding = 6) readonly buffer ShadowMatrices { mat4 shadowViewProj[]; };
 layout(set = 0, binding = 7) uniform sampler2DArrayShadow shadowMaps;
@@ -66,15 +66,15 @@ vec3 directLight(GpuLight L, vec3 p, vec3 n) {
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return;
-  vec4 pos = texelFetch(gPosition, px, 0);
+  vec4 pos = imageLoad(gPosition, px);
   if (pos.w == 0.0) {
     imageStore(outHdr, px, vec4(frame.background.rgb, 1.0));
     return;
   }
-  vec3 n = normalize(texelFetch(gNormal, px, 0).xyz);
-  vec4 albedoMetal = texelFetch(gAlbedo, px, 0);
+  vec3 n = normalize(imageLoad(gNormal, px).xyz);
+  vec4 albedoMetal = imageLoad(gAlbedo, px);
   vec3 diffuse = albedoMetal.rgb * (1.0 - albedoMetal.a) / PI;
-  vec3 radiance = texelFetch(gEmissive, px, 0).rgb;
+  vec3 radiance = imageLoad(gEmissive, px).rgb;
   // A do-while: lavapipe runs a for loop's body once more, masked, before it sees every lane has left,
   // which here would cost a whole light (shadow lookups included) per pixel.
   uint count = frame.sizeAndCount.z, i = 0u;

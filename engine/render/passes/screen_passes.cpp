@@ -16,10 +16,10 @@ void prepareInput(VkCommandBuffer cmd, Image& img) { img.transition(cmd, VK_IMAG
 
 LightingPass::LightingPass(VulkanContext& ctx) : ctx_(ctx) {
   const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
                        {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
                        {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
                        {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
@@ -37,10 +37,10 @@ void LightingPass::execute(FrameContext& frame, ShadowPass& shadows, bool hasInd
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
   DescriptorWrites()
       .uniformBuffer(0, frame.frameUniforms.handle())
-      .sampledImage(1, t.position.view(), frame.nearestSampler)
-      .sampledImage(2, t.normal.view(), frame.nearestSampler)
-      .sampledImage(3, t.albedo.view(), frame.nearestSampler)
-      .sampledImage(4, t.emissive.view(), frame.nearestSampler)
+      .storageImage(1, t.position.view())
+      .storageImage(2, t.normal.view())
+      .storageImage(3, t.albedo.view())
+      .storageImage(4, t.emissive.view())
       .storageBuffer(5, shadows.lights().handle())
       .storageBuffer(6, shadows.matrices().handle())
       .sampledImage(7, shadows.shadowMap().view(), shadows.compareSampler(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)

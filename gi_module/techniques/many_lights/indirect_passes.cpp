@@ -10,8 +10,11 @@
 namespace dyngi::gi {
 
 IndirectGatherPass::IndirectGatherPass(render::VulkanContext& ctx, bool accumulate) : ctx_(ctx), accumulate_(accumulate) {
-  const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS},
-                       {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kCS}, {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},
+  if (!ctx.enabledFeatures().shaderStorageImageExtendedFormats)
+    throw render::VulkanError("the indirect gather needs shaderStorageImageExtendedFormats (rg32ui storage images); " + ctx.deviceName() +
+                              " does not support it");
+  const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},         {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
+                       {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},         {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},
                        {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},         {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
                        {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},         {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
                        {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},          {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCS},
@@ -30,7 +33,7 @@ IndirectGatherPass::IndirectGatherPass(render::VulkanContext& ctx, bool accumula
       d.name = name;
       return render::Image(ctx, d);
     };
-    unusedSetSamples_ = unused(VK_FORMAT_R32_UINT, VK_IMAGE_VIEW_TYPE_2D_ARRAY, "unused set samples");
+    unusedSetSamples_ = unused(VK_FORMAT_R32G32_UINT, VK_IMAGE_VIEW_TYPE_2D_ARRAY, "unused set samples");
     unusedSums_ = unused(VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_VIEW_TYPE_2D, "unused sums");
   }
 }
@@ -41,7 +44,7 @@ void IndirectGatherPass::record(render::FrameContext& frame, VkBuffer vpls, VkBu
   VkCommandBuffer cmd = frame.cmd;
   render::RenderTargets& t = frame.targets;
   for (render::Image* in : {&t.position, &t.normal})
-    in->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    in->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   raw.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   for (render::Image* unused : {&unusedSetSamples_, &unusedSums_})
     if (unused->valid() && unused->layout() != VK_IMAGE_LAYOUT_GENERAL)
@@ -51,8 +54,8 @@ void IndirectGatherPass::record(render::FrameContext& frame, VkBuffer vpls, VkBu
   // Without accumulation the temporal bindings are never read; any valid buffer keeps them defined.
   DescriptorWrites()
       .uniformBuffer(0, frame.frameUniforms.handle())
-      .sampledImage(1, t.position.view(), frame.nearestSampler)
-      .sampledImage(2, t.normal.view(), frame.nearestSampler)
+      .storageImage(1, t.position.view())
+      .storageImage(2, t.normal.view())
       .storageBuffer(3, vpls)
       .storageBuffer(4, nodes)
       .storageImage(5, raw.view())

@@ -44,20 +44,20 @@ uint32_t TemporalIndirect::setsRendered() const {
 }
 
 void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t width, uint32_t height) {
-  auto make = [&](VkFormat f, uint32_t layers, const char* name) {
+  auto make = [&](VkFormat f, uint32_t layers, VkImageViewType viewType, const char* name) {
     render::ImageDesc d;
     d.width = width;
     d.height = height;
     d.layers = layers;
     d.format = f;
     d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    d.viewType = layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+    d.viewType = viewType;
     d.name = name;
     return Image(ctx, d);
   };
-  accumulated_ = make(VK_FORMAT_R32G32B32A32_UINT, 1, "temporal accumulated");  // filter_input.glsl's packing
-  setSamples_ = make(VK_FORMAT_R32_UINT, 2 * sets_, "temporal set samples (rgb9e5, depth)");
-  sums_ = make(VK_FORMAT_R32G32B32A32_SFLOAT, 1, "temporal sums");
+  accumulated_ = make(VK_FORMAT_R32G32B32A32_UINT, 1, VK_IMAGE_VIEW_TYPE_2D, "temporal accumulated");  // filter_input.glsl's packing
+  setSamples_ = make(VK_FORMAT_R32G32_UINT, sets_, VK_IMAGE_VIEW_TYPE_2D_ARRAY, "temporal set samples (rgb9e5, depth)");
+  sums_ = make(VK_FORMAT_R32G32B32A32_SFLOAT, 1, VK_IMAGE_VIEW_TYPE_2D, "temporal sums");
   queue_ = Buffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "temporal reprojection queue");
   setCameras_.assign(sets_, glm::mat4(0.0f));
   lastCamera_ = glm::mat4(0.0f);

@@ -80,7 +80,7 @@ class TemporalIndirect final : public render::RenderFeature {
   std::vector<int64_t> lastRendered_;   // frame each set was last gathered (-1: never)
   std::vector<TemporalVpl> setVpls_;  // CPU copy of the VPLs uploaded this frame
   render::Buffer vpls_, cameras_, bits_;
-  // Per pixel (temporal_accumulate.glsl): each set's sample (two r32ui layers a set: light, depth) and
+  // Per pixel (temporal_accumulate.glsl): each set's sample (one rg32ui layer a set: light, depth) and
   // the running sum with its depth and set count.
   render::Image setSamples_, sums_;
   render::Buffer queue_, queueArgs_;  // pixels queued for the full reprojection, and their count (TemporalQueue)

@@ -14,14 +14,14 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const bool kAccumulate = false;
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gPosition;
-layout(set = 0, binding = 2) uniform sampler2D gNormal;
+layout(set = 0, binding = 1, rgba32f) uniform readonly image2D gPosition;
+layout(set = 0, binding = 2, rgba16f) uniform readonly image2D gNormal;
 layout(set = 0, binding = 3) readonly buffer Vpls { GpuVpl vpls[]; };
 layout(set = 0, binding = 4) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = 5, rgba32ui) uniform writeonly uimage2D outRaw;  // filter_input.glsl's packing
 layout(set = 0, binding = 6) readonly buffer VisibilityBits { uint visibleBits[]; };  // visibility mode 2
 // Temporal accumulation only (kAccumulate).
-layout(set = 0, binding = 7, r32ui) uniform uimage2DArray setSamples;
+layout(set = 0, binding = 7, rg32ui) uniform uimage2DArray setSamples;
 layout(set = 0, binding = 8, rgba32f) uniform image2D sums;
 layout(set = 0, binding = 9) writeonly buffer Queue { uint queuedPixels[]; };  // x | y << 16
 layout(set = 0, binding = 10) buffer QueueArgs { TemporalQueue queue; };
@@ -61,14 +61,14 @@ void main() {
   uint s = gl_GlobalInvocationID.z;
   ivec2 px = ivec2(gl_GlobalInvocationID.xy) * int(K) + ivec2(s % K, s / K);
   if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return;
-  vec4 pos = texelFetch(gPosition, px, 0);
+  vec4 pos = imageLoad(gPosition, px);
   vec3 e = vec3(0.0), nx = vec3(0.0, 0.0, 1.0);
   float depth = -1.0;
   uint K2 = K * K;
   if (pos.w != 0.0) {
     vec3 x = pos.xyz;
     depth = viewDepthOf(x);
-    nx = normalize(texelFetch(gNormal, px, 0).xyz);
+    nx = normalize(imageLoad(gNormal, px).xyz);
     vec3 xv = (x - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + nx * pc.params.z;
     // Importance sampling gives every first-bounce VPL the same luminance; the threshold is relative to it.
     float threshold = pc.params.y * vpls[pc.range.x].flux.w;
@@ -83,7 +83,7 @@ void main() {
     } while (i < pc.info.x);
   }
   vec3 light = float(K2) * e / (PI * PI);
-  uint packedNormal = packFilterNormal(nx);
+  uvec2 packedNormal = packFilterNormal(nx);
   uvec4 result = depth > 0.0 ? packFilterInput(depth, packedNormal, light) : uvec4(0u);
   if (kAccumulate) {
     uvec4 accumulated;

@@ -20,7 +20,7 @@
 // next to its neighbours' (after a camera move the reprojection ran 48 -> 28 ms at 512^2).
 //
 // Needs before inclusion: FrameUniforms `frame`, filter_input.glsl, AccumulatePush `acc`, the images
-// setSamples (r32ui 2D array, two layers per set: setSample()) and sums (rgba32f: rgb sum, a
+// setSamples (rg32ui 2D array, one layer per set: setSample()) and sums (rgba32f: rgb sum, a
 // temporalSumTag), and with DYNGI_TEMPORAL_REPROJECT the uniform array cameras (TemporalSetCamera).
 
 // A sum's tag: the view depth it refers to with the count of sets in it in the low 6 mantissa bits (T <=
@@ -31,27 +31,33 @@ float temporalSumTag(float depth, uint count) { return uintBitsToFloat((floatBit
 bool temporalSumIsFor(vec4 s, float depth) { return (floatBitsToUint(s.a) & ~kSumCountBits) == (floatBitsToUint(depth) & ~kSumCountBits); }
 uint temporalSumCount(vec4 s) { return floatBitsToUint(s.a) & kSumCountBits; }
 
-// A set's sample, two r32ui layers per set: layer 2k its light as RGB9E5 (shared exponent: 9 bits per
-// channel, 0.2% of the largest), layer 2k + 1 the view depth it was gathered at (float bits; <= 0: no
-// surface). Eight bytes a sample instead of a vec4's sixteen.
+// A set's sample, one rg32ui texel in layer k: x its light as RGB9E5 (shared exponent: 9 bits per
+// channel, 0.2% of the largest), y the view depth it was gathered at (float bits; <= 0: no surface).
+// Eight bytes a sample instead of a vec4's sixteen, read and written in one image access (two r32ui
+// layers cost a second access: -1.3 ms a frame at 512^2).
+// Powers of two are built from their exponent bits: lavapipe evaluates log2 and exp2 as polynomials,
+// which made the packing a visible part of the gather (exact here, and cheaper).
+float exp2i(int e) { return uintBitsToFloat(uint(e + 127) << 23); }  // 2^e, -126 <= e <= 127
 uint packRgb9e5(vec3 c) {
   const float maxValue = 65408.0;  // (511 / 512) 2^16
   c = clamp(c, vec3(0.0), vec3(maxValue));
   float m = max(c.r, max(c.g, c.b));
-  int e = max(-16, int(floor(log2(max(m, 1e-30))))) + 16;  // biased exponent before rounding
-  float scale = exp2(float(e - 15 - 9));
-  if (floor(m / scale + 0.5) >= 512.0) {
+  // floor(log2(m)) from the float's exponent (0 for zero and denormals, clamped to -16 like them).
+  int e = max(-16, int(floatBitsToUint(m) >> 23) - 127) + 16;  // biased exponent before rounding
+  float invScale = exp2i(15 + 9 - e);
+  if (floor(m * invScale + 0.5) >= 512.0) {
     ++e;
-    scale *= 2.0;
+    invScale *= 0.5;
   }
-  uvec3 q = uvec3(min(floor(c / scale + 0.5), vec3(511.0)));
+  uvec3 q = uvec3(min(floor(c * invScale + 0.5), vec3(511.0)));
   return q.r | (q.g << 9) | (q.b << 18) | (uint(e) << 27);
 }
 vec3 unpackRgb9e5(uint v) {
-  return vec3(uvec3(v, v >> 9, v >> 18) & 511u) * exp2(float(int(v >> 27) - 15 - 9));
+  return vec3(uvec3(v, v >> 9, v >> 18) & 511u) * exp2i(int(v >> 27) - 15 - 9);
 }
 vec4 setSample(ivec2 q, uint set) {
-  return vec4(unpackRgb9e5(imageLoad(setSamples, ivec3(q, 2u * set)).x), uintBitsToFloat(imageLoad(setSamples, ivec3(q, 2u * set + 1u)).x));
+  uvec2 v = imageLoad(setSamples, ivec3(q, set)).xy;
+  return vec4(unpackRgb9e5(v.x), uintBitsToFloat(v.y));
 }
 
 vec3 temporalAverage(vec3 sum, uint count) { return count > 0u ? sum * float(acc.sets.x) / float(count) : vec3(0.0); }
@@ -60,13 +66,12 @@ vec3 temporalAverage(vec3 sum, uint count) { return count > 0u ? sum * float(acc
 // view depth `depth` (<= 0: none). Returns true with the filter input (filter_input.glsl) in `result`
 // when the pixel is done (no surface, or the incremental update applied); false when it needs
 // temporalAccumulateFull.
-bool temporalAccumulateIncremental(ivec2 px, vec3 newValue, float depth, uint packedNormal, out uvec4 result) {
+bool temporalAccumulateIncremental(ivec2 px, vec3 newValue, float depth, uvec2 packedNormal, out uvec4 result) {
   const uint set = acc.sets.y;
   // Store this frame's set (old value kept for the incremental update).
   vec4 oldValue = setSample(px, set);
   uint packedValue = packRgb9e5(newValue);
-  imageStore(setSamples, ivec3(px, 2u * set), uvec4(packedValue));
-  imageStore(setSamples, ivec3(px, 2u * set + 1u), uvec4(floatBitsToUint(depth > 0.0 ? depth : -1.0)));
+  imageStore(setSamples, ivec3(px, set), uvec4(packedValue, floatBitsToUint(depth > 0.0 ? depth : -1.0), 0u, 0u));
   newValue = unpackRgb9e5(packedValue);  // what is stored is what the sum holds: it comes out exactly
   result = uvec4(0u);
   if (depth <= 0.0) {
@@ -111,7 +116,7 @@ void addReprojectedSample(uint j, TemporalSetCamera cam, vec3 p, float tolerance
 
 // The full reprojection for pixel px, whose light for this frame's set the gather stored; returns the
 // filter input (filter_input.glsl).
-uvec4 temporalAccumulateFull(ivec2 px, uint packedNormal) {
+uvec4 temporalAccumulateFull(ivec2 px, uvec2 packedNormal) {
   ivec2 size = ivec2(frame.sizeAndCount.xy);
   const uint set = acc.sets.y, validMask = acc.sets.z, sameCamera = acc.sets.w;
   vec4 own = setSample(px, set);

@@ -8,7 +8,7 @@
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = 1, r32ui) uniform uimage2DArray setSamples;
+layout(set = 0, binding = 1, rg32ui) uniform uimage2DArray setSamples;
 // A uniform buffer: every lane reads the same set's camera, which lavapipe then loads once per lane
 // group instead of lane by lane (as a storage buffer).
 layout(set = 0, binding = 2) uniform Cameras { TemporalSetCamera cameras[DYNGI_MAX_TEMPORAL_SETS]; };
@@ -34,5 +34,5 @@ void main() {
   if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return;
   if (setSample(px, acc.sets.y).a <= 0.0) return;  // no surface: the gather wrote it
   uvec4 stored = imageLoad(filterInput, px);
-  imageStore(filterInput, px, temporalAccumulateFull(px, stored.y));
+  imageStore(filterInput, px, temporalAccumulateFull(px, filterPackedNormal(stored)));
 }

@@ -31,6 +31,8 @@ class VulkanContext {
   VkQueue queue() const { return queue_; }
   uint32_t queueFamily() const { return queueFamily_; }
   const VkPhysicalDeviceProperties& properties() const { return props_; }
+  // The core features enabled on the device (each optional one enabled when the device has it).
+  const VkPhysicalDeviceFeatures& enabledFeatures() const { return enabledFeatures_; }
   const std::string& deviceName() const { return deviceName_; }
   bool validationEnabled() const { return validationEnabled_; }
   bool timestampsSupported() const { return timestampsSupported_; }
@@ -72,6 +74,7 @@ class VulkanContext {
   VkCommandPool immediatePool_ = VK_NULL_HANDLE;
   VkFence immediateFence_ = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties props_{};
+  VkPhysicalDeviceFeatures enabledFeatures_{};
   VkPhysicalDeviceMemoryProperties memProps_{};
   std::string deviceName_;
   bool validationEnabled_ = false;
