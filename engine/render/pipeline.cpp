@@ -91,9 +91,14 @@ Pipeline Pipeline::graphics(VulkanContext& ctx, const GraphicsDesc& desc) {
     stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_GEOMETRY_BIT, gs, "main", nullptr});
   }
   VkShaderModule fs = VK_NULL_HANDLE;
+  std::vector<VkSpecializationMapEntry> fragmentEntries(desc.fragmentSpecialization.size());
+  for (uint32_t i = 0; i < fragmentEntries.size(); ++i) fragmentEntries[i] = {i, i * 4u, 4u};
+  const VkSpecializationInfo fragmentSpec{uint32_t(fragmentEntries.size()), fragmentEntries.data(),
+                                          desc.fragmentSpecialization.size() * sizeof(uint32_t), desc.fragmentSpecialization.data()};
   if (desc.fragment.words) {
     fs = makeModule(ctx.device(), desc.fragment);
-    stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, fs, "main", nullptr});
+    stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, fs, "main",
+                      fragmentEntries.empty() ? nullptr : &fragmentSpec});
   }
   VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
   vi.vertexBindingDescriptionCount = uint32_t(desc.vertexBindings.size());

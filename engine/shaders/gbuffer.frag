@@ -6,6 +6,9 @@ layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1) uniform sampler2D baseColorTex;
 layout(set = 0, binding = 2) uniform sampler2D emissiveTex;
 layout(push_constant) uniform Push { GBufferPush pc; };
+// Material variants (GBufferPass::pipelineFor): the texture lookups are compiled in only when used.
+layout(constant_id = 0) const bool kBaseColorTexture = true;
+layout(constant_id = 1) const bool kEmissiveTexture = true;
 
 layout(location = 0) in vec3 inWorldPos;
 layout(location = 1) in vec3 inNormal;
@@ -18,9 +21,9 @@ layout(location = 3) out vec4 outEmissive;  // rgb emitted radiance
 
 void main() {
   vec4 base = pc.baseColor;
-  if (pc.params.z > 0.5) base *= texture(baseColorTex, inUv);
+  if (kBaseColorTexture) base *= texture(baseColorTex, inUv);
   vec3 emissive = pc.emissive.rgb;
-  if (pc.params.w > 0.5) emissive *= texture(emissiveTex, inUv).rgb;
+  if (kEmissiveTexture) emissive *= texture(emissiveTex, inUv).rgb;
   vec3 n = normalize(inNormal);
   // Surfaces are lit on the side the camera sees (glTF double-sided / thin walls).
   if (dot(n, frame.cameraPos.xyz - inWorldPos) < 0.0) n = -n;

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <chrono>
 #include <cstring>
+#include <glm/gtc/packing.hpp>
 
 #include "dyngi/engine/render/gpu_timer.h"
 #include "dyngi/engine/scene/animation.h"
@@ -32,21 +33,6 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
   uint32_t r = settings.resolution;
   if (r < 8 || r > 1024 || (r & (r - 1)) != 0)
     throw std::invalid_argument("voxel resolution must be a power of two in 8..1024, got " + std::to_string(r));
-  Pipeline::GraphicsDesc d;
-  d.vertex = DYNGI_SHADER(spv_voxelize_vert);
-  d.geometry = DYNGI_SHADER(spv_voxelize_geom);
-  d.fragment = DYNGI_SHADER(spv_voxelize_frag);
-  d.vertexBindings = {{0, sizeof(render::GpuVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
-  d.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(render::GpuVertex, position)},
-                        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(render::GpuVertex, uv)}};
-  d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-  d.pushConstantBytes = sizeof(gpu::VoxelizePush);
-  d.bindings = {{0, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {1, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
-  d.name = "voxelize";
-  voxelize_ = Pipeline::graphics(ctx, d);
 
   const Binding markB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
   mark_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_mark_comp), markB, 8, "svo_mark");
@@ -336,6 +322,28 @@ void VoxelScene::recordMark(VkCommandBuffer cmd, const render::Buffer& target, u
   vkCmdDispatch(cmd, chunkCount, 1, 1);
 }
 
+render::Pipeline& VoxelScene::voxelizePipelineFor(bool baseColorTexture, bool emissiveTexture) {
+  Pipeline& pipeline = voxelize_[(baseColorTexture ? 1 : 0) | (emissiveTexture ? 2 : 0)];
+  if (pipeline.handle()) return pipeline;
+  Pipeline::GraphicsDesc d;
+  d.vertex = DYNGI_SHADER(spv_voxelize_vert);
+  d.geometry = DYNGI_SHADER(spv_voxelize_geom);
+  d.fragment = DYNGI_SHADER(spv_voxelize_frag);
+  d.vertexBindings = {{0, sizeof(render::GpuVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+  d.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(render::GpuVertex, position)},
+                        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(render::GpuVertex, uv)}};
+  d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  d.pushConstantBytes = sizeof(gpu::VoxelizePush);
+  d.bindings = {{0, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {1, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  d.fragmentSpecialization = {baseColorTexture ? 1u : 0u, emissiveTexture ? 1u : 0u};
+  d.name = "voxelize";
+  pipeline = Pipeline::graphics(ctx_, d);
+  return pipeline;
+}
+
 bool VoxelScene::record(render::FrameContext& frame) {
   if (!rebuildSvo_ || !haveVolume_) return false;
   VkCommandBuffer cmd = frame.cmd;
@@ -356,27 +364,32 @@ bool VoxelScene::record(render::FrameContext& frame) {
       ri.renderArea = {{0, 0}, {res, res}};
       ri.layerCount = 1;
       vkCmdBeginRendering(cmd, &ri);
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, voxelize_.handle());
       render::setFullViewport(cmd, res, res);
+      const Pipeline* bound = nullptr;
       const glm::mat4 toVoxel = volume_.worldToVoxelMatrix();
       for (size_t i : drawsToVoxelize_) {
         const render::DrawItem& d = frame.snapshot.draws[i];
         const render::GpuMesh* mesh = frame.meshes[i];
         if (!mesh || mesh->indexCount == 0) continue;
         const Range& r = ranges_.at(d.entity);
+        const Pipeline& pipeline =
+            voxelizePipelineFor(d.material.baseColorTexture != scene::kNoTexture, d.material.emissiveTexture != scene::kNoTexture);
+        if (&pipeline != bound) {
+          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.handle());
+          bound = &pipeline;
+        }
         gpu::VoxelizePush pc;
         pc.modelToVoxel = toVoxel * d.model;
         pc.range = glm::uvec4(uint32_t(r.first), uint32_t(r.capacity), r.counter, res);
-        pc.albedo = glm::vec4(glm::vec3(d.material.baseColor) * (1.0f - d.material.metallic),
-                              d.material.baseColorTexture != scene::kNoTexture ? 1.0f : 0.0f);
-        pc.emission = glm::vec4(d.material.emissive, d.material.emissiveTexture != scene::kNoTexture ? 1.0f : 0.0f);
+        pc.albedo = glm::vec4(glm::vec3(d.material.baseColor) * (1.0f - d.material.metallic), 0.0f);
+        pc.emission = glm::vec4(d.material.emissive, 0.0f);
         DescriptorWrites()
             .storageBuffer(0, fragments_.handle())
             .storageBuffer(1, counters_.handle())
             .sampledImage(2, frame.textureView(d.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
             .sampledImage(3, frame.textureView(d.material.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-            .push(ctx_, cmd, voxelize_);
-        vkCmdPushConstants(cmd, voxelize_.layout(),
+            .push(ctx_, cmd, pipeline);
+        vkCmdPushConstants(cmd, pipeline.layout(),
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
         render::drawMesh(cmd, *mesh);
       }
@@ -544,9 +557,9 @@ std::vector<uint32_t> VoxelScene::readbackNodes() {
   return std::vector<uint32_t>(p, p + groups * 8);
 }
 
-DenseVoxelGrid VoxelScene::readbackFragmentGrid() {
-  DenseVoxelGrid grid(volume_.resolution);
-  if (highWater_ == 0) return grid;
+std::vector<VoxelFragment> VoxelScene::readbackFragments() {
+  std::vector<VoxelFragment> out;
+  if (highWater_ == 0) return out;
   VkDeviceSize bytes = highWater_ * 16;
   Buffer host(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "fragment readback");
   ctx_.immediate([&](VkCommandBuffer cmd) {
@@ -556,10 +569,22 @@ DenseVoxelGrid VoxelScene::readbackFragmentGrid() {
   host.invalidateForRead();
   const uint32_t* p = static_cast<const uint32_t*>(host.mapped());
   for (uint64_t i = 0; i < highWater_; ++i) {
-    uint32_t c = p[i * 4];
-    if (c == DYNGI_VOXEL_EMPTY) continue;
-    grid.set(c & 1023u, (c >> 10) & 1023u, (c >> 20) & 1023u);
+    const uint32_t* f = p + i * 4;
+    if (f[0] == DYNGI_VOXEL_EMPTY) continue;
+    VoxelFragment v;
+    v.cell = glm::uvec3(f[0] & 1023u, (f[0] >> 10) & 1023u, (f[0] >> 20) & 1023u);
+    v.albedo = glm::unpackUnorm4x8(f[1]);
+    // voxelize.frag's packEmission: rgb / 2^k as unorm8, k + 8 in the fourth byte (0: no emission).
+    const glm::vec4 e = glm::unpackUnorm4x8(f[3]);
+    v.emission = f[3] == 0 ? glm::vec3(0.0f) : glm::vec3(e) * std::exp2(float(int(f[3] >> 24) - 8));
+    out.push_back(v);
   }
+  return out;
+}
+
+DenseVoxelGrid VoxelScene::readbackFragmentGrid() {
+  DenseVoxelGrid grid(volume_.resolution);
+  for (const VoxelFragment& f : readbackFragments()) grid.set(f.cell.x, f.cell.y, f.cell.z);
   return grid;
 }
 

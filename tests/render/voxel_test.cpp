@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/gtc/quaternion.hpp>
+#include <glm/gtx/component_wise.hpp>
 #include <random>
 
 #include "dyngi/engine/ecs/scheduler.h"
@@ -395,5 +396,78 @@ TEST_F(VoxelTest, ObjectLeavingTheVolumeIsClippedNotFatal) {
     EXPECT_LE(d.extra, d.reference / 100);
     GridDiff l = diff(leaves(), gpu);
     EXPECT_EQ(l.missing + l.extra, 0u);
+  }
+}
+
+// Materials are pipeline variants (texture lookups compiled in only when a texture is bound): a textured
+// base colour and a textured emission reach the G-buffer and the voxel fragments, an untextured
+// material keeps its factor. Truth: the textures are one solid colour, so any lookup returns it.
+TEST_F(VoxelTest, TexturedAndUntexturedMaterialsReachGBufferAndVoxels) {
+  auto solid = [&](uint8_t r, uint8_t g, uint8_t b) {
+    scene::TextureData t;
+    t.width = t.height = 4;
+    t.srgb = true;
+    for (int i = 0; i < 16; ++i) t.rgba8.insert(t.rgba8.end(), {r, g, b, 255});
+    return assets.addTexture(t);
+  };
+  auto srgbToLinear = [](float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); };
+  const scene::MeshId box = assets.addMesh(scene::makeBox(glm::vec3(0.4f)));
+  struct Case {
+    float x;
+    scene::Material material;
+    glm::vec3 albedo, emission;  // expected
+  };
+  const glm::vec3 tex1(srgbToLinear(200 / 255.0f), srgbToLinear(100 / 255.0f), srgbToLinear(50 / 255.0f));
+  const glm::vec3 tex2(1.0f, srgbToLinear(128 / 255.0f), 0.0f);
+  std::vector<Case> cases = {
+      {-1.0f, scene::Material{.baseColor = glm::vec4(0.2f, 0.5f, 0.8f, 1.0f)}, glm::vec3(0.2f, 0.5f, 0.8f), glm::vec3(0.0f)},
+      {0.0f, scene::Material{.baseColor = glm::vec4(0.5f, 1.0f, 1.0f, 1.0f), .baseColorTexture = solid(200, 100, 50)},
+       glm::vec3(0.5f, 1.0f, 1.0f) * tex1, glm::vec3(0.0f)},
+      {1.0f, scene::Material{.baseColor = glm::vec4(0.3f, 0.3f, 0.3f, 1.0f), .emissive = glm::vec3(2.0f), .emissiveTexture = solid(255, 128, 0)},
+       glm::vec3(0.3f), 2.0f * tex2},
+  };
+  for (const Case& c : cases) {
+    ecs::Entity e = addMeshEntity(box, scene::Transform{.translation = glm::vec3(c.x, 0.0f, 0.0f)});
+    world.write<scene::Material>(e) = c.material;
+  }
+  ecs::Entity cam = world.create();
+  scene::Transform ct{.translation = glm::vec3(0.0f, 0.0f, 3.0f)};
+  world.add(cam, ct);
+  world.add(cam, scene::WorldTransform{ct.matrix()});
+  world.add(cam, scene::Camera{});
+  world.add(cam, scene::ActiveCamera{});
+  attachVoxels(64, 96);
+  step();
+  const std::vector<glm::vec4> position = renderer->readback(render::TargetId::Position);
+  const std::vector<glm::vec4> albedo = renderer->readback(render::TargetId::Albedo);
+  const std::vector<glm::vec4> emissive = renderer->readback(render::TargetId::Emissive);
+  const std::vector<gi::VoxelFragment> fragments = voxels->readbackFragments();
+  for (const Case& c : cases) {
+    SCOPED_TRACE("box at x = " + std::to_string(c.x));
+    // G-buffer: every pixel whose surface lies on this box.
+    int pixels = 0;
+    glm::vec3 worstAlbedo(0.0f), worstEmission(0.0f);
+    for (size_t i = 0; i < position.size(); ++i) {
+      if (position[i].w == 0.0f || std::abs(position[i].x - c.x) > 0.41f) continue;
+      ++pixels;
+      worstAlbedo = glm::max(worstAlbedo, glm::abs(glm::vec3(albedo[i]) - c.albedo));
+      worstEmission = glm::max(worstEmission, glm::abs(glm::vec3(emissive[i]) - c.emission));
+    }
+    EXPECT_GT(pixels, 100);
+    EXPECT_LT(glm::compMax(worstAlbedo), 2.5f / 255.0f) << "G-buffer albedo (8-bit)";
+    EXPECT_LT(glm::compMax(worstEmission), 0.01f) << "G-buffer emission (half float)";
+    // Voxel fragments whose cell centre lies in this box's slab of x.
+    int voxelCount = 0;
+    glm::vec3 worstVoxelAlbedo(0.0f), worstVoxelEmission(0.0f);
+    for (const gi::VoxelFragment& f : fragments) {
+      glm::vec3 centre = voxels->volume().origin + (glm::vec3(f.cell) + 0.5f) * voxels->volume().voxelSize;
+      if (std::abs(centre.x - c.x) > 0.45f) continue;
+      ++voxelCount;
+      worstVoxelAlbedo = glm::max(worstVoxelAlbedo, glm::abs(glm::vec3(f.albedo) - c.albedo));
+      worstVoxelEmission = glm::max(worstVoxelEmission, glm::abs(f.emission - c.emission) / glm::max(c.emission, glm::vec3(1.0f)));
+    }
+    EXPECT_GT(voxelCount, 100);
+    EXPECT_LT(glm::compMax(worstVoxelAlbedo), 2.5f / 255.0f) << "voxel albedo (8-bit)";
+    EXPECT_LT(glm::compMax(worstVoxelEmission), 0.01f) << "voxel emission (8-bit mantissas)";
   }
 }

@@ -5,7 +5,11 @@
 
 namespace dyngi::render {
 
-GBufferPass::GBufferPass(VulkanContext& ctx) : ctx_(ctx) {
+GBufferPass::GBufferPass(VulkanContext& ctx) : ctx_(ctx) {}
+
+Pipeline& GBufferPass::pipelineFor(bool baseColorTexture, bool emissiveTexture) {
+  Pipeline& pipeline = pipelines_[(baseColorTexture ? 1 : 0) | (emissiveTexture ? 2 : 0)];
+  if (pipeline.handle()) return pipeline;
   Pipeline::GraphicsDesc d;
   d.vertex = DYNGI_SHADER(spv_gbuffer_vert);
   d.fragment = DYNGI_SHADER(spv_gbuffer_frag);
@@ -21,8 +25,10 @@ GBufferPass::GBufferPass(VulkanContext& ctx) : ctx_(ctx) {
   d.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  d.fragmentSpecialization = {baseColorTexture ? 1u : 0u, emissiveTexture ? 1u : 0u};
   d.name = "gbuffer";
-  pipeline_ = Pipeline::graphics(ctx, d);
+  pipeline = Pipeline::graphics(ctx_, d);
+  return pipeline;
 }
 
 void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
@@ -57,25 +63,29 @@ void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
   ri.pColorAttachments = att;
   ri.pDepthAttachment = &depth;
   vkCmdBeginRendering(cmd, &ri);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.handle());
   setFullViewport(cmd, t.width, t.height);
+  const Pipeline* bound = nullptr;
   for (size_t i = 0; i < frame.snapshot.draws.size(); ++i) {
     const DrawItem& d = frame.snapshot.draws[i];
     const GpuMesh* mesh = frame.meshes[i];
     if (!mesh || mesh->indexCount == 0) continue;
     const scene::Material& m = d.material;
+    const Pipeline& pipeline = pipelineFor(m.baseColorTexture != scene::kNoTexture, m.emissiveTexture != scene::kNoTexture);
+    if (&pipeline != bound) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.handle());
+      bound = &pipeline;
+    }
     gpu::GBufferPush pc;
     pc.model = d.model;
     pc.baseColor = m.baseColor;
     pc.emissive = glm::vec4(m.emissive, 0.0f);
-    pc.params = glm::vec4(m.metallic, m.roughness, m.baseColorTexture != scene::kNoTexture ? 1.0f : 0.0f,
-                          m.emissiveTexture != scene::kNoTexture ? 1.0f : 0.0f);
+    pc.params = glm::vec4(m.metallic, m.roughness, 0.0f, 0.0f);
     DescriptorWrites()
         .uniformBuffer(0, frame.frameUniforms.handle())
         .sampledImage(1, textures(m.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
         .sampledImage(2, textures(m.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-        .push(ctx_, cmd, pipeline_);
-    vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+        .push(ctx_, cmd, pipeline);
+    vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
     drawMesh(cmd, *mesh);
   }
   vkCmdEndRendering(cmd);

@@ -82,7 +82,10 @@ class GBufferPass {
 
  private:
   VulkanContext& ctx_;
-  Pipeline pipeline_;
+  // One pipeline per material kind (base-colour texture or not, emissive texture or not), made on first
+  // use: lavapipe runs both sides of a branch, so an untextured material would pay for the lookups.
+  Pipeline pipelines_[4];
+  Pipeline& pipelineFor(bool baseColorTexture, bool emissiveTexture);
 };
 
 // The frame's radiance into targets.hdr: emission + shadowed direct light + albedo x targets.indirect

@@ -54,7 +54,7 @@ DYNGI_GPU_STRUCT(GBufferPush) {
   mat4 model;
   vec4 baseColor;       // linear RGBA factor
   vec4 emissive;        // rgb outgoing radiance factor, w unused
-  vec4 params;          // x metallic, y roughness, z has base texture, w has emissive texture
+  vec4 params;          // x metallic, y roughness (zw unused: textures are pipeline variants)
 };
 
 #ifdef __cplusplus

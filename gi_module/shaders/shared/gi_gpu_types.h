@@ -28,8 +28,8 @@ struct VoxelizePush {
 #endif
   mat4 modelToVoxel;    // object space -> voxel units ([0, resolution)^3)
   uvec4 range;          // x first fragment slot, y capacity, z counter index, w resolution
-  vec4 albedo;          // rgb base colour factor, a 1 when a base-colour texture is bound
-  vec4 emission;        // rgb emitted radiance, a 1 when an emissive texture is bound
+  vec4 albedo;          // rgb base colour factor (a unused: textures are pipeline variants)
+  vec4 emission;        // rgb emitted radiance (a unused)
 };
 
 // Per-level bookkeeping of the SVO build (storage buffer, one per level).

@@ -7,6 +7,9 @@
 #include "tri_box.glsl"
 
 layout(push_constant) uniform Push { VoxelizePush pc; };
+// Material variants (VoxelScene::voxelizePipelineFor): texture lookups compiled in only when used.
+layout(constant_id = 0) const bool kBaseColorTexture = true;
+layout(constant_id = 1) const bool kEmissiveTexture = true;
 layout(set = 0, binding = 0) buffer Fragments { uvec4 fragments[]; };
 layout(set = 0, binding = 1) buffer Counters { uint counters[]; };
 layout(set = 0, binding = 2) uniform sampler2D baseColorTex;
@@ -63,7 +66,7 @@ void main() {
     ivec3 v = ivec3(unproject(vec2(px), float(z), axis));
     vec3 center = vec3(v) + 0.5;
     if (!triangleOverlapsBox(center, vec3(0.5 + kEps), v0, v1, v2)) continue;
-    if (pc.albedo.a > 0.5 || pc.emission.a > 0.5) {
+    if (kBaseColorTexture || kEmissiveTexture) {
       // Barycentrics of the voxel centre's projection onto the triangle (clamped) for texturing.
       vec3 p = center - dot(center - v0, nrm) * nrm;
       vec3 e0 = v1 - v0, e1 = v2 - v0, ep = p - v0;
@@ -74,8 +77,8 @@ void main() {
       vec3 bary = clamp(vec3(1.0 - bv - bw, bv, bw), 0.0, 1.0);
       bary /= max(bary.x + bary.y + bary.z, 1e-6);
       vec2 uv = bary.x * uv0 + bary.y * uv1 + bary.z * uv2;
-      if (pc.albedo.a > 0.5) albedo.rgb *= textureLod(baseColorTex, uv, 0.0).rgb;
-      if (pc.emission.a > 0.5) emission *= textureLod(emissiveTex, uv, 0.0).rgb;
+      if (kBaseColorTexture) albedo.rgb *= textureLod(baseColorTex, uv, 0.0).rgb;
+      if (kEmissiveTexture) emission *= textureLod(emissiveTex, uv, 0.0).rgb;
     }
     uint slot = atomicAdd(counters[pc.range.z], 1u);
     if (slot >= pc.range.y) continue;  // over capacity: counted, so the host grows the range

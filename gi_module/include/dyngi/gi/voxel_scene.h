@@ -31,6 +31,13 @@ struct VoxelSettings {
   bool leafAttributes = true;
 };
 
+// One voxelization fragment as the voxelizer wrote it (decoded; for tests and tools).
+struct VoxelFragment {
+  glm::uvec3 cell{0};
+  glm::vec4 albedo{0.0f};    // linear base colour x (1 - metallic), a 1
+  glm::vec3 emission{0.0f};  // emitted radiance (8-bit mantissas, shared power-of-two scale)
+};
+
 struct VoxelStats {
   uint32_t entitiesVoxelized = 0;    // this frame
   uint64_t fragments = 0;            // voxel fragments currently stored (all entities)
@@ -81,6 +88,7 @@ class VoxelScene final : public render::RenderFeature {
   // Read-backs for tests and tools (synchronous).
   std::vector<uint32_t> readbackNodes();
   DenseVoxelGrid readbackFragmentGrid();  // every voxel some fragment marks
+  std::vector<VoxelFragment> readbackFragments();  // every fragment written (tests)
   // Visibility of world-space segments through the SVO on the GPU; out[i] = 1 when occluded.
   // Returns the GPU time of the march dispatch in ms.
   double marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels = 1e-3f);
@@ -155,7 +163,11 @@ class VoxelScene final : public render::RenderFeature {
   render::Buffer markChunks_;               // uvec2 (first slot, end slot) per mark workgroup
   uint32_t staticChunks_ = 0, movingChunks_ = 0;  // this frame's: the static ones first
   uint64_t frameIndex_ = 0;
-  render::Pipeline voxelize_, mark_, level_, expand_, leafAttributes_, march_, marchOff_, debug_;
+  // One voxelize pipeline per material kind (base-colour / emissive texture or not), made on first use:
+  // lavapipe would run the texture lookups of a branch not taken.
+  render::Pipeline voxelize_[4];
+  render::Pipeline& voxelizePipelineFor(bool baseColorTexture, bool emissiveTexture);
+  render::Pipeline mark_, level_, expand_, leafAttributes_, march_, marchOff_, debug_;
   double dispatchMarch(const render::Pipeline& pipeline, const std::vector<Segment>& segments, std::vector<uint8_t>& out,
                        float epsVoxels);
   VoxelStats stats_;

@@ -43,6 +43,9 @@ class Pipeline {
     ShaderCode vertex{};
     ShaderCode geometry{};  // optional
     ShaderCode fragment{};  // words == nullptr: depth-only
+    // The fragment shader's `layout(constant_id = i)` values (material variants: code a material does
+    // not need is left out rather than branched around, which lavapipe would run anyway).
+    std::vector<uint32_t> fragmentSpecialization;
     std::vector<VkVertexInputBindingDescription> vertexBindings;
     std::vector<VkVertexInputAttributeDescription> vertexAttributes;
     std::vector<VkFormat> colorFormats;
