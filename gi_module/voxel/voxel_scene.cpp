@@ -42,10 +42,10 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
   expand_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_expand_comp), expandB, 8, "svo_expand");
   const Binding attrB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}};
   leafAttributes_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, 12, "svo_leaf_attributes");
-  // One bit per cell of every level 0..depth (DYNGI_SVO_LEVEL_BASE).
+  // One bit per cell of every level 0..depth (DYNGI_SVO_LEVEL_BASE): level depth + 1 would start here.
   uint32_t depth = 0;
   while ((1u << depth) < settings_.resolution) ++depth;
-  const uint64_t pyramidBits = ((uint64_t(1) << (3 * (depth + 1))) - 1) / 7;
+  const uint64_t pyramidBits = 8 + 8 * (((uint64_t(1) << (3 * depth)) - 1) / 7);
   occupancy_ = Buffer(ctx, (pyramidBits + 31) / 32 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                       MemoryUsage::GpuOnly, "svo occupancy pyramid");
   staticOccupancy_ = Buffer(ctx, occupancy_.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,

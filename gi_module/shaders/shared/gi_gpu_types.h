@@ -45,12 +45,12 @@ struct SvoLevel {
 // SVO build passes over fragments and nodes run 64-wide workgroups in which each invocation takes
 // this many items (grid-stride): lavapipe pays a fixed cost per invocation that dwarfs one step.
 #define DYNGI_SVO_ITEMS_PER_INVOCATION 16u
-// The build's occupancy pyramid: one bit per cell of every level 0..depth, level l starting at bit
-// (8^l - 1) / 7, cell (x, y, z) at x + y 2^l + z 4^l within it (svo_mark.comp marks it, svo_expand.comp
-// reads it).
-#define DYNGI_SVO_LEVEL_BASE(l) (((1u << (3u * (l))) - 1u) / 7u)
-// A node's cell at its level, 10 bits per axis (svo_expand.comp keeps one per node it may subdivide).
-#define DYNGI_SVO_PACK_CELL(c) ((c).x | ((c).y << 10) | ((c).z << 20))
+// The build's occupancy pyramid: one bit per cell of every level 0..depth, each level in Morton order
+// (x in the lowest bit of each triple, the SVO's child order) and starting on a byte: level l at bit
+// DYNGI_SVO_LEVEL_BASE(l) (0, 8, 16, 80, 592, ...), cell with Morton code m at base + m. A node's 8
+// children are then the aligned byte at base(l + 1) + 8m: svo_expand.comp reads them in one load
+// (eight scattered bit reads before). svo_mark.comp marks it.
+#define DYNGI_SVO_LEVEL_BASE(l) ((l) == 0u ? 0u : 8u + 8u * (((1u << (3u * ((l) - 1u))) - 1u) / 7u))
 
 // Global SVO counters.
 #ifdef __cplusplus

@@ -1,7 +1,7 @@
 #version 460
-// SVO build, step 2 of a level: every occupied node of `level` gets a group of 8 children, each flagged
-// from the occupancy pyramid at level + 1 and given its cell (unless the children are leaves, which are
-// never subdivided). One invocation writes a whole group, so no atomics touch the nodes; the groups come
+// SVO build, step 2 of a level: every occupied node of `level` gets a group of 8 children, flagged from
+// one byte of the occupancy pyramid at level + 1 (DYNGI_SVO_LEVEL_BASE), each given its Morton code
+// (unless the children are leaves, which are never subdivided). One invocation writes a whole group, so no atomics touch the nodes; the groups come
 // from one counter (an append per subgroup). Nodes are visited in level order, which keeps a level's
 // groups contiguous (svo_level.comp relies on it).
 #extension GL_GOOGLE_include_directive : require
@@ -16,9 +16,10 @@ layout(set = 0, binding = 3) readonly buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = 4) buffer Counters { SvoCounters counters; };
 layout(push_constant) uniform Push { uint level; uint depth; };
 
-bool occupied(uint l, uvec3 cell) {
-  uint index = DYNGI_SVO_LEVEL_BASE(l) + cell.x + (cell.y << l) + (cell.z << (2u * l));
-  return (occupancy[index >> 5] & (1u << (index & 31u))) != 0u;
+// The occupancy of the 8 children of the cell with Morton code m at level l (bit c: child c).
+uint childOccupancy(uint l, uint m) {
+  uint index = DYNGI_SVO_LEVEL_BASE(l + 1u) + 8u * m;  // a multiple of 8: one byte of one word
+  return (occupancy[index >> 5] >> (index & 31u)) & 255u;
 }
 
 void expand(uint node) {
@@ -29,17 +30,15 @@ void expand(uint node) {
   if (want && g >= counters.groups.y) {
     counters.groups.z = 1u;  // overflow: the node stays flagged without children (treated as occupied)
   } else if (want) {
-    uint packed = nodeCells[node];
-    uvec3 cell = uvec3(packed & 1023u, (packed >> 10) & 1023u, packed >> 20);
-    uint childLevel = level + 1u;
-    bool childrenAreLeaves = childLevel == depth;
+    uint code = nodeCells[node];
+    uint children = childOccupancy(level, code);
+    bool childrenAreLeaves = level + 1u == depth;
     for (uint c = 0u; c < 8u; ++c) {
-      uvec3 child = 2u * cell + uvec3(c & 1u, (c >> 1) & 1u, c >> 2);
-      bool o = occupied(childLevel, child);
+      bool o = ((children >> c) & 1u) != 0u;
       nodes[8u * g + c] = o ? DYNGI_SVO_FLAG : 0u;
-      if (o && !childrenAreLeaves) nodeCells[8u * g + c] = DYNGI_SVO_PACK_CELL(child);
-      leaves += o && childrenAreLeaves ? 1u : 0u;
+      if (o && !childrenAreLeaves) nodeCells[8u * g + c] = 8u * code + c;
     }
+    if (childrenAreLeaves) leaves = bitCount(children);
     nodes[node] = DYNGI_SVO_FLAG | g;
   }
   uint subgroupLeaves = subgroupAdd(leaves);

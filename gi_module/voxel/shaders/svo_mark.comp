@@ -7,6 +7,7 @@
 // slots are skipped.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
+#include "svo_morton.glsl"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) readonly buffer Fragments { uvec4 fragments[]; };
 layout(set = 0, binding = 1) buffer Occupancy { uint occupancy[]; };
@@ -15,10 +16,9 @@ layout(push_constant) uniform Push { uint firstChunk; uint depth; };
 void markFragment(uint i) {
   uint c = fragments[i].x;
   if (c == DYNGI_VOXEL_EMPTY) return;
-  uvec3 v = uvec3(c & 1023u, (c >> 10) & 1023u, (c >> 20) & 1023u);
+  uint code = svoMortonCode(uvec3(c & 1023u, (c >> 10) & 1023u, (c >> 20) & 1023u));
   for (int l = int(depth); l >= 0; --l) {
-    uvec3 cell = v >> (depth - uint(l));
-    uint index = DYNGI_SVO_LEVEL_BASE(uint(l)) + cell.x + (cell.y << uint(l)) + (cell.z << (2u * uint(l)));
+    uint index = DYNGI_SVO_LEVEL_BASE(uint(l)) + (code >> (3u * (depth - uint(l))));
     uint bit = 1u << (index & 31u);
     if ((occupancy[index >> 5] & bit) != 0u) return;
     atomicOr(occupancy[index >> 5], bit);

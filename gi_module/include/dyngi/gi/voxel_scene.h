@@ -152,7 +152,7 @@ class VoxelScene final : public render::RenderFeature {
   std::vector<ecs::Entity> voxelizedThisFrame_;
 
   render::Buffer fragments_, counters_, nodes_, levels_, svoCounters_, attributes_;
-  render::Buffer nodeCells_;  // per node that may be subdivided: its cell (svo_expand.comp), sized like nodes_
+  render::Buffer nodeCells_;  // per node that may be subdivided: its cell's Morton code (svo_expand.comp), sized like nodes_
   render::Buffer occupancy_;  // occupancy pyramid of every level (svo_mark.comp)
   // The pyramid of the entities in staticEntities_ alone: a build starts from a copy of it and marks the
   // moving entities' fragments only. Rebuilt when one of them moves or is removed, or when a moving
