@@ -73,22 +73,21 @@ bool temporalAccumulateIncremental(ivec2 px, vec3 newValue, float depth, uvec2 p
   uint packedValue = packRgb9e5(newValue);
   imageStore(setSamples, ivec3(px, set), uvec4(packedValue, floatBitsToUint(depth > 0.0 ? depth : -1.0), 0u, 0u));
   newValue = unpackRgb9e5(packedValue);  // what is stored is what the sum holds: it comes out exactly
-  result = uvec4(0u);
-  if (depth <= 0.0) {
-    imageStore(sums, px, vec4(0.0));  // a tag no surface's depth has
-    return true;
-  }
+  const bool surface = depth > 0.0;
   vec4 s = imageLoad(sums, px);
-  if (acc.mode.x == 0u || !temporalSumIsFor(s, depth)) return false;
+  const bool incremental = surface && acc.mode.x != 0u && temporalSumIsFor(s, depth);
   // Only set `set` changed: take its old sample out (if the full pass had counted it) and put the new one
   // in. The test is the full pass's test for a set stored from this camera.
   uint count = temporalSumCount(s);
-  if (acc.mode.y != 0u && oldValue.a > 0.0 && abs(oldValue.a - depth) <= acc.params.x * depth) s.rgb -= oldValue.rgb;
-  else count += 1u;
-  s.rgb += newValue;
-  imageStore(sums, px, vec4(s.rgb, temporalSumTag(depth, count)));
-  result = packFilterInput(depth, packedNormal, temporalAverage(s.rgb, count));
-  return true;
+  const bool replaces = acc.mode.y != 0u && oldValue.a > 0.0 && abs(oldValue.a - depth) <= acc.params.x * depth;
+  s.rgb += newValue - (replaces ? oldValue.rgb : vec3(0.0));
+  count += replaces ? 0u : 1u;
+  // One store for both outcomes (lavapipe runs a store in a branch for every lane): the updated sum, or
+  // for no surface a cleared one (a tag no surface's depth has). Queued pixels keep theirs: the full
+  // reprojection rewrites it.
+  if (incremental || !surface) imageStore(sums, px, surface ? vec4(s.rgb, temporalSumTag(depth, count)) : vec4(0.0));
+  result = surface ? packFilterInput(depth, packedNormal, temporalAverage(s.rgb, count)) : uvec4(0u);
+  return incremental || !surface;
 }
 
 #ifdef DYNGI_TEMPORAL_REPROJECT
