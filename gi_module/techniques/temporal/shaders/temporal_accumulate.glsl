@@ -100,15 +100,31 @@ void addSameCameraSample(uint j, ivec2 px, float depth, float depthTolerance, in
   count += counts ? 1u : 0u;
 }
 
-// Set j's sample where world point p falls in its camera `cam`: it counts when the surface it was
-// gathered for lies within `tolerance` of p.
-void addReprojectedSample(uint j, TemporalSetCamera cam, vec3 p, float tolerance, ivec2 size, inout vec3 sum, inout uint count) {
-  vec4 clip = cam.viewProj * vec4(p, 1.0);
-  ivec2 q = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * vec2(size)));
-  bool inside = clip.w > 0.0 && all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
+// Set j's sample where world point p falls in its camera: it counts when the surface it was gathered
+// for lies within `tolerance` of p. That point is y = camera + a ray(q) (a the stored view depth, ray(q)
+// the unit-depth ray through the centre of the pixel q that p falls in), and p = camera + w ray(c) with
+// c p's continuous pixel position and w its view depth, so
+//   y - p = (a / w - 1) (p - camera) + a ((q + 0.5 - c).x rayStepX + (q + 0.5 - c).y rayStepY):
+// exactly the old reconstruction, but it reads only the camera's position, its two pixel steps and
+// three rows of its projection (clip z is never needed). On lavapipe each component of a set camera is a
+// load per lane, and the struct copy had read all 32 (the reprojection after a camera move: 22.9 -> 21.7
+// ms at 512^2).
+void addReprojectedSample(uint j, vec3 p, float tolerance, ivec2 size, inout vec3 sum, inout uint count) {
+  const vec4 p1 = vec4(p, 1.0);
+  float cx = 0.0, cy = 0.0, cw = 0.0;  // clip x, y, w (column-major: viewProj[column][row])
+  for (int c = 0; c < 4; ++c) {
+    cx += cameras[j].viewProj[c][0] * p1[c];
+    cy += cameras[j].viewProj[c][1] * p1[c];
+    cw += cameras[j].viewProj[c][3] * p1[c];
+  }
+  vec2 continuous = (vec2(cx, cy) / cw * 0.5 + 0.5) * vec2(size);
+  ivec2 q = ivec2(floor(continuous));
+  bool inside = cw > 0.0 && all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
   vec4 stored = inside ? setSample(q, j) : vec4(0.0);
-  vec3 y = cam.position.xyz + stored.a * (cam.pixelRay0.xyz + float(q.x) * cam.pixelRayStepX.xyz + float(q.y) * cam.pixelRayStepY.xyz);
-  bool counts = stored.a > 0.0 && length(y - p) <= tolerance;
+  vec2 offset = vec2(q) + 0.5 - continuous;
+  vec3 d = (stored.a / cw - 1.0) * (p - cameras[j].position.xyz) +
+           stored.a * (offset.x * cameras[j].pixelRayStepX.xyz + offset.y * cameras[j].pixelRayStepY.xyz);
+  bool counts = stored.a > 0.0 && dot(d, d) <= tolerance * tolerance;
   sum += counts ? stored.rgb : vec3(0.0);
   count += counts ? 1u : 0u;
 }
@@ -139,7 +155,7 @@ uvec4 temporalAccumulateFull(ivec2 px, uvec2 packedNormal) {
   if (moved != 0u) do {
     uint j = uint(findLSB(moved));
     moved &= moved - 1u;
-    addReprojectedSample(j, cameras[j], p, tolerance, size, sum, count);
+    addReprojectedSample(j, p, tolerance, size, sum, count);
   } while (moved != 0u);
   imageStore(sums, px, vec4(sum, temporalSumTag(depth, count)));
   return packFilterInput(depth, packedNormal, temporalAverage(sum, count));
