@@ -1,6 +1,6 @@
 #version 460
 // Deferred lighting, the frame's radiance: emission + Lambert diffuse from every light, shadowed
-// through the shadow-map array (bilinear PCF, 3x3-texel tent), + albedo x the indirect light render
+// through the shadow-map array (PCF over a 3x3-texel tent), + albedo x the indirect light render
 // features wrote (E_indirect / pi). Runs after the features: one pass instead of a direct pass and a
 // composite pass (no direct image written and read back).
 #extension GL_GOOGLE_include_directive : require
@@ -16,7 +16,8 @@ layout(set = 0, binding = 3, rgba8) uniform readonly image2D gAlbedo;
 layout(set = 0, binding = 4, rgba16f) uniform readonly image2D gEmissive;
 layout(set = 0, binding = 5) readonly buffer Lights { GpuLight lights[]; };
 layout(set = 0, binding = 6) readonly buffer ShadowMatrices { mat4 shadowViewProj[]; };
-layout(set = 0, binding = 7) uniform sampler2DArrayShadow shadowMaps;
+// Per texel the nearest caster's biased depth (ShadowPass::shadowMap()).
+layout(set = 0, binding = 7, r32f) uniform readonly image2DArray shadowMaps;
 layout(set = 0, binding = 8, rgba32f) uniform readonly image2D indirect;
 layout(set = 0, binding = 9, rgba32f) uniform writeonly image2D outHdr;
 layout(push_constant) uniform Push { uint hasIndirect; };  // 0: no feature wrote indirect light
@@ -44,13 +45,22 @@ float shadowFactor(GpuLight L, vec3 p, vec3 n, float dist) {
   vec3 ndc = clip.xyz / clip.w;
   vec2 uv = ndc.xy * 0.5 + 0.5;
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z > 1.0) return 1.0;
-  vec2 texel = 1.0 / vec2(textureSize(shadowMaps, 0).xy);
-  // Four bilinear comparison taps half a texel off centre: a 3x3-texel tent filter (weights 1-2-1 per
-  // axis) for the price of four lookups.
+  // The 3x3-texel tent of four bilinear comparisons half a texel off the position, from the nine texels
+  // themselves: with the position t in texels (texel i spans [i, i + 1)), the taps cover texels
+  // floor(t) - 1 .. floor(t) + 1 with weights (1 - f) / 2, 1 / 2, f / 2 per axis, f = fract(t).
+  // Nine storage-image loads cost lavapipe less than four filtered comparison samples.
+  ivec2 size = imageSize(shadowMaps).xy;
+  vec2 t = uv * vec2(size);
+  ivec2 first = ivec2(floor(t)) - 1;
+  vec2 f = fract(t);
+  vec3 wx = vec3(1.0 - f.x, 1.0, f.x) * 0.5, wy = vec3(1.0 - f.y, 1.0, f.y) * 0.5;
   float sum = 0.0;
-  for (int y = 0; y < 2; ++y)
-    for (int x = 0; x < 2; ++x) sum += texture(shadowMaps, vec4(uv + (vec2(x, y) - 0.5) * texel, float(layer), ndc.z));
-  return sum * 0.25;
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 3; ++x) {
+      ivec2 q = clamp(first + ivec2(x, y), ivec2(0), size - 1);
+      sum += ndc.z <= imageLoad(shadowMaps, ivec3(q, int(layer))).r ? wx[x] * wy[y] : 0.0;
+    }
+  return sum;
 }
 
 // Irradiance from light L at p (normal n), shadowed.

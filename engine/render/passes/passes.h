@@ -10,11 +10,14 @@
 
 namespace dyngi::render {
 
-// Builds the light list and renders one depth layer per spot/directional light and six per point
-// light into a 2D-array shadow map. A layer is kept from the last frame when its light's view and every
-// shadow caster (mesh, version, transform) are unchanged: a still scene renders no shadows at all. Under
-// a still light with casters moving, a layer is a copy of a cached layer holding the static casters,
-// with the moving ones drawn on top.
+// Builds the light list and renders one layer per spot/directional light and six per point light into
+// a 2D-array shadow map. Each layer is drawn into a depth layer (the depth test) and an r32f layer that
+// holds the same biased depth (shadow.frag), the lookup image the lighting pass reads with imageLoad:
+// lavapipe loads a storage image in about half the time of a sampler fetch, and a depth format cannot
+// be a storage image. A layer is kept from the last frame when its light's view and every shadow caster
+// (mesh, version, transform) are unchanged: a still scene renders no shadows at all. Under a still
+// light with casters moving, a layer is a copy of a cached layer holding the static casters, with the
+// moving ones drawn on top.
 class ShadowPass {
  public:
   static constexpr const char* kName = "shadow";
@@ -32,20 +35,26 @@ class ShadowPass {
 
   const Buffer& lights() const { return lights_; }
   const Buffer& matrices() const { return matrices_; }
-  Image& shadowMap() { return shadowMap_; }
+  // The lookup image: r32f 2D array, each texel the biased depth of the nearest caster (1: none), in
+  // GENERAL layout after execute(). A point compares lit when its light-space depth is <= the texel.
+  Image& shadowMap() { return layers_.lookup; }
   uint32_t lightCount() const { return lightCount_; }
   uint32_t layersRenderedLastFrame() const { return layersRendered_; }
-  VkSampler compareSampler() const { return compareSampler_; }
-  ~ShadowPass();
 
  private:
   VulkanContext& ctx_;
   Settings settings_;
   Pipeline pipeline_;
-  Image shadowMap_;
+  // A layered shadow map: the depth layers its draws test against, and the r32f lookup layers.
+  struct Layers {
+    Image depth, lookup;
+    uint32_t count() const { return lookup.valid() ? lookup.desc().layers : 0; }
+  };
+  Layers makeLayers(uint32_t count, const char* name) const;
+  void prepareForDrawing(VkCommandBuffer cmd, Layers& layers) const;
+  Layers layers_;
   Buffer lights_;
   Buffer matrices_;
-  VkSampler compareSampler_ = VK_NULL_HANDLE;
   uint32_t lightCount_ = 0;
   std::vector<glm::mat4> layerMatrices_;
   // What the shadow map holds: each layer's view, and the casters drawn into it.
@@ -65,10 +74,10 @@ class ShadowPass {
   static constexpr uint64_t kSettleFrames = 60;
   uint64_t frameCounter_ = 0;
   std::unordered_map<scene::Entity, uint64_t> casterChangedAt_;  // frame its key last changed (0: never)
-  Image staticCache_;                        // one layer per shadow layer in use, made on first need
+  Layers staticCache_;                       // one layer per shadow layer in use, made on first need
   std::vector<glm::mat4> cacheMatrices_;     // the view each cached layer was drawn with
   std::vector<std::vector<Caster>> cacheCasters_;  // the static casters drawn into it
-  void drawCasters(VkCommandBuffer cmd, VkImageView target, const glm::mat4& viewProj, const FrameContext& frame,
+  void drawCasters(VkCommandBuffer cmd, const Layers& target, uint32_t layer, const glm::mat4& viewProj, const FrameContext& frame,
                    const std::vector<size_t>& draws, bool clear);
   bool warnedCapacity_ = false;
 };

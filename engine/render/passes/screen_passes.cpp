@@ -22,7 +22,7 @@ LightingPass::LightingPass(VulkanContext& ctx) : ctx_(ctx) {
                        {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
                        {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
                        {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
                        {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
                        {9, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
   pipeline_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_lighting_comp), b, sizeof(uint32_t), "lighting");
@@ -43,7 +43,7 @@ void LightingPass::execute(FrameContext& frame, ShadowPass& shadows, bool hasInd
       .storageImage(4, t.emissive.view())
       .storageBuffer(5, shadows.lights().handle())
       .storageBuffer(6, shadows.matrices().handle())
-      .sampledImage(7, shadows.shadowMap().view(), shadows.compareSampler(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+      .storageImage(7, shadows.shadowMap().view())
       .storageImage(8, t.indirect.view())
       .storageImage(9, t.hdr.view())
       .push(ctx_, cmd, pipeline_);

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
@@ -6,42 +7,59 @@
 #include "shared/gpu_types.h"
 #include "dyngi/engine/render/light_views.h"
 #include "passes.h"
+#include "spirv/shadow.frag.spv.h"
 #include "spirv/shadow.vert.spv.h"
 
 namespace dyngi::render {
 ShadowPass::ShadowPass(VulkanContext& ctx, const Settings& settings) : ctx_(ctx), settings_(settings) {
   Pipeline::GraphicsDesc d;
   d.vertex = DYNGI_SHADER(spv_shadow_vert);
+  d.fragment = DYNGI_SHADER(spv_shadow_frag);
   d.vertexBindings = {{0, sizeof(GpuVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
   d.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0}};
+  d.colorFormats = {VK_FORMAT_R32_SFLOAT};
   d.depthFormat = VK_FORMAT_D32_SFLOAT;
-  d.depthBias = true;
   d.pushConstantBytes = sizeof(glm::mat4);
+  // The depth bias is applied in shadow.frag (to the depth test and the lookup alike), as floats' bits.
+  d.fragmentSpecialization = {std::bit_cast<uint32_t>(settings.depthBiasConstant), std::bit_cast<uint32_t>(settings.depthBiasSlope)};
   d.name = "shadow";
   pipeline_ = Pipeline::graphics(ctx, d);
 
   lights_ = Buffer(ctx, sizeof(gpu::GpuLight) * DYNGI_MAX_LIGHTS, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "lights");
   matrices_ = Buffer(ctx, sizeof(glm::mat4) * settings.maxLayers, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "shadow matrices");
-  ImageDesc id;
-  id.width = id.height = settings.mapSize;
-  id.layers = settings.maxLayers;
-  id.format = VK_FORMAT_D32_SFLOAT;
-  id.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  id.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
-  id.name = "shadow map array";
-  shadowMap_ = Image(ctx, id);
-
-  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  sci.magFilter = VK_FILTER_LINEAR;
-  sci.minFilter = VK_FILTER_LINEAR;
-  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  sci.compareEnable = VK_TRUE;
-  sci.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
-  sci.maxLod = 0.0f;
-  DYNGI_VK(vkCreateSampler(ctx.device(), &sci, nullptr, &compareSampler_));
+  layers_ = makeLayers(1, "shadow map");  // grown to the layers the lights use (execute())
+  ctx.immediate([&](VkCommandBuffer cmd) {  // readable before the first shadow is drawn: nothing casts
+    layers_.lookup.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    const VkClearColorValue far{{1.0f, 0.0f, 0.0f, 0.0f}};
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
+    vkCmdClearColorImage(cmd, layers_.lookup.handle(), VK_IMAGE_LAYOUT_GENERAL, &far, 1, &all);
+  });
 }
 
-ShadowPass::~ShadowPass() { vkDestroySampler(ctx_.device(), compareSampler_, nullptr); }
+ShadowPass::Layers ShadowPass::makeLayers(uint32_t count, const char* name) const {
+  ImageDesc id;
+  id.width = id.height = settings_.mapSize;
+  id.layers = count;
+  id.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+  id.name = name;
+  Layers l;
+  id.format = VK_FORMAT_D32_SFLOAT;
+  id.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  l.depth = Image(ctx_, id);
+  id.format = VK_FORMAT_R32_SFLOAT;
+  id.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+             VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  l.lookup = Image(ctx_, id);
+  return l;
+}
+
+void ShadowPass::prepareForDrawing(VkCommandBuffer cmd, Layers& layers) const {
+  layers.depth.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                          VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+  layers.lookup.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                           VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+}
 
 void ShadowPass::prepare(const RenderSnapshot& snapshot) {
   std::vector<gpu::GpuLight> lights;
@@ -71,23 +89,30 @@ void ShadowPass::prepare(const RenderSnapshot& snapshot) {
   if (!layerMatrices_.empty()) matrices_.upload(layerMatrices_.data(), layerMatrices_.size() * sizeof(glm::mat4));
 }
 
-void ShadowPass::drawCasters(VkCommandBuffer cmd, VkImageView target, const glm::mat4& viewProj, const FrameContext& frame,
+void ShadowPass::drawCasters(VkCommandBuffer cmd, const Layers& target, uint32_t layer, const glm::mat4& viewProj, const FrameContext& frame,
                              const std::vector<size_t>& draws, bool clear) {
   const uint32_t size = settings_.mapSize;
   VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  depth.imageView = target;
+  depth.imageView = target.depth.layerView(layer);
   depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
   depth.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
   depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   depth.clearValue.depthStencil = {1.0f, 0};
+  VkRenderingAttachmentInfo lookup{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  lookup.imageView = target.lookup.layerView(layer);
+  lookup.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  lookup.loadOp = depth.loadOp;
+  lookup.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  lookup.clearValue.color = {{1.0f, 0.0f, 0.0f, 0.0f}};
   VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
   ri.renderArea = {{0, 0}, {size, size}};
   ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &lookup;
   ri.pDepthAttachment = &depth;
   vkCmdBeginRendering(cmd, &ri);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.handle());
   setFullViewport(cmd, size, size);
-  vkCmdSetDepthBias(cmd, settings_.depthBiasConstant, 0.0f, settings_.depthBiasSlope);
   for (size_t i : draws) {
     glm::mat4 m = viewProj * frame.snapshot.draws[i].model;
     vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(m), &m);
@@ -123,6 +148,12 @@ void ShadowPass::execute(FrameContext& frame) {
     for (const Caster& c : casters) kept[c.entity] = casterChangedAt_[c.entity];
     casterChangedAt_ = std::move(kept);
   }
+  // The layers grow to what the lights use (memory for one spot is one layer, not maxLayers); all are
+  // drawn again then. Frames are synchronous, so no command buffer still reads the old images.
+  if (layerMatrices_.size() > layers_.count()) {
+    layers_ = makeLayers(uint32_t(layerMatrices_.size()), "shadow map");
+    renderedMatrices_.clear();
+  }
   // Per layer: kept (nothing it shows changed), redrawn whole (its light view changed, or no caster
   // moves), or rebuilt from the cached static casters plus the moving ones (light still, casters moving).
   const bool castersChanged = !rendered_ || casters != renderedCasters_;
@@ -146,51 +177,47 @@ void ShadowPass::execute(FrameContext& frame) {
 
   ScopedPass scope(ctx_, frame.timer, frame.cmd, kName);
   VkCommandBuffer cmd = frame.cmd;
-  constexpr VkPipelineStageFlags2 kDepthStages = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-  constexpr VkAccessFlags2 kDepthAccess = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   if (!cacheRebuild.empty()) {
     const uint32_t layersInUse = uint32_t(layerMatrices_.size());
-    if (!staticCache_.valid() || staticCache_.desc().layers < layersInUse) {
-      ImageDesc id;
-      id.width = id.height = settings_.mapSize;
-      id.layers = layersInUse;
-      id.format = VK_FORMAT_D32_SFLOAT;
-      id.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-      id.viewType = layersInUse > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
-      id.name = "shadow static cache";
-      staticCache_ = Image(ctx_, id);
+    if (staticCache_.count() < layersInUse) {
+      staticCache_ = makeLayers(layersInUse, "shadow static cache");
       cacheMatrices_.clear();
       cacheCasters_.clear();
       cacheRebuild = fromCache;  // the old cache is gone
     }
     cacheMatrices_.resize(layersInUse, glm::mat4(0.0f));
     cacheCasters_.resize(layersInUse);
-    staticCache_.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStages, kDepthAccess);
+    prepareForDrawing(cmd, staticCache_);
     for (uint32_t layer : cacheRebuild) {
-      drawCasters(cmd, staticCache_.layerView(layer), layerMatrices_[layer], frame, statics, true);
+      drawCasters(cmd, staticCache_, layer, layerMatrices_[layer], frame, statics, true);
       cacheMatrices_[layer] = layerMatrices_[layer];
       cacheCasters_[layer] = staticCasters;
     }
   }
   if (!fromCache.empty()) {
-    staticCache_.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    shadowMap_.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    std::vector<VkImageCopy> regions;
-    for (uint32_t layer : fromCache) {
-      VkImageCopy r{};
-      r.srcSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, layer, 1};
-      r.dstSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, layer, 1};
-      r.extent = {settings_.mapSize, settings_.mapSize, 1};
-      regions.push_back(r);
+    for (Image* img : {&staticCache_.depth, &staticCache_.lookup})
+      img->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    for (Image* img : {&layers_.depth, &layers_.lookup})
+      img->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    for (VkImageAspectFlags aspect : {VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT), VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT)}) {
+      std::vector<VkImageCopy> regions;
+      for (uint32_t layer : fromCache) {
+        VkImageCopy r{};
+        r.srcSubresource = {aspect, 0, layer, 1};
+        r.dstSubresource = {aspect, 0, layer, 1};
+        r.extent = {settings_.mapSize, settings_.mapSize, 1};
+        regions.push_back(r);
+      }
+      const bool depth = aspect == VK_IMAGE_ASPECT_DEPTH_BIT;
+      vkCmdCopyImage(cmd, (depth ? staticCache_.depth : staticCache_.lookup).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     (depth ? layers_.depth : layers_.lookup).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(regions.size()),
+                     regions.data());
     }
-    vkCmdCopyImage(cmd, staticCache_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, shadowMap_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                   uint32_t(regions.size()), regions.data());
   }
-  shadowMap_.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, kDepthStages, kDepthAccess);
-  for (uint32_t layer : direct) drawCasters(cmd, shadowMap_.layerView(layer), layerMatrices_[layer], frame, all, true);
-  for (uint32_t layer : fromCache) drawCasters(cmd, shadowMap_.layerView(layer), layerMatrices_[layer], frame, moving, false);
-  shadowMap_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  prepareForDrawing(cmd, layers_);
+  for (uint32_t layer : direct) drawCasters(cmd, layers_, layer, layerMatrices_[layer], frame, all, true);
+  for (uint32_t layer : fromCache) drawCasters(cmd, layers_, layer, layerMatrices_[layer], frame, moving, false);
+  layers_.lookup.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 }
 
 }  // namespace dyngi::render
