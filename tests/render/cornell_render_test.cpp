@@ -201,4 +201,17 @@ TEST_F(RenderTest, ShadowMapIsKeptWhileNothingMovesAndRedrawnWhenSomethingDoes) 
     EXPECT_TRUE(drew);
     EXPECT_LT(rel, 1e-12) << "moving box, frame " << f;
   }
+  // A point light switched in mid-run needs six more layers: the shadow map grows and every layer is
+  // drawn again, the spot's included.
+  ecs::Entity bulb = world.create();
+  scene::Transform bt{.translation = glm::vec3(0.4f, 1.4f, 0.3f)};
+  world.add(bulb, bt);
+  world.add(bulb, scene::WorldTransform{bt.matrix()});
+  world.add(bulb, scene::Light{.type = scene::LightType::Point, .color = glm::vec3(1.0f, 0.8f, 0.6f), .intensity = 0.5f});
+  auto [grew, rel5] = step();
+  EXPECT_TRUE(grew);
+  EXPECT_LT(rel5, 1e-12) << "a point light added: shadow layers grown";
+  auto [stillWithBulb, rel6] = step();
+  EXPECT_FALSE(stillWithBulb);
+  EXPECT_LT(rel6, 1e-12);
 }
