@@ -329,9 +329,7 @@ render::Pipeline& VoxelScene::voxelizePipelineFor(bool baseColorTexture, bool em
   d.vertex = DYNGI_SHADER(spv_voxelize_vert);
   d.geometry = DYNGI_SHADER(spv_voxelize_geom);
   d.fragment = DYNGI_SHADER(spv_voxelize_frag);
-  d.vertexBindings = {{0, sizeof(render::GpuVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
-  d.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(render::GpuVertex, position)},
-                        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(render::GpuVertex, uv)}};
+  render::setMeshVertexInput(d, /*normal=*/false, /*uv=*/true);
   d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   d.pushConstantBytes = sizeof(gpu::VoxelizePush);
   d.bindings = {{0, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},

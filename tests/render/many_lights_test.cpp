@@ -165,3 +165,41 @@ TEST_F(ManyLightsTest, MoreVplsKeepEnergyAndReduceError) {
   EXPECT_NEAR(m512 / m4096, 1.0, 0.03);
   EXPECT_LT(e4096, e512);
 }
+
+// The RSM is a pipeline per material kind (the texture lookup compiled in only when bound): a floor
+// with a solid-colour texture sends its VPLs the flux a floor of that colour as a plain factor does.
+TEST_F(ManyLightsTest, TexturedSurfaceGivesItsVplsTheTextureColour) {
+  ecs::Entity floor{};
+  world.each<scene::Name>([&](ecs::Entity e, const scene::Name& n) { if (n.value == "floor") floor = e; });
+  ASSERT_TRUE(world.alive(floor));
+  auto srgbToLinear = [](float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); };
+  const glm::vec3 colour(srgbToLinear(200 / 255.0f), srgbToLinear(100 / 255.0f), srgbToLinear(50 / 255.0f));
+  auto meanFloorVplFlux = [&] {
+    gi::VoxelScene voxels(context(), gi::VoxelSettings{.resolution = 64});
+    gi::ManyLights ml(context(), voxels, gi::ManyLightsSettings{.vplCount = 256});
+    render::Renderer renderer(context());
+    renderer.addFeature(&voxels);
+    renderer.addFeature(&ml);
+    renderer.resize(32, 32);
+    renderer.render(render::extractSnapshot(world, assets, 0));
+    glm::dvec3 sum(0.0);
+    int n = 0;
+    for (const gi::VplReadback& v : ml.readbackVpls())
+      if (v.bounce == 0 && v.position.y < 1e-3f) sum += glm::dvec3(v.flux), ++n;  // VPLs on the floor
+    EXPECT_GT(n, 10) << "the spot lights the floor";
+    // Every first-bounce VPL carries the same luminance (importance sampling), so the mean flux of the
+    // floor's VPLs is the floor's colour, whatever their number.
+    return n > 0 ? sum / double(n) : sum;
+  };
+  world.write<scene::Material>(floor).baseColor = glm::vec4(colour, 1.0f);
+  const glm::dvec3 plain = meanFloorVplFlux();
+  scene::TextureData t;
+  t.width = t.height = 4;
+  for (int i = 0; i < 16; ++i) t.rgba8.insert(t.rgba8.end(), {200, 100, 50, 255});
+  scene::Material& m = world.write<scene::Material>(floor);
+  m.baseColor = glm::vec4(1.0f);
+  m.baseColorTexture = assets.addTexture(t);
+  const glm::dvec3 textured = meanFloorVplFlux();
+  ASSERT_GT(luminance(plain), 0.0);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(textured[c] / plain[c], 1.0, 0.02) << "channel " << c;
+}

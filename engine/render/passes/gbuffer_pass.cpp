@@ -13,10 +13,7 @@ Pipeline& GBufferPass::pipelineFor(bool baseColorTexture, bool emissiveTexture) 
   Pipeline::GraphicsDesc d;
   d.vertex = DYNGI_SHADER(spv_gbuffer_vert);
   d.fragment = DYNGI_SHADER(spv_gbuffer_frag);
-  d.vertexBindings = {{0, sizeof(GpuVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
-  d.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, position)},
-                        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, normal)},
-                        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv)}};
+  setMeshVertexInput(d, /*normal=*/true, /*uv=*/true);
   d.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8G8B8A8_UNORM,
                     VK_FORMAT_R16G16B16A16_SFLOAT};
   d.depthFormat = VK_FORMAT_D32_SFLOAT;

@@ -15,8 +15,7 @@ ShadowPass::ShadowPass(VulkanContext& ctx, const Settings& settings) : ctx_(ctx)
   Pipeline::GraphicsDesc d;
   d.vertex = DYNGI_SHADER(spv_shadow_vert);
   d.fragment = DYNGI_SHADER(spv_shadow_frag);
-  d.vertexBindings = {{0, sizeof(GpuVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
-  d.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0}};
+  setMeshVertexInput(d, /*normal=*/false, /*uv=*/false);
   d.colorFormats = {VK_FORMAT_R32_SFLOAT};
   d.depthFormat = VK_FORMAT_D32_SFLOAT;
   d.pushConstantBytes = sizeof(glm::mat4);

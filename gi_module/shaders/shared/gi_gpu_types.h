@@ -91,7 +91,7 @@ struct alignas(16) RsmPush {
 struct RsmPush {
 #endif
   mat4 model;
-  vec4 baseColor;       // rgb linear base colour x (1 - metallic), a 1 when a base-colour texture is bound
+  vec4 baseColor;       // rgb linear base colour x (1 - metallic) (a unused: textures are pipeline variants)
   uvec4 info;           // x layer
 };
 

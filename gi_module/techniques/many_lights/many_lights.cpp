@@ -20,22 +20,6 @@ namespace dyngi::gi {
 
 ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const ManyLightsSettings& settings)
     : ctx_(ctx), voxels_(voxels), settings_(settings) {
-  Pipeline::GraphicsDesc d;
-  d.vertex = DYNGI_SHADER(spv_rsm_vert);
-  d.fragment = DYNGI_SHADER(spv_rsm_frag);
-  d.vertexBindings = {{0, sizeof(render::GpuVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
-  d.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(render::GpuVertex, position)},
-                        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(render::GpuVertex, normal)},
-                        {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(render::GpuVertex, uv)}};
-  d.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT};
-  d.depthFormat = VK_FORMAT_D32_SFLOAT;
-  d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-  d.pushConstantBytes = sizeof(gpu::RsmPush);
-  d.bindings = {{0, kSSBO, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
-                {1, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {2, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT}};
-  d.name = "rsm";
-  rsm_ = Pipeline::graphics(ctx, d);
 
   const Binding rowsB[] = {{0, kSampled, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
   cdfRows_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_cdf_rows_comp), rowsB, 8, "vpl_cdf_rows");
@@ -121,6 +105,26 @@ void ManyLights::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     vpls_ = Buffer(ctx_, vplBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "vpls");
 }
 
+render::Pipeline& ManyLights::rsmPipelineFor(bool baseColorTexture) {
+  Pipeline& pipeline = rsm_[baseColorTexture ? 1 : 0];
+  if (pipeline.handle()) return pipeline;
+  Pipeline::GraphicsDesc d;
+  d.vertex = DYNGI_SHADER(spv_rsm_vert);
+  d.fragment = DYNGI_SHADER(spv_rsm_frag);
+  render::setMeshVertexInput(d, /*normal=*/true, /*uv=*/true);
+  d.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT};
+  d.depthFormat = VK_FORMAT_D32_SFLOAT;
+  d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  d.pushConstantBytes = sizeof(gpu::RsmPush);
+  d.bindings = {{0, kSSBO, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
+                {1, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {2, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  d.fragmentSpecialization = {baseColorTexture ? 1u : 0u};
+  d.name = "rsm";
+  pipeline = Pipeline::graphics(ctx_, d);
+  return pipeline;
+}
+
 bool ManyLights::record(render::FrameContext& frame) {
   if (!voxels_.hasVolume() || !raw_.valid()) return false;
   VkCommandBuffer cmd = frame.cmd;
@@ -162,23 +166,27 @@ bool ManyLights::record(render::FrameContext& frame) {
       ri.pDepthAttachment = &depth;
       vkCmdBeginRendering(cmd, &ri);
       if (layer < rsmLayersUsed_) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, rsm_.handle());
         render::setFullViewport(cmd, res, res);
+        const Pipeline* bound = nullptr;
         for (size_t i = 0; i < frame.snapshot.draws.size(); ++i) {
           const render::DrawItem& dr = frame.snapshot.draws[i];
           const render::GpuMesh* mesh = frame.meshes[i];
           if (!mesh || mesh->indexCount == 0) continue;
+          const Pipeline& pipeline = rsmPipelineFor(dr.material.baseColorTexture != scene::kNoTexture);
+          if (&pipeline != bound) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.handle());
+            bound = &pipeline;
+          }
           gpu::RsmPush pc;
           pc.model = dr.model;
-          pc.baseColor = glm::vec4(glm::vec3(dr.material.baseColor) * (1.0f - dr.material.metallic),
-                                   dr.material.baseColorTexture != scene::kNoTexture ? 1.0f : 0.0f);
+          pc.baseColor = glm::vec4(glm::vec3(dr.material.baseColor) * (1.0f - dr.material.metallic), 0.0f);
           pc.info = glm::uvec4(layer, 0, 0, 0);
           DescriptorWrites()
               .storageBuffer(0, layers_.handle())
               .storageBuffer(1, lights_.handle())
               .sampledImage(2, frame.textureView(dr.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-              .push(ctx_, cmd, rsm_);
-          vkCmdPushConstants(cmd, rsm_.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+              .push(ctx_, cmd, pipeline);
+          vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
           render::drawMesh(cmd, *mesh);
         }
       }

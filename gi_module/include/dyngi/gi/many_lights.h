@@ -60,7 +60,11 @@ class ManyLights final : public render::RenderFeature {
   render::Image rsmPosition_, rsmNormal_, rsmFlux_, rsmDepth_;
   render::Buffer layers_, lights_, rowPrefix_, rowCdf_, vpls_;
   render::Image raw_;
-  render::Pipeline rsm_, cdfRows_, cdfTotal_, sample_, bounce_, debug_;
+  // One RSM pipeline per material kind (base-colour texture or not), made on first use: lavapipe would
+  // run the lookup of a branch not taken.
+  render::Pipeline rsm_[2];
+  render::Pipeline& rsmPipelineFor(bool baseColorTexture);
+  render::Pipeline cdfRows_, cdfTotal_, sample_, bounce_, debug_;
   std::unique_ptr<class IndirectGatherPass> gatherPass_;
   std::unique_ptr<class IndirectFilterPass> filterPass_;
 };

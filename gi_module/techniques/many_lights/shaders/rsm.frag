@@ -9,6 +9,8 @@ layout(set = 0, binding = 0) readonly buffer Layers { RsmLayer layers[]; };
 layout(set = 0, binding = 1) readonly buffer Lights { GpuLight lights[]; };
 layout(set = 0, binding = 2) uniform sampler2D baseColorTex;
 layout(push_constant) uniform Push { RsmPush pc; };
+// Material variant (ManyLights::rsmPipelineFor): the lookup is compiled in only when a texture is bound.
+layout(constant_id = 0) const bool kBaseColorTexture = true;
 layout(location = 0) in vec3 inWorld;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
@@ -19,7 +21,7 @@ void main() {
   RsmLayer layer = layers[pc.info.x];
   GpuLight L = lights[layer.info.x];
   vec3 albedo = pc.baseColor.rgb;
-  if (pc.baseColor.a > 0.5) albedo *= texture(baseColorTex, inUv).rgb;
+  if (kBaseColorTexture) albedo *= texture(baseColorTex, inUv).rgb;
   vec3 n = normalize(inNormal);
   vec3 radiant = L.radiance.rgb * L.radiance.w;
   vec3 flux;

@@ -1,10 +1,12 @@
 #pragma once
 // What a pass (built-in or a plugged-in render feature) sees while recording one frame.
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <vector>
 
 #include "dyngi/engine/render/gpu_timer.h"
+#include "dyngi/engine/render/pipeline.h"
 #include "dyngi/engine/render/resources.h"
 #include "dyngi/engine/render/snapshot.h"
 #include "shared/gpu_types.h"
@@ -32,6 +34,15 @@ struct GpuVertex {
   float uv[2];
 };
 static_assert(sizeof(GpuVertex) == 32);
+
+// A GpuVertex buffer at binding 0 as a pipeline's vertex input: position at location 0, then normal at
+// location 1 and uv at location 2 for the shaders that read them.
+inline void setMeshVertexInput(Pipeline::GraphicsDesc& d, bool normal, bool uv) {
+  d.vertexBindings = {{0, sizeof(GpuVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+  d.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, position)}};
+  if (normal) d.vertexAttributes.push_back({1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, normal)});
+  if (uv) d.vertexAttributes.push_back({2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv)});
+}
 
 struct GpuMesh {
   Buffer vertices;
