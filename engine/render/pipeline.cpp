@@ -114,7 +114,6 @@ Pipeline Pipeline::graphics(VulkanContext& ctx, const GraphicsDesc& desc) {
   rs.polygonMode = VK_POLYGON_MODE_FILL;
   rs.cullMode = desc.cullMode;
   rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-  rs.depthBiasEnable = desc.depthBias;
   rs.lineWidth = 1.0f;
   VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
@@ -128,7 +127,6 @@ Pipeline Pipeline::graphics(VulkanContext& ctx, const GraphicsDesc& desc) {
   cb.attachmentCount = uint32_t(blends.size());
   cb.pAttachments = blends.data();
   std::vector<VkDynamicState> dyn = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-  if (desc.depthBias) dyn.push_back(VK_DYNAMIC_STATE_DEPTH_BIAS);
   VkPipelineDynamicStateCreateInfo dy{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
   dy.dynamicStateCount = uint32_t(dyn.size());
   dy.pDynamicStates = dyn.data();

@@ -51,7 +51,6 @@ class Pipeline {
     std::vector<VkFormat> colorFormats;
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
     VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
-    bool depthBias = false;  // dynamic depth bias (shadow maps)
     VkShaderStageFlags pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT;
     uint32_t pushConstantBytes = 0;
     std::vector<Binding> bindings;
