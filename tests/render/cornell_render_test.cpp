@@ -201,6 +201,12 @@ TEST_F(RenderTest, ShadowMapIsKeptWhileNothingMovesAndRedrawnWhenSomethingDoes) 
     EXPECT_TRUE(drew);
     EXPECT_LT(rel, 1e-12) << "moving box, frame " << f;
   }
+  // A long jump of the moving box under the still light: only the texels it covered and covers are
+  // restored from the cache, and nothing of its old shadow may stay behind.
+  world.write<scene::Transform>(named("short_box")).translation.x -= 0.6f;
+  auto [jumped, relJump] = step();
+  EXPECT_TRUE(jumped);
+  EXPECT_LT(relJump, 1e-12) << "the jumped box left its old shadow behind";
   // A point light switched in mid-run needs six more layers: the shadow map grows and every layer is
   // drawn again, the spot's included.
   ecs::Entity bulb = world.create();

@@ -2,6 +2,7 @@
 // The engine's built-in passes, one class each. Every pass has a name (its timestamp, debug label and
 // key in stats), a Settings struct with defaults, and execute(FrameContext&).
 #include <functional>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -77,6 +78,11 @@ class ShadowPass {
   Layers staticCache_;                       // one layer per shadow layer in use, made on first need
   std::vector<glm::mat4> cacheMatrices_;     // the view each cached layer was drawn with
   std::vector<std::vector<Caster>> cacheCasters_;  // the static casters drawn into it
+  // Per layer built from the cache: the texel rectangle its moving casters were drawn in last frame
+  // (none: the layer is not the cache plus moving casters, copy it whole). Only that rectangle and
+  // this frame's are copied back from the cache before the moving casters are drawn again.
+  std::vector<std::optional<VkRect2D>> movingRects_;
+  std::optional<VkRect2D> movingFootprint(const glm::mat4& viewProj, const FrameContext& frame, const std::vector<size_t>& draws) const;
   void drawCasters(VkCommandBuffer cmd, const Layers& target, uint32_t layer, const glm::mat4& viewProj, const FrameContext& frame,
                    const std::vector<size_t>& draws, bool clear);
   bool warnedCapacity_ = false;

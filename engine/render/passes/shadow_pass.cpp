@@ -120,6 +120,30 @@ void ShadowPass::drawCasters(VkCommandBuffer cmd, const Layers& target, uint32_t
   vkCmdEndRendering(cmd);
 }
 
+std::optional<VkRect2D> ShadowPass::movingFootprint(const glm::mat4& viewProj, const FrameContext& frame,
+                                                    const std::vector<size_t>& draws) const {
+  const float size = float(settings_.mapSize);
+  glm::vec2 lo(size), hi(0.0f);
+  for (size_t i : draws) {
+    const DrawItem& d = frame.snapshot.draws[i];
+    const scene::Aabb& b = frame.snapshot.assets->mesh(d.mesh).bounds;
+    if (!b.valid()) return std::nullopt;
+    const glm::mat4 m = viewProj * d.model;
+    for (int c = 0; c < 8; ++c) {
+      glm::vec4 clip = m * glm::vec4((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y, (c & 4) ? b.max.z : b.min.z, 1.0f);
+      if (clip.w <= 1e-6f) return std::nullopt;  // reaches behind the light: no bounded footprint
+      glm::vec2 texel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * size;
+      lo = glm::min(lo, texel);
+      hi = glm::max(hi, texel);
+    }
+  }
+  // Two texels of margin for rasterization rounding; clamped to the map (empty when off the map).
+  const glm::ivec2 first = glm::clamp(glm::ivec2(glm::floor(lo)) - 2, glm::ivec2(0), glm::ivec2(int(size)));
+  const glm::ivec2 end = glm::clamp(glm::ivec2(glm::ceil(hi)) + 2, glm::ivec2(0), glm::ivec2(int(size)));
+  const glm::ivec2 extent = glm::max(end - first, glm::ivec2(0));
+  return VkRect2D{{first.x, first.y}, {uint32_t(extent.x), uint32_t(extent.y)}};
+}
+
 void ShadowPass::execute(FrameContext& frame) {
   ++frameCounter_;
   // Casters, and which of them moved, turned or deformed lately (the first sight of one is no change).
@@ -153,6 +177,7 @@ void ShadowPass::execute(FrameContext& frame) {
     layers_ = makeLayers(uint32_t(layerMatrices_.size()), "shadow map");
     renderedMatrices_.clear();
   }
+  movingRects_.resize(layers_.count());
   // Per layer: kept (nothing it shows changed), redrawn whole (its light view changed, or no caster
   // moves), or rebuilt from the cached static casters plus the moving ones (light still, casters moving).
   const bool castersChanged = !rendered_ || casters != renderedCasters_;
@@ -198,21 +223,42 @@ void ShadowPass::execute(FrameContext& frame) {
       img->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     for (Image* img : {&layers_.depth, &layers_.lookup})
       img->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    // Per layer, the part to restore from the cache: where the moving casters were drawn last frame and
+    // where they are now (the rest of the layer is the cache already), or the whole layer.
+    std::vector<VkRect2D> restore;
+    for (uint32_t layer : fromCache) {
+      std::optional<VkRect2D> now = movingFootprint(layerMatrices_[layer], frame, moving);
+      const bool cacheRedrawn = std::find(cacheRebuild.begin(), cacheRebuild.end(), layer) != cacheRebuild.end();
+      VkRect2D r{{0, 0}, {settings_.mapSize, settings_.mapSize}};
+      if (now && movingRects_[layer] && !cacheRedrawn) {
+        const VkRect2D& was = *movingRects_[layer];
+        const int32_t x0 = std::min(was.offset.x, now->offset.x), y0 = std::min(was.offset.y, now->offset.y);
+        const int32_t x1 = std::max(was.offset.x + int32_t(was.extent.width), now->offset.x + int32_t(now->extent.width));
+        const int32_t y1 = std::max(was.offset.y + int32_t(was.extent.height), now->offset.y + int32_t(now->extent.height));
+        r = VkRect2D{{x0, y0}, {uint32_t(x1 - x0), uint32_t(y1 - y0)}};
+      }
+      restore.push_back(r);
+      movingRects_[layer] = now;
+    }
     for (VkImageAspectFlags aspect : {VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT), VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT)}) {
       std::vector<VkImageCopy> regions;
-      for (uint32_t layer : fromCache) {
-        VkImageCopy r{};
-        r.srcSubresource = {aspect, 0, layer, 1};
-        r.dstSubresource = {aspect, 0, layer, 1};
-        r.extent = {settings_.mapSize, settings_.mapSize, 1};
-        regions.push_back(r);
+      for (size_t k = 0; k < fromCache.size(); ++k) {
+        if (restore[k].extent.width == 0 || restore[k].extent.height == 0) continue;
+        VkImageCopy c{};
+        c.srcSubresource = {aspect, 0, fromCache[k], 1};
+        c.dstSubresource = {aspect, 0, fromCache[k], 1};
+        c.srcOffset = c.dstOffset = {restore[k].offset.x, restore[k].offset.y, 0};
+        c.extent = {restore[k].extent.width, restore[k].extent.height, 1};
+        regions.push_back(c);
       }
+      if (regions.empty()) continue;
       const bool depth = aspect == VK_IMAGE_ASPECT_DEPTH_BIT;
       vkCmdCopyImage(cmd, (depth ? staticCache_.depth : staticCache_.lookup).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                      (depth ? layers_.depth : layers_.lookup).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(regions.size()),
                      regions.data());
     }
   }
+  for (uint32_t layer : direct) movingRects_[layer].reset();  // drawn whole: not the cache plus movers
   prepareForDrawing(cmd, layers_);
   for (uint32_t layer : direct) drawCasters(cmd, layers_, layer, layerMatrices_[layer], frame, all, true);
   for (uint32_t layer : fromCache) drawCasters(cmd, layers_, layer, layerMatrices_[layer], frame, moving, false);
