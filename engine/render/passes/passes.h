@@ -17,8 +17,8 @@ namespace dyngi::render {
 // lavapipe loads a storage image in about half the time of a sampler fetch, and a depth format cannot
 // be a storage image. A layer is kept from the last frame when its light's view and every shadow caster
 // (mesh, version, transform) are unchanged: a still scene renders no shadows at all. Under a still
-// light with casters moving, a layer is a copy of a cached layer holding the static casters, with the
-// moving ones drawn on top.
+// light with casters moving, a layer is a cached layer holding the static casters with the moving ones
+// drawn on top; each frame only the part the moving casters covered and now cover is restored.
 class ShadowPass {
  public:
   static constexpr const char* kName = "shadow";
