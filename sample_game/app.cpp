@@ -101,7 +101,7 @@ int runPathTracer(const Options& o, ecs::World& world, scene::AssetStore& assets
     time.time = double(f) * time.dt;
     time.frame = uint64_t(f);
     scheduler.runFrame(world, time);
-    for (auto& t : scheduler.lastTimings()) stats.cpuStageMs[t.name].push_back(t.cpuMs);
+    for (auto& t : scheduler.lastTimings()) stats.cpuStageMs[t.name].push(t.cpuMs);
   }
   render::RenderSnapshot snapshot = render::extractSnapshot(world, assets, uint64_t(frames - 1));
   gi::PathTracerSettings pts;
@@ -123,9 +123,9 @@ int runPathTracer(const Options& o, ecs::World& world, scene::AssetStore& assets
   stats.width = o.width;
   stats.height = o.height;
   stats.device = "cpu (" + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads)";
-  stats.frameMs.push_back(pstats.ms);
+  stats.frameMs.push(pstats.ms);
   stats.gpuStageMs.clear();
-  stats.cpuStageMs["path_trace"].push_back(pstats.ms);
+  stats.cpuStageMs["path_trace"].push(pstats.ms);
   stats.scalars["spp"] = o.spp;
   stats.scalars["bounces"] = o.bounces;
   stats.scalars["msamples_per_second"] = pstats.samplesPerSecond * 1e-6;
@@ -316,20 +316,20 @@ int runApp(const Options& o) {
     double frameMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     ++rendered;
     if (rendered > stats.warmupFrames) {
-      stats.frameMs.push_back(frameMs);
-      for (auto& [name, ms] : fs.gpuMs) stats.gpuStageMs[name].push_back(ms);
-      for (auto& t : scheduler.lastTimings()) stats.cpuStageMs[t.name].push_back(t.cpuMs);
-      stats.cpuStageMs["extract"].push_back(extractMs);
-      stats.cpuStageMs["render_record"].push_back(fs.cpuRecordMs);
-      stats.cpuStageMs["render_wait"].push_back(fs.cpuWaitMs);
+      stats.frameMs.push(frameMs);
+      for (auto& [name, ms] : fs.gpuMs) stats.gpuStageMs[name].push(ms);
+      for (auto& t : scheduler.lastTimings()) stats.cpuStageMs[t.name].push(t.cpuMs);
+      stats.cpuStageMs["extract"].push(extractMs);
+      stats.cpuStageMs["render_record"].push(fs.cpuRecordMs);
+      stats.cpuStageMs["render_wait"].push(fs.cpuWaitMs);
       if (gi) {
         gi::GiStats g = gi->stats();
-        stats.cpuStageMs["gi_bvh_update"].push_back(g.bvh.updateMs);
+        stats.cpuStageMs["gi_bvh_update"].push(g.bvh.updateMs);
         if (gi->paths()) {
-          stats.cpuStageMs["gi_vpl_invalidate"].push_back(g.vpl.invalidateMs);
-          stats.cpuStageMs["gi_vpl_replace"].push_back(g.vpl.replaceMs);
+          stats.cpuStageMs["gi_vpl_invalidate"].push(g.vpl.invalidateMs);
+          stats.cpuStageMs["gi_vpl_replace"].push(g.vpl.replaceMs);
         }
-        if (o.gi == "bvh") stats.cpuStageMs["gi_bvh_visibility"].push_back(g.bvhVisibilityMs);
+        if (o.gi == "bvh") stats.cpuStageMs["gi_bvh_visibility"].push(g.bvhVisibilityMs);
       }
     }
   }

@@ -3,6 +3,7 @@
 #include <exception>
 
 #include "app.h"
+#include "dyngi/engine/render/vk_common.h"
 #include "options.h"
 
 int main(int argc, char** argv) {
@@ -16,8 +17,15 @@ int main(int argc, char** argv) {
     std::printf("%s", dyngi::sample::usage().c_str());
     return 0;
   }
+  if (std::string bad = dyngi::sample::checkOutputPaths(*options); !bad.empty()) {
+    std::fprintf(stderr, "dyngi_sample: %s\n", bad.c_str());
+    return 2;
+  }
   try {
     return dyngi::sample::runApp(*options);
+  } catch (const dyngi::render::DeviceMemoryError& e) {  // the settings ask for more than the device holds
+    std::fprintf(stderr, "dyngi_sample: %s\n", e.what());
+    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dyngi_sample: error: %s\n", e.what());
     return 1;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <vector>
 
 namespace dyngi::sample {
@@ -211,6 +212,21 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
     return std::nullopt;
   }
   return o;
+}
+
+std::string checkOutputPaths(const Options& o) {
+  namespace fs = std::filesystem;
+  const std::pair<const char*, const std::string*> outputs[] = {{"--out", &o.out}, {"--hdr-out", &o.hdrOut}, {"--stats", &o.stats}};
+  for (const auto& [flag, path] : outputs) {
+    if (path->empty()) continue;
+    std::error_code ec;
+    fs::path p(*path);
+    fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+    if (!fs::is_directory(dir, ec))
+      return std::string(flag) + " " + *path + ": directory '" + dir.string() + "' does not exist (it is not created)";
+    if (fs::is_directory(p, ec)) return std::string(flag) + " " + *path + ": is a directory, not a file";
+  }
+  return {};
 }
 
 }  // namespace dyngi::sample

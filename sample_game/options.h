@@ -42,5 +42,9 @@ struct Options {
 std::string usage();
 // Returns the options, or an error message in `error`.
 std::optional<Options> parseOptions(int argc, const char* const* argv, std::string& error);
+// Output files (--out, --hdr-out, --stats) go where they point: their directory must exist (nothing is
+// created on the side) and the path must not be a directory. Checked before a run, so a long render
+// never ends on a path it cannot write. Returns an error line, or "" when every path is usable.
+std::string checkOutputPaths(const Options& o);
 
 }  // namespace dyngi::sample

@@ -18,6 +18,19 @@ double percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, rank == 0 ? 0 : rank - 1)];
 }
 
+void SampleSeries::push(double v) {
+  ++seen_;
+  if (kept_.size() < kCapacity) {
+    if (kept_.capacity() == 0) kept_.reserve(64);
+    kept_.push_back(v);
+    return;
+  }
+  // Algorithm R: the seen_-th sample replaces a random kept one with probability kCapacity / seen_.
+  rng_ ^= rng_ << 13, rng_ ^= rng_ >> 7, rng_ ^= rng_ << 17;  // xorshift64
+  uint64_t slot = rng_ % seen_;
+  if (slot < kCapacity) kept_[size_t(slot)] = v;
+}
+
 namespace {
 std::string escape(const std::string& s) {
   std::string o;
@@ -46,12 +59,12 @@ std::string RunStats::toJson() const {
   j << "  \"device\": \"" << escape(device) << "\",\n";
   j << "  \"frames\": " << frames << ",\n";
   j << "  \"warmup_frames\": " << warmupFrames << ",\n";
-  j << "  \"frame_ms\": {\"median\": " << num(percentile(frameMs, 0.5)) << ", \"p95\": " << num(percentile(frameMs, 0.95)) << "},\n";
-  auto section = [&](const char* key, const std::map<std::string, std::vector<double>>& m, bool last) {
+  j << "  \"frame_ms\": {\"median\": " << num(frameMs.percentile(0.5)) << ", \"p95\": " << num(frameMs.percentile(0.95)) << "},\n";
+  auto section = [&](const char* key, const std::map<std::string, SampleSeries>& m, bool last) {
     j << "  \"" << key << "\": {";
     bool first = true;
     for (auto& [name, v] : m) {
-      j << (first ? "" : ", ") << "\"" << escape(name) << "\": " << num(percentile(v, 0.5));
+      j << (first ? "" : ", ") << "\"" << escape(name) << "\": " << num(v.percentile(0.5));
       first = false;
     }
     j << "}" << (last ? "\n" : ",\n");
@@ -87,15 +100,15 @@ std::string RunStats::table() const {
   std::snprintf(line, sizeof line, "  %-24s %10s\n", "stage", "median ms");
   t << line;
   for (auto& [name, v] : gpuStageMs) {
-    std::snprintf(line, sizeof line, "  gpu %-20s %10.3f\n", name.c_str(), percentile(v, 0.5));
+    std::snprintf(line, sizeof line, "  gpu %-20s %10.3f\n", name.c_str(), v.percentile(0.5));
     t << line;
   }
   for (auto& [name, v] : cpuStageMs) {
-    std::snprintf(line, sizeof line, "  cpu %-20s %10.3f\n", name.c_str(), percentile(v, 0.5));
+    std::snprintf(line, sizeof line, "  cpu %-20s %10.3f\n", name.c_str(), v.percentile(0.5));
     t << line;
   }
   if (frameMs.empty()) std::snprintf(line, sizeof line, "  no frame timed: the run ended within the %d warm-up frames\n", warmupFrames);
-  else std::snprintf(line, sizeof line, "  frame (median / p95)    %10.3f / %.3f\n", percentile(frameMs, 0.5), percentile(frameMs, 0.95));
+  else std::snprintf(line, sizeof line, "  frame (median / p95)    %10.3f / %.3f\n", frameMs.percentile(0.5), frameMs.percentile(0.95));
   t << line;
   return t.str();
 }

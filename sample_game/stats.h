@@ -1,5 +1,7 @@
 #pragma once
 // Per-frame timings collected over a run, summarised as medians (and p95 for the frame) in JSON.
+#include <cstdint>
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <vector>
@@ -8,13 +10,37 @@ namespace dyngi::sample {
 
 double percentile(std::vector<double> v, double p);  // p in [0,1]; nearest-rank on a sorted copy
 
+// One quantity's per-frame samples over a run, in bounded memory: every sample while there are at most
+// kCapacity, then a uniform random subset of kCapacity of all samples seen (reservoir sampling with a
+// fixed seed, so a run's summary is reproducible). Medians of short runs are exact; those of long
+// windowed sessions are estimated from the subset (rank error about 1/sqrt(kCapacity)), and a session of
+// any length holds at most kCapacity doubles per quantity.
+class SampleSeries {
+ public:
+  static constexpr size_t kCapacity = 4096;
+  SampleSeries() = default;
+  SampleSeries(std::initializer_list<double> values) {
+    for (double v : values) push(v);
+  }
+  void push(double v);
+  bool empty() const { return seen_ == 0; }
+  uint64_t seen() const { return seen_; }                   // samples pushed over the run
+  const std::vector<double>& kept() const { return kept_; }  // at most kCapacity
+  double percentile(double p) const { return sample::percentile(kept_, p); }
+
+ private:
+  std::vector<double> kept_;
+  uint64_t seen_ = 0;
+  uint64_t rng_ = 0x9E3779B97F4A7C15ull;
+};
+
 struct RunStats {
   std::string scene, gi, device;
   uint32_t width = 0, height = 0;
   int frames = 0, warmupFrames = 0;
-  std::vector<double> frameMs;
-  std::map<std::string, std::vector<double>> gpuStageMs;  // pass name -> per frame
-  std::map<std::string, std::vector<double>> cpuStageMs;  // system / CPU step -> per frame
+  SampleSeries frameMs;
+  std::map<std::string, SampleSeries> gpuStageMs;  // pass name -> per frame
+  std::map<std::string, SampleSeries> cpuStageMs;  // system / CPU step -> per frame
   std::map<std::string, double> scalars;                  // counts and sizes
   std::map<std::string, std::map<std::string, double>> sections;  // extra objects, e.g. "vpl": {...}
 

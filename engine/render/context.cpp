@@ -26,12 +26,19 @@ const char* vkResultName(VkResult r) {
   }
 }
 
+namespace {
+std::atomic<uint32_t> gProcessValidationErrors{0};
+}
+
+uint32_t VulkanContext::processValidationErrorCount() { return gProcessValidationErrors.load(); }
+
 VKAPI_ATTR VkBool32 VKAPI_CALL VulkanContext::debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                             VkDebugUtilsMessageTypeFlagsEXT,
                                                             const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
   auto* self = static_cast<VulkanContext*>(user);
   if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
     ++self->validationErrors_;
+    ++gProcessValidationErrors;
     std::fprintf(stderr, "vulkan validation error: %s\n", data->pMessage);
   } else if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
     ++self->validationWarnings_;
@@ -71,6 +78,16 @@ bool deviceHasExtension(VkPhysicalDevice dev, const char* name) {
 }  // namespace
 
 VulkanContext::VulkanContext(const ContextOptions& options) {
+  // A destructor does not run for a constructor that throws: release what was made, then rethrow.
+  try {
+    create(options);
+  } catch (...) {
+    destroy();
+    throw;
+  }
+}
+
+void VulkanContext::create(const ContextOptions& options) {
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "dyngi";
   app.pEngineName = "dyngi";
@@ -84,10 +101,16 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
     if (hasLayer("VK_LAYER_KHRONOS_validation")) {
       layers.push_back("VK_LAYER_KHRONOS_validation");
       validationEnabled_ = true;
+    } else if (options.requireValidation) {
+      throw VulkanError("validation is required but VK_LAYER_KHRONOS_validation is not installed (Debian: vulkan-validationlayers)");
     } else {
       std::fprintf(stderr, "dyngi: warning: validation requested but VK_LAYER_KHRONOS_validation is not installed\n");
     }
   }
+  VkValidationFeatureEnableEXT syncValidation = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+  VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = &syncValidation;
   VkDebugUtilsMessengerCreateInfoEXT dbg{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
   dbg.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
   dbg.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
@@ -102,6 +125,10 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   ici.enabledLayerCount = uint32_t(layers.size());
   ici.ppEnabledLayerNames = layers.data();
   if (validationEnabled_ && debugUtils_) ici.pNext = &dbg;
+  if (validationEnabled_ && options.synchronizationValidation) {
+    features.pNext = ici.pNext;
+    ici.pNext = &features;
+  }
   DYNGI_VK(vkCreateInstance(&ici, nullptr, &instance_));
 
   if (debugUtils_) {
@@ -207,18 +234,59 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   DYNGI_VK(vkCreateFence(device_, &fci, nullptr, &immediateFence_));
 }
 
-VulkanContext::~VulkanContext() {
+VulkanContext::~VulkanContext() { destroy(); }
+
+void VulkanContext::destroy() {
   if (device_) {
     vkDeviceWaitIdle(device_);
-    vkDestroyFence(device_, immediateFence_, nullptr);
-    vkDestroyCommandPool(device_, immediatePool_, nullptr);
+    if (immediateFence_) vkDestroyFence(device_, immediateFence_, nullptr);
+    if (immediatePool_) vkDestroyCommandPool(device_, immediatePool_, nullptr);
     vkDestroyDevice(device_, nullptr);
+    device_ = VK_NULL_HANDLE;
   }
   if (messenger_) {
     auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
     if (destroy) destroy(instance_, messenger_, nullptr);
   }
+  messenger_ = VK_NULL_HANDLE;
   if (instance_) vkDestroyInstance(instance_, nullptr);
+  instance_ = VK_NULL_HANDLE;
+}
+
+VkDeviceMemory VulkanContext::allocateMemory(const VkMemoryRequirements& req, uint32_t memoryType, const char* what) {
+  const uint32_t heap = memProps_.memoryTypes[memoryType].heapIndex;
+  const VkDeviceSize heapSize = memProps_.memoryHeaps[heap].size;
+  constexpr double MiB = 1024.0 * 1024.0;
+  if (req.size > heapSize || heapUsed_[heap] > heapSize - req.size) {
+    char msg[320];
+    std::snprintf(msg, sizeof msg,
+                  "device memory: '%s' needs %.0f MiB, but %.0f MiB of the device's %.0f MiB heap are in use "
+                  "(try a smaller render size or voxel resolution)",
+                  what ? what : "allocation", double(req.size) / MiB, double(heapUsed_[heap]) / MiB, double(heapSize) / MiB);
+    throw DeviceMemoryError(msg);
+  }
+  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  mai.allocationSize = req.size;
+  mai.memoryTypeIndex = memoryType;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkResult r = vkAllocateMemory(device_, &mai, nullptr, &memory);
+  if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY) {
+    char msg[320];
+    std::snprintf(msg, sizeof msg, "device memory: the driver refused '%s' (%.0f MiB) with %s (try a smaller render size or voxel resolution)",
+                  what ? what : "allocation", double(req.size) / MiB, vkResultName(r));
+    throw DeviceMemoryError(msg);
+  }
+  DYNGI_VK(r);
+  heapUsed_[heap] += req.size;
+  ++liveAllocations_;
+  return memory;
+}
+
+void VulkanContext::freeMemory(VkDeviceMemory memory, VkDeviceSize bytes, uint32_t memoryType) {
+  if (!memory) return;
+  vkFreeMemory(device_, memory, nullptr);
+  heapUsed_[memProps_.memoryTypes[memoryType].heapIndex] -= bytes;
+  --liveAllocations_;
 }
 
 uint32_t VulkanContext::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred) const {

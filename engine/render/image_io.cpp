@@ -4,20 +4,16 @@
 #include <tinyexr.h>
 
 #include <cstdlib>
-#include <filesystem>
+#include <cstring>
+#include <fstream>
+#include <memory>
 
 namespace dyngi::render {
-namespace {
-void makeParentDirs(const std::string& path) {
-  std::error_code ec;
-  auto parent = std::filesystem::path(path).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-}
-}  // namespace
+// Output paths are written where they point: a missing parent directory is an error for the caller to
+// report, never a directory tree made on the side (the sample checks its output paths before a run).
 
 std::string writePng(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba8) {
   if (rgba8.size() < size_t(width) * height * 4) return path + ": image data smaller than its size";
-  makeParentDirs(path);
   if (!stbi_write_png(path.c_str(), int(width), int(height), 4, rgba8.data(), int(width * 4))) return path + ": could not write PNG";
   return {};
 }
@@ -25,17 +21,44 @@ std::string writePng(const std::string& path, uint32_t width, uint32_t height, c
 std::string writeExr(const std::string& path, uint32_t width, uint32_t height, const std::vector<glm::vec4>& rgba) {
   size_t n = size_t(width) * height;
   if (rgba.size() < n) return path + ": image data smaller than its size";
-  makeParentDirs(path);
-  std::vector<float> interleaved(n * 4);
+  // Encoded to memory, then written here: tinyexr's own file writer leaks its header when the file
+  // cannot be opened, and every array below is ours, so no error path can leak.
+  std::vector<float> planes[4];  // A, B, G, R: the channel order EXR viewers expect
+  for (auto& plane : planes) plane.resize(n);
   for (size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 4; ++c) interleaved[i * 4 + size_t(c)] = rgba[i][c];
+    for (int c = 0; c < 4; ++c) planes[3 - c][i] = rgba[i][c];
+  float* planePtrs[4] = {planes[0].data(), planes[1].data(), planes[2].data(), planes[3].data()};
+  EXRChannelInfo channels[4] = {};
+  const char* names[4] = {"A", "B", "G", "R"};
+  for (int c = 0; c < 4; ++c) std::strncpy(channels[c].name, names[c], sizeof(channels[c].name) - 1);
+  int pixelTypes[4], requested[4];
+  for (int c = 0; c < 4; ++c) pixelTypes[c] = requested[c] = TINYEXR_PIXELTYPE_FLOAT;
+  EXRHeader header;
+  InitEXRHeader(&header);
+  header.num_channels = 4;
+  header.channels = channels;
+  header.pixel_types = pixelTypes;
+  header.requested_pixel_types = requested;
+  header.compression_type = width < 16 && height < 16 ? TINYEXR_COMPRESSIONTYPE_NONE : TINYEXR_COMPRESSIONTYPE_ZIP;
+  EXRImage image;
+  InitEXRImage(&image);
+  image.num_channels = 4;
+  image.width = int(width);
+  image.height = int(height);
+  image.images = reinterpret_cast<unsigned char**>(planePtrs);
+  unsigned char* raw = nullptr;
   const char* err = nullptr;
-  int r = SaveEXR(interleaved.data(), int(width), int(height), 4, /*save_as_fp16=*/0, path.c_str(), &err);
-  if (r != TINYEXR_SUCCESS) {
-    std::string msg = path + ": could not write EXR" + (err ? std::string(" (") + err + ")" : "");
+  size_t bytes = SaveEXRImageToMemory(&image, &header, &raw, &err);
+  std::unique_ptr<unsigned char, decltype(&std::free)> memory(raw, &std::free);
+  if (bytes == 0) {
+    std::string msg = path + ": could not encode EXR" + (err ? std::string(" (") + err + ")" : "");
     if (err) FreeEXRErrorMessage(err);
     return msg;
   }
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  if (!f) return path + ": could not open for writing (does its directory exist?)";
+  f.write(reinterpret_cast<const char*>(memory.get()), std::streamsize(bytes));
+  if (!f) return path + ": could not write EXR";
   return {};
 }
 

@@ -25,6 +25,18 @@ Image makeTarget(VulkanContext& ctx, uint32_t w, uint32_t h, VkFormat f, VkImage
 }  // namespace
 
 Renderer::Renderer(VulkanContext& ctx, const RendererSettings& settings) : ctx_(ctx), settings_(settings) {
+  // Members clean up after themselves; the raw handles below are released here if a later step throws.
+  try {
+    create();
+  } catch (...) {
+    releaseHandles();
+    throw;
+  }
+}
+
+void Renderer::create() {
+  VulkanContext& ctx = ctx_;
+  const RendererSettings& settings = settings_;
   frameUniforms_ = Buffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUsage::Upload, "frame uniforms");
   VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
@@ -56,12 +68,17 @@ Renderer::Renderer(VulkanContext& ctx, const RendererSettings& settings) : ctx_(
   tonemap_ = std::make_unique<TonemapPass>(ctx);
 }
 
-Renderer::~Renderer() {
+Renderer::~Renderer() { releaseHandles(); }
+
+void Renderer::releaseHandles() {
   vkDeviceWaitIdle(ctx_.device());
-  vkDestroyFence(ctx_.device(), fence_, nullptr);
-  vkDestroyCommandPool(ctx_.device(), pool_, nullptr);
-  vkDestroySampler(ctx_.device(), linearSampler_, nullptr);
-  vkDestroySampler(ctx_.device(), nearestSampler_, nullptr);
+  if (fence_) vkDestroyFence(ctx_.device(), fence_, nullptr);
+  if (pool_) vkDestroyCommandPool(ctx_.device(), pool_, nullptr);
+  if (linearSampler_) vkDestroySampler(ctx_.device(), linearSampler_, nullptr);
+  if (nearestSampler_) vkDestroySampler(ctx_.device(), nearestSampler_, nullptr);
+  fence_ = VK_NULL_HANDLE;
+  pool_ = VK_NULL_HANDLE;
+  linearSampler_ = nearestSampler_ = VK_NULL_HANDLE;
 }
 
 bool Renderer::resize(uint32_t width, uint32_t height) {

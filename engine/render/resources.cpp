@@ -9,6 +9,17 @@ namespace dyngi::render {
 
 Buffer::Buffer(VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory, const char* name)
     : ctx_(&ctx), size_(size) {
+  try {
+    create(usage, memory, name);
+  } catch (...) {
+    reset();
+    throw;
+  }
+}
+
+void Buffer::create(VkBufferUsageFlags usage, MemoryUsage memory, const char* name) {
+  VulkanContext& ctx = *ctx_;
+  const VkDeviceSize size = size_;
   VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bci.size = size ? size : 4;
   bci.usage = usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
@@ -29,10 +40,9 @@ Buffer::Buffer(VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage, 
       break;
   }
   uint32_t type = ctx.findMemoryType(req.memoryTypeBits, required, preferred);
-  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  mai.allocationSize = req.size;
-  mai.memoryTypeIndex = type;
-  DYNGI_VK(vkAllocateMemory(ctx.device(), &mai, nullptr, &memory_));
+  memory_ = ctx.allocateMemory(req, type, name);
+  memoryBytes_ = req.size;
+  memoryType_ = type;
   DYNGI_VK(vkBindBufferMemory(ctx.device(), buffer_, memory_, 0));
   VkPhysicalDeviceMemoryProperties mp;
   vkGetPhysicalDeviceMemoryProperties(ctx.physicalDevice(), &mp);
@@ -50,6 +60,8 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
     ctx_ = std::exchange(o.ctx_, nullptr);
     buffer_ = std::exchange(o.buffer_, VK_NULL_HANDLE);
     memory_ = std::exchange(o.memory_, VK_NULL_HANDLE);
+    memoryBytes_ = std::exchange(o.memoryBytes_, 0);
+    memoryType_ = o.memoryType_;
     size_ = std::exchange(o.size_, 0);
     mapped_ = std::exchange(o.mapped_, nullptr);
     coherent_ = o.coherent_;
@@ -60,7 +72,7 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
 void Buffer::reset() {
   if (!ctx_) return;
   if (buffer_) vkDestroyBuffer(ctx_->device(), buffer_, nullptr);
-  if (memory_) vkFreeMemory(ctx_->device(), memory_, nullptr);
+  ctx_->freeMemory(memory_, memoryBytes_, memoryType_);
   buffer_ = VK_NULL_HANDLE;
   memory_ = VK_NULL_HANDLE;
   mapped_ = nullptr;
@@ -108,6 +120,17 @@ VkImageAspectFlags Image::aspect() const {
 }
 
 Image::Image(VulkanContext& ctx, const ImageDesc& desc) : ctx_(&ctx), desc_(desc) {
+  try {
+    create();
+  } catch (...) {
+    reset();
+    throw;
+  }
+}
+
+void Image::create() {
+  VulkanContext& ctx = *ctx_;
+  const ImageDesc& desc = desc_;
   VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   ici.imageType = VK_IMAGE_TYPE_2D;
   ici.format = desc.format;
@@ -123,10 +146,9 @@ Image::Image(VulkanContext& ctx, const ImageDesc& desc) : ctx_(&ctx), desc_(desc
   DYNGI_VK(vkCreateImage(ctx.device(), &ici, nullptr, &image_));
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(ctx.device(), image_, &req);
-  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  mai.allocationSize = req.size;
-  mai.memoryTypeIndex = ctx.findMemoryType(req.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  DYNGI_VK(vkAllocateMemory(ctx.device(), &mai, nullptr, &memory_));
+  memoryType_ = ctx.findMemoryType(req.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  memory_ = ctx.allocateMemory(req, memoryType_, desc.name);
+  memoryBytes_ = req.size;
   DYNGI_VK(vkBindImageMemory(ctx.device(), image_, memory_, 0));
 
   VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
@@ -155,6 +177,8 @@ Image& Image::operator=(Image&& o) noexcept {
     ctx_ = std::exchange(o.ctx_, nullptr);
     image_ = std::exchange(o.image_, VK_NULL_HANDLE);
     memory_ = std::exchange(o.memory_, VK_NULL_HANDLE);
+    memoryBytes_ = std::exchange(o.memoryBytes_, 0);
+    memoryType_ = o.memoryType_;
     view_ = std::exchange(o.view_, VK_NULL_HANDLE);
     layerViews_ = std::move(o.layerViews_);
     o.layerViews_.clear();
@@ -174,7 +198,7 @@ void Image::reset() {
   layerViews_.clear();
   if (view_) vkDestroyImageView(d, view_, nullptr);
   if (image_) vkDestroyImage(d, image_, nullptr);
-  if (memory_) vkFreeMemory(d, memory_, nullptr);
+  ctx_->freeMemory(memory_, memoryBytes_, memoryType_);
   view_ = VK_NULL_HANDLE;
   image_ = VK_NULL_HANDLE;
   memory_ = VK_NULL_HANDLE;

@@ -7,18 +7,31 @@ namespace dyngi::render {
 Swapchain::Swapchain(VulkanContext& ctx, VkSurfaceKHR surface) : ctx_(ctx), surface_(surface) {
   VkBool32 supported = VK_FALSE;
   vkGetPhysicalDeviceSurfaceSupportKHR(ctx.physicalDevice(), ctx.queueFamily(), surface, &supported);
-  if (!supported) throw VulkanError("the Vulkan device cannot present to this window");
+  if (!supported) {
+    vkDestroySurfaceKHR(ctx.instance(), surface, nullptr);
+    surface_ = VK_NULL_HANDLE;
+    throw VulkanError("the Vulkan device cannot present to this window");
+  }
   VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-  DYNGI_VK(vkCreateSemaphore(ctx.device(), &sci, nullptr, &acquired_));
-  DYNGI_VK(vkCreateSemaphore(ctx.device(), &sci, nullptr, &rendered_));
+  try {  // the surface is ours from here on: release it and any semaphore made if a step fails
+    DYNGI_VK(vkCreateSemaphore(ctx.device(), &sci, nullptr, &acquired_));
+    DYNGI_VK(vkCreateSemaphore(ctx.device(), &sci, nullptr, &rendered_));
+  } catch (...) {
+    release();
+    throw;
+  }
 }
 
-Swapchain::~Swapchain() {
+Swapchain::~Swapchain() { release(); }
+
+void Swapchain::release() {
   vkDeviceWaitIdle(ctx_.device());
   destroySwapchain();
-  vkDestroySemaphore(ctx_.device(), acquired_, nullptr);
-  vkDestroySemaphore(ctx_.device(), rendered_, nullptr);
-  vkDestroySurfaceKHR(ctx_.instance(), surface_, nullptr);
+  if (acquired_) vkDestroySemaphore(ctx_.device(), acquired_, nullptr);
+  if (rendered_) vkDestroySemaphore(ctx_.device(), rendered_, nullptr);
+  if (surface_) vkDestroySurfaceKHR(ctx_.instance(), surface_, nullptr);
+  acquired_ = rendered_ = VK_NULL_HANDLE;
+  surface_ = VK_NULL_HANDLE;
 }
 
 void Swapchain::destroySwapchain() {

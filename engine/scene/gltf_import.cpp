@@ -23,30 +23,45 @@ struct ImportError : std::runtime_error {
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+// Checked size arithmetic: every offset, length and stride in a glTF file is attacker-controlled, so a
+// sum or product that wraps around 2^64 must be an error, never a small number that passes a check.
+bool addChecked(size_t a, size_t b, size_t& out) { return !__builtin_add_overflow(a, b, &out); }
+bool mulChecked(size_t a, size_t b, size_t& out) { return !__builtin_mul_overflow(a, b, &out); }
+
 // Reads accessor `index` as `comps` floats per element (or integers for indices), checking every
 // offset against the buffer so a malformed file cannot make us read out of bounds.
 class AccessorReader {
  public:
   AccessorReader(const tinygltf::Model& model, int index, const char* what) : model_(model), what_(what) {
-    if (index < 0 || size_t(index) >= model.accessors.size())
-      fail(std::string(what) + " accessor " + std::to_string(index) + " does not exist");
+    const std::string name = std::string(what) + " accessor " + std::to_string(index);
+    if (index < 0 || size_t(index) >= model.accessors.size()) fail(name + " does not exist");
     acc_ = &model.accessors[size_t(index)];
-    if (acc_->sparse.isSparse) fail(std::string(what) + " accessor uses sparse storage (unsupported)");
+    if (acc_->sparse.isSparse) fail(name + " uses sparse storage (unsupported)");
     if (acc_->bufferView < 0 || size_t(acc_->bufferView) >= model.bufferViews.size())
-      fail(std::string(what) + " accessor " + std::to_string(index) + " has no valid bufferView");
+      fail(name + " has no valid bufferView");
     const auto& view = model.bufferViews[size_t(acc_->bufferView)];
     if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
-      fail(std::string(what) + " bufferView points at a missing buffer");
+      fail(name + ": its bufferView points at a missing buffer");
     const auto& buf = model.buffers[size_t(view.buffer)].data;
     comps_ = size_t(tinygltf::GetNumComponentsInType(uint32_t(acc_->type)));
     compSize_ = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(acc_->componentType)));
-    if (comps_ == 0 || compSize_ == 0 || comps_ > 16) fail(std::string(what) + " accessor has an invalid type");
-    size_t elemSize = comps_ * compSize_;
+    if (comps_ == 0 || compSize_ == 0 || comps_ > 16) fail(name + " has an invalid type");
+    const size_t elemSize = comps_ * compSize_;
     stride_ = view.byteStride ? view.byteStride : elemSize;
-    size_t begin = view.byteOffset + acc_->byteOffset;
-    size_t needed = acc_->count == 0 ? 0 : begin + stride_ * (acc_->count - 1) + elemSize;
-    if (view.byteOffset + view.byteLength > buf.size() || needed > view.byteOffset + view.byteLength)
-      fail(std::string(what) + " accessor " + std::to_string(index) + " reads past the end of its buffer");
+    if (stride_ < elemSize) fail(name + " has a byteStride smaller than its element");
+    // The view must lie inside the buffer, and the accessor's last element inside the view; each sum
+    // and product is checked for wrap-around before it is compared.
+    size_t viewEnd = 0, begin = 0, span = 0, lastOffset = 0, end = 0;
+    if (!addChecked(view.byteOffset, view.byteLength, viewEnd) || viewEnd > buf.size())
+      fail(name + ": its bufferView lies outside its buffer");
+    if (!addChecked(view.byteOffset, acc_->byteOffset, begin)) fail(name + " has an out-of-range byteOffset");
+    if (acc_->count > 0) {
+      if (!mulChecked(stride_, acc_->count - 1, lastOffset) || !addChecked(lastOffset, elemSize, span) ||
+          !addChecked(begin, span, end) || end > viewEnd)
+        fail(name + " (count " + std::to_string(acc_->count) + ") reads past the end of its bufferView");
+    } else if (begin > viewEnd) {
+      fail(name + " has an out-of-range byteOffset");
+    }
     data_ = buf.data() + begin;
   }
   size_t count() const { return acc_->count; }
@@ -113,13 +128,25 @@ class Importer {
     validateNodes();
     std::vector<int> roots = sceneRoots();
     size_t meshNodes = 0;
-    std::function<void(int, int)> count = [&](int n, int depth) {
+    // Composes the world transforms the commit phase will write and checks them: finite local values
+    // can still multiply into infinities (1e15 scale under a 1e15 scale).
+    std::function<void(int, int, const glm::mat4&)> visit = [&](int n, int depth, const glm::mat4& parentWorld) {
       if (depth > 256) fail("node hierarchy deeper than 256 levels (cycle?)");
       const auto& node = model_.nodes[size_t(n)];
-      if (node.mesh >= 0) meshNodes += meshes_[size_t(node.mesh)].size();
-      for (int c : node.children) count(c, depth + 1);
+      const glm::mat4 world = parentWorld * localTransform(node).matrix();
+      std::string where = "node " + std::to_string(n) + (node.name.empty() ? "" : " '" + node.name + "'");
+      if (!withinCoordinateRange(world)) fail(where + " has a world transform that is not finite or beyond the coordinate range (1e18)");
+      if (node.mesh >= 0) {
+        for (const auto& p : meshes_[size_t(node.mesh)]) {
+          Aabb b = p.mesh.bounds.transformed(world);
+          if (!withinCoordinateRange(b.min) || !withinCoordinateRange(b.max))
+            fail(where + " places its mesh beyond the coordinate range (1e18)");
+        }
+        meshNodes += meshes_[size_t(node.mesh)].size();
+      }
+      for (int c : node.children) visit(c, depth + 1, world);
     };
-    for (int r : roots) count(r, 0);
+    for (int r : roots) visit(r, 0, glm::mat4(1.0f));
     if (meshNodes == 0) fail("the scene has no triangle meshes (empty scene)");
     checkMaterials();
     skinInverseBind_.resize(model_.skins.size());
@@ -159,8 +186,10 @@ class Importer {
       p.material = prim.material;
       p.mesh.name = mesh.name;
       p.mesh.positions = AccessorReader(model_, pos->second, "POSITION").readVec<3>();
-      for (auto& v : p.mesh.positions)
+      for (auto& v : p.mesh.positions) {
         if (!finite(v)) fail(where + " has a non-finite vertex position");
+        if (!withinCoordinateRange(v)) fail(where + " has a vertex position beyond the coordinate range (1e18)");
+      }
       size_t n = p.mesh.positions.size();
       if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
         p.mesh.normals = AccessorReader(model_, it->second, "NORMAL").readVec<3>();
@@ -240,10 +269,21 @@ class Importer {
       if (node.skin >= int(model_.skins.size())) fail(where + " references a missing skin");
       for (int c : node.children)
         if (c < 0 || size_t(c) >= model_.nodes.size()) fail(where + " has a missing child node");
-      for (double v : node.matrix) if (!std::isfinite(v)) fail(where + " has a non-finite matrix");
-      for (double v : node.translation) if (!std::isfinite(v)) fail(where + " has a non-finite translation");
-      for (double v : node.rotation) if (!std::isfinite(v)) fail(where + " has a non-finite rotation");
-      for (double v : node.scale) if (!std::isfinite(v)) fail(where + " has a non-finite scale");
+      // Checked as the floats they become: 1e39 is a finite double but an infinite float.
+      auto inRange = [](const std::vector<double>& values) {
+        for (double v : values)
+          if (!(std::abs(v) <= double(kMaxCoordinate))) return false;
+        return true;
+      };
+      if (!inRange(node.matrix)) fail(where + " has a matrix that is not finite or beyond the coordinate range (1e18)");
+      if (!inRange(node.translation)) fail(where + " has a translation that is not finite or beyond the coordinate range (1e18)");
+      if (!inRange(node.rotation)) fail(where + " has a rotation that is not finite");
+      if (!inRange(node.scale)) fail(where + " has a scale that is not finite or beyond the coordinate range (1e18)");
+      if (node.rotation.size() == 4) {
+        double len2 = 0;
+        for (double v : node.rotation) len2 += v * v;
+        if (!(len2 > 1e-12)) fail(where + " has a zero rotation quaternion");
+      }
       if (lightIndex(node) >= int(model_.lights.size())) fail(where + " references a missing light");
     }
   }
@@ -340,8 +380,11 @@ class Importer {
       glm::vec3 sx(m[0]), sy(m[1]), sz(m[2]);
       t.scale = {glm::length(sx), glm::length(sy), glm::length(sz)};
       if (glm::determinant(glm::mat3(m)) < 0) t.scale.x = -t.scale.x;
-      glm::mat3 r{sx / t.scale.x, sy / t.scale.y, sz / t.scale.z};
-      t.rotation = glm::quat_cast(r);
+      // A zero column (scale 0, legal: e.g. a hidden part) has no direction: keep the identity rotation.
+      if (t.scale.x != 0.0f && t.scale.y != 0.0f && t.scale.z != 0.0f) {
+        glm::mat3 r{sx / t.scale.x, sy / t.scale.y, sz / t.scale.z};
+        t.rotation = glm::normalize(glm::quat_cast(r));
+      }
     } else {
       if (node.translation.size() == 3) t.translation = {float(node.translation[0]), float(node.translation[1]), float(node.translation[2])};
       if (node.rotation.size() == 4) t.rotation = glm::normalize(glm::quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2])));
@@ -463,7 +506,8 @@ class Importer {
       out.times.resize(keys);
       for (size_t k = 0; k < keys; ++k) {
         out.times[k] = in.readFloat(k, 0);
-        if (!std::isfinite(out.times[k]) || (k > 0 && out.times[k] < out.times[k - 1])) fail(where + " key times are not increasing");
+        if (!std::isfinite(out.times[k])) fail(where + " has a non-finite key time");
+        if (k > 0 && out.times[k] < out.times[k - 1]) fail(where + " key times are not increasing");
       }
       out.values.resize(val.count(), glm::vec4(0.0f));
       for (size_t k = 0; k < val.count(); ++k)
@@ -567,6 +611,8 @@ std::string importGltf(const std::string& path, ecs::World& world, AssetStore& a
     if (report) *report = r;
   } catch (const ImportError& ex) {
     return path + ": " + ex.what();
+  } catch (const std::exception& ex) {  // e.g. an allocation the file asked for and the machine cannot hold
+    return path + ": could not be imported (" + ex.what() + ")";
   }
   return {};
 }

@@ -26,6 +26,19 @@ bool isFinite(const glm::mat4& m) {
   return true;
 }
 
+bool withinCoordinateRange(const glm::vec3& p) {
+  for (int i = 0; i < 3; ++i)
+    if (!(std::abs(p[i]) <= kMaxCoordinate)) return false;  // also false for NaN
+  return true;
+}
+
+bool withinCoordinateRange(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!(std::abs(m[c][r]) <= kMaxCoordinate)) return false;
+  return true;
+}
+
 void TransformSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {
   updatedLastRun_ = 0;
   std::vector<Entity> changed = world.changedSince<Transform>(ctx.lastRun);
@@ -47,9 +60,10 @@ void TransformSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {
       if (const auto* pw = world.tryGet<WorldTransform>(t.parent)) parentWorld = pw->matrix;
     }
     glm::mat4 m = parentWorld * t.matrix();
-    if (!isFinite(m)) {
+    if (!withinCoordinateRange(m)) {
       if (++rejectedNonFinite_ <= 8)
-        std::fprintf(stderr, "dyngi: warning: entity %u has a non-finite transform; keeping its last good one\n", e.index);
+        std::fprintf(stderr, "dyngi: warning: entity %u has a non-finite transform or one beyond the coordinate range "
+                     "(1e18); keeping its last good one\n", e.index);
       return;  // children keep their last world too
     }
     const WorldTransform* current = world.tryGet<WorldTransform>(e);

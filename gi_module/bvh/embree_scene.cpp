@@ -152,6 +152,22 @@ struct EmbreeScene::Impl {
   }
 };
 
+namespace {
+// Within the coordinate range, with a 3x3 part that Embree can invert in float.
+bool usableInstanceTransform(const glm::mat4& m) {
+  if (!scene::withinCoordinateRange(m)) return false;
+  const float det = glm::determinant(glm::mat3(m));
+  return std::isfinite(det) && std::abs(det) >= 1e-24f;
+}
+
+// Embree asserts (in Debian's build) on rays with non-finite origins or directions; a NaN that reaches a
+// query from a caller's data is answered as a miss instead.
+bool finiteRay(const glm::vec3& o, const glm::vec3& d) {
+  return std::isfinite(o.x) && std::isfinite(o.y) && std::isfinite(o.z) && std::isfinite(d.x) && std::isfinite(d.y) &&
+         std::isfinite(d.z);
+}
+}  // namespace
+
 EmbreeScene::EmbreeScene() : impl_(std::make_unique<Impl>()) {}
 EmbreeScene::~EmbreeScene() = default;
 
@@ -197,8 +213,15 @@ const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetSto
     const auto* wt = world.tryGet<scene::WorldTransform>(e);
     if (!mi || !wt || mi->mesh >= assets.meshCount()) return;
     const scene::MeshData& mesh = assets.mesh(mi->mesh);
-    if (mesh.indices.empty() || !scene::isFinite(wt->matrix)) return;
+    if (mesh.indices.empty()) return;
     auto it = im.instances.find(e);
+    // Embree transforms each ray into an instance's space with the inverse of its matrix: a singular
+    // matrix (scale 0: a legal way to hide an object) would make NaN rays, which Embree asserts on.
+    // Such an instance has no surface to hit, so it leaves the BVH until its transform is usable again.
+    if (!usableInstanceTransform(wt->matrix)) {
+      if (it != im.instances.end()) im.removeInstance(e), ++st.instancesRemoved, topDirty = true;
+      return;
+    }
     if (it == im.instances.end()) {
       Impl::Blas& b = im.ensureBlas(mesh, mi->mesh, deforming.count(mi->mesh) > 0, st);
       im.addInstance(e, mi->mesh, wt->matrix, b);
@@ -245,6 +268,7 @@ const BvhStats& EmbreeScene::rebuild(const ecs::World& world, const scene::Asset
 RayHit EmbreeScene::intersect(const glm::vec3& o, const glm::vec3& d, float tmin, float tmax) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
+  if (!finiteRay(o, d) || !(tmin <= tmax)) return RayHit{};
   RTCRayHit rh{};
   rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
   rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
@@ -274,7 +298,7 @@ bool EmbreeScene::occluded(const Segment& s, float eps) const {
   rtcInitIntersectContext(&ctx);
   glm::vec3 d = s.to - s.from;
   float len = glm::length(d);
-  if (len <= 2.0f * eps) return false;
+  if (!(len > 2.0f * eps) || !finiteRay(s.from, d)) return false;
   RTCRay r{};
   r.org_x = s.from.x, r.org_y = s.from.y, r.org_z = s.from.z;
   r.dir_x = d.x / len, r.dir_y = d.y / len, r.dir_z = d.z / len;
@@ -303,7 +327,8 @@ void EmbreeScene::occluded(const Segment* segs, size_t count, uint8_t* out, floa
         r = RTCRay{};
         r.org_x = sg.from.x, r.org_y = sg.from.y, r.org_z = sg.from.z;
         r.mask = 0xFFFFFFFFu;
-        if (len <= 2.0f * eps) {  // degenerate: an empty interval never hits
+        if (!(len > 2.0f * eps) || !finiteRay(sg.from, d)) {  // degenerate or NaN: an empty interval never hits
+          r.org_x = r.org_y = r.org_z = 0.0f;
           r.dir_z = 1.0f;
           r.tnear = 1.0f;
           r.tfar = 0.5f;
@@ -319,8 +344,9 @@ void EmbreeScene::occluded(const Segment* segs, size_t count, uint8_t* out, floa
     return;
   }
   for (size_t base = 0; base < count; base += 8) {
-    RTCRay8 r;
-    int valid[8];
+    RTCRay8 r;  // RTC_ALIGN(32) in Embree's header
+    // Embree reads the validity mask with 8-wide aligned loads: it must be 32-byte aligned too.
+    alignas(32) int valid[8];
     for (int k = 0; k < 8; ++k) {
       size_t i = base + size_t(k);
       valid[k] = 0;
@@ -335,7 +361,7 @@ void EmbreeScene::occluded(const Segment* segs, size_t count, uint8_t* out, floa
       if (i >= count) continue;
       glm::vec3 d = segs[i].to - segs[i].from;
       float len = glm::length(d);
-      if (len <= 2.0f * eps) continue;
+      if (!(len > 2.0f * eps) || !finiteRay(segs[i].from, d)) continue;
       valid[k] = -1;
       r.org_x[k] = segs[i].from.x, r.org_y[k] = segs[i].from.y, r.org_z[k] = segs[i].from.z;
       r.dir_x[k] = d.x / len, r.dir_y[k] = d.y / len, r.dir_z[k] = d.z / len;

@@ -13,6 +13,8 @@ namespace dyngi::render {
 
 struct ContextOptions {
   bool validation = false;                       // enable VK_LAYER_KHRONOS_validation when present
+  bool requireValidation = false;                // with `validation`: a missing layer is an error, not a warning
+  bool synchronizationValidation = false;        // with `validation`: also the layer's hazard checks (slow)
   std::vector<const char*> instanceExtensions;   // e.g. what GLFW needs for a surface
   bool requireSwapchain = false;
   bool quiet = false;                            // do not print the chosen device
@@ -40,9 +42,20 @@ class VulkanContext {
 
   // Validation messages of severity error seen so far (tests assert this stays 0).
   uint32_t validationErrorCount() const { return validationErrors_.load(); }
+  // Validation errors of every context of this process, including those raised while a context was
+  // destroyed (undestroyed objects, leaks): tests check it after their context is gone.
+  static uint32_t processValidationErrorCount();
   uint32_t validationWarningCount() const { return validationWarnings_.load(); }
 
   uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred = 0) const;
+
+  // Every device allocation of the engine goes through here. It refuses, before asking the driver, an
+  // allocation that would take the heap past its size (DeviceMemoryError naming the object, the request
+  // and the heap), and counts live allocations and bytes per heap (a soak run watches them).
+  VkDeviceMemory allocateMemory(const VkMemoryRequirements& req, uint32_t memoryType, const char* what);
+  void freeMemory(VkDeviceMemory memory, VkDeviceSize bytes, uint32_t memoryType);
+  uint64_t liveAllocations() const { return liveAllocations_.load(); }
+  VkDeviceSize heapBytesInUse(uint32_t heap) const { return heapUsed_[heap]; }
   // True when some memory type is both device-local and host-visible (integrated GPUs, lavapipe):
   // uploads can then write directly instead of going through a staging buffer.
   bool hasHostVisibleDeviceLocal() const { return hostVisibleDeviceLocal_; }
@@ -64,6 +77,8 @@ class VulkanContext {
   static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                       VkDebugUtilsMessageTypeFlagsEXT types,
                                                       const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+  void create(const ContextOptions& options);
+  void destroy();
 
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
@@ -82,6 +97,8 @@ class VulkanContext {
   bool timestampsSupported_ = false;
   bool hostVisibleDeviceLocal_ = false;
   std::atomic<uint32_t> validationErrors_{0};
+  std::atomic<uint64_t> liveAllocations_{0};
+  VkDeviceSize heapUsed_[VK_MAX_MEMORY_HEAPS] = {};
   std::atomic<uint32_t> validationWarnings_{0};
 
   PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;

@@ -76,6 +76,8 @@ class Renderer {
   RenderTargets& targets() { return targets_; }
 
  private:
+  void create();
+  void releaseHandles();
   GpuMesh* meshFor(const scene::AssetStore& assets, scene::MeshId id);
   VkImageView textureView(const scene::AssetStore& assets, scene::TextureId id);
   Image& target(TargetId id);

@@ -18,6 +18,8 @@ enum class MemoryUsage {
   Readback,   // host-visible + cached when possible, read by the CPU
 };
 
+// Both classes release everything they made when their constructor throws (a destructor does not run
+// for a half-built object), so an allocation refused part-way leaks nothing.
 class Buffer {
  public:
   Buffer() = default;
@@ -38,9 +40,12 @@ class Buffer {
   void invalidateForRead();  // make GPU writes visible to mapped() on non-coherent memory
 
  private:
+  void create(VkBufferUsageFlags usage, MemoryUsage memory, const char* name);
   VulkanContext* ctx_ = nullptr;
   VkBuffer buffer_ = VK_NULL_HANDLE;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkDeviceSize memoryBytes_ = 0;
+  uint32_t memoryType_ = 0;
   VkDeviceSize size_ = 0;
   void* mapped_ = nullptr;
   bool coherent_ = true;
@@ -79,9 +84,12 @@ class Image {
   void transition(VkCommandBuffer cmd, VkImageLayout newLayout, VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
  private:
+  void create();
   VulkanContext* ctx_ = nullptr;
   VkImage image_ = VK_NULL_HANDLE;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkDeviceSize memoryBytes_ = 0;
+  uint32_t memoryType_ = 0;
   VkImageView view_ = VK_NULL_HANDLE;
   std::vector<VkImageView> layerViews_;
   ImageDesc desc_;

@@ -30,6 +30,7 @@ class Swapchain {
 
  private:
   void destroySwapchain();
+  void release();
   VulkanContext& ctx_;
   VkSurfaceKHR surface_;
   VkSwapchainKHR swapchain_ = VK_NULL_HANDLE;

@@ -10,6 +10,13 @@ struct VulkanError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The device cannot hold what was asked for (a render size or voxel resolution too large for its
+// memory heap): a problem with the requested settings rather than a failure, so hosts can report it
+// as bad input (the sample exits 2).
+struct DeviceMemoryError : VulkanError {
+  using VulkanError::VulkanError;
+};
+
 const char* vkResultName(VkResult r);
 
 #define DYNGI_VK(expr)                                                                              \

@@ -25,6 +25,14 @@ struct Transform {
 // True when every element is finite (no NaN, no infinity).
 bool isFinite(const glm::mat4& m);
 
+// The engine's coordinate range. Vertex positions, transform elements and world bounds beyond it are
+// refused at import and ignored at run time (the entity keeps its last good transform, or is left out of
+// the frame), so that bounds, extents and squared distances computed in float stay finite everywhere.
+inline constexpr float kMaxCoordinate = 1e18f;
+// Finite, and every element's magnitude at most kMaxCoordinate.
+bool withinCoordinateRange(const glm::mat4& m);
+bool withinCoordinateRange(const glm::vec3& p);
+
 // Written only by the transform propagation system. Its change tick tells GI what moved.
 struct WorldTransform {
   glm::mat4 matrix{1.0f};
