@@ -213,6 +213,7 @@ int runApp(const Options& o) {
 #else
   co.validation = o.validation;
 #endif
+  co.requireValidation = o.validation;  // asked for on the command line: a missing layer is an error
   co.requireSwapchain = !headless;
   if (!headless) co.instanceExtensions = platform::Window::requiredInstanceExtensions();
   render::VulkanContext ctx(co);

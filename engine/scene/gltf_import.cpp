@@ -4,6 +4,7 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -584,6 +585,27 @@ class Importer {
 
 }  // namespace
 
+namespace {
+// Runs the importer on a parsed model; turns every error into "<name>: <problem>".
+std::string importModel(const tinygltf::Model& model, const std::string& name, ecs::World& world, AssetStore& assets,
+                        ImportReport* report, const ImportOptions& options) {
+  try {
+    ImportReport r = Importer(model, world, assets, options).run();
+    if (report) *report = r;
+  } catch (const ImportError& ex) {
+    return name + ": " + ex.what();
+  } catch (const std::exception& ex) {  // e.g. an allocation the file asked for and the machine cannot hold
+    return name + ": could not be imported (" + ex.what() + ")";
+  }
+  return {};
+}
+
+std::string parseFailure(const std::string& name, const std::string& err) {
+  std::string first = err.substr(0, err.find('\n'));
+  return name + ": not a valid glTF file (" + (first.empty() ? "parse failed" : first) + ")";
+}
+}  // namespace
+
 std::string importGltf(const std::string& path, ecs::World& world, AssetStore& assets, ImportReport* report,
                        const ImportOptions& options) {
   namespace fs = std::filesystem;
@@ -602,19 +624,26 @@ std::string importGltf(const std::string& path, ecs::World& world, AssetStore& a
   } catch (const std::exception& ex) {
     err = ex.what();
   }
-  if (!ok) {
-    std::string first = err.substr(0, err.find('\n'));
-    return path + ": not a valid glTF file (" + (first.empty() ? "parse failed" : first) + ")";
-  }
+  if (!ok) return parseFailure(path, err);
+  return importModel(model, path, world, assets, report, options);
+}
+
+std::string importGltfFromMemory(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
+                                 ecs::World& world, AssetStore& assets, ImportReport* report, const ImportOptions& options) {
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string err, warn;
+  bool ok = false;
   try {
-    ImportReport r = Importer(model, world, assets, options).run();
-    if (report) *report = r;
-  } catch (const ImportError& ex) {
-    return path + ": " + ex.what();
-  } catch (const std::exception& ex) {  // e.g. an allocation the file asked for and the machine cannot hold
-    return path + ": could not be imported (" + ex.what() + ")";
+    const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
+    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, unsigned(std::min<size_t>(size, 0xFFFFFFFFu)), baseDir)
+                : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(data),
+                                             unsigned(std::min<size_t>(size, 0xFFFFFFFFu)), baseDir);
+  } catch (const std::exception& ex) {
+    err = ex.what();
   }
-  return {};
+  if (!ok) return parseFailure(name, err);
+  return importModel(model, name, world, assets, report, options);
 }
 
 }  // namespace dyngi::scene

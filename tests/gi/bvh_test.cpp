@@ -2,6 +2,8 @@
 // adding/removing entities, and after a skinned deformation + refit.
 #include <gtest/gtest.h>
 
+#include "support/shared_scenes.h"
+
 #include <filesystem>
 #include <glm/gtc/quaternion.hpp>
 #include <random>
@@ -136,8 +138,7 @@ TEST(EmbreeScene, EntitiesAddedAndRemovedAtRunTime) {
 }
 
 TEST(EmbreeScene, SkinnedFoxRefitMatchesBruteForce) {
-  std::string path = std::string(DYNGI_SHARED_SCENES) + "/Fox.glb";
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "no shared scenes";
+  DYNGI_SHARED_SCENE_OR_SKIP(path, "Fox.glb");
   ecs::World w;
   AssetStore assets;
   ImportOptions io;

@@ -1,19 +1,48 @@
 #include "render/render_fixture.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <string>
 
 #include "dyngi/engine/ecs/scheduler.h"
 #include "dyngi/engine/scene/transform_system.h"
 
 namespace dyngi::test {
 
+namespace {
+// The process's one context (each render test runs in its own process under ctest). A gtest
+// environment destroys it after the last test and then counts the validation errors raised while it
+// went down (objects left undestroyed, leaks), which a test's own TearDown cannot see.
+std::unique_ptr<render::VulkanContext>& contextSlot() {
+  static std::unique_ptr<render::VulkanContext> ctx;
+  return ctx;
+}
+
+class ContextTeardownCheck final : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    const uint32_t before = render::VulkanContext::processValidationErrorCount();
+    contextSlot().reset();
+    EXPECT_EQ(render::VulkanContext::processValidationErrorCount(), before)
+        << "Vulkan validation reported errors while the device was destroyed (see stderr)";
+  }
+};
+[[maybe_unused]] ::testing::Environment* const kTeardownCheck = ::testing::AddGlobalTestEnvironment(new ContextTeardownCheck);
+}  // namespace
+
 render::VulkanContext& RenderTest::context() {
-  static std::unique_ptr<render::VulkanContext> ctx = [] {
+  auto& ctx = contextSlot();
+  if (!ctx) {
     render::ContextOptions o;
     o.validation = true;
+    o.requireValidation = true;  // a test run without the layer would check nothing: fail instead
+    // The layer's synchronization checks (hazards between passes) too: on lavapipe they cost about 2% of
+    // the suite's time. DYNGI_SYNC_VALIDATION=0 turns them off to tell a hazard from another error.
+    const char* sync = std::getenv("DYNGI_SYNC_VALIDATION");
+    o.synchronizationValidation = !(sync && std::string(sync) == "0");
     o.quiet = true;
-    return std::make_unique<render::VulkanContext>(o);
-  }();
+    ctx = std::make_unique<render::VulkanContext>(o);
+  }
   return *ctx;
 }
 

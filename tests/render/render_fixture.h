@@ -1,5 +1,6 @@
 #pragma once
-// Shared set-up for rendering tests: one Vulkan context per test process (validation on), helpers to
+// Shared set-up for rendering tests: one Vulkan context per test process (validation and its
+// synchronization checks on, required; errors counted through device destruction), helpers to
 // render a world and read every target back, and a CPU ray/box test used as independent shadow truth.
 #include <gtest/gtest.h>
 

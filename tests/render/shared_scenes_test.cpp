@@ -1,6 +1,8 @@
 // The third-party glTF scenes (../shared/scenes) import and render with sensible numbers.
 #include <gtest/gtest.h>
 
+#include "support/shared_scenes.h"
+
 #include <filesystem>
 
 #include "dyngi/engine/scene/gltf_import.h"
@@ -10,16 +12,8 @@
 using namespace dyngi;
 using namespace dyngi::test;
 
-namespace {
-std::string sharedScene(const char* name) {
-  std::string p = std::string(DYNGI_SHARED_SCENES) + "/" + name;
-  return std::filesystem::exists(p) ? p : std::string();
-}
-}  // namespace
-
 TEST_F(RenderTest, SharedCornellBoxShowsItsEmitter) {
-  std::string path = sharedScene("CornellBox.glb");
-  if (path.empty()) GTEST_SKIP() << "../shared/scenes absent";
+  DYNGI_SHARED_SCENE_OR_SKIP(path, "CornellBox.glb");
   ecs::World w;
   scene::AssetStore assets;
   ASSERT_EQ(scene::importGltf(path, w, assets), "");
@@ -39,8 +33,7 @@ TEST_F(RenderTest, SharedCornellBoxShowsItsEmitter) {
 
 TEST_F(RenderTest, SharedUnlitScenesGetADefaultLight) {
   for (const char* name : {"Fox.glb", "IrradianceVolumeExample.glb"}) {
-    std::string path = sharedScene(name);
-    if (path.empty()) GTEST_SKIP() << "../shared/scenes absent";
+    DYNGI_SHARED_SCENE_OR_SKIP(path, name);
     ecs::World w;
     scene::AssetStore assets;
     ASSERT_EQ(scene::importGltf(path, w, assets), "") << name;

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "support/shared_scenes.h"
+
 #include <cmath>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
@@ -76,8 +78,7 @@ TEST(Skinning, TwoBoneBarBendsExactly) {
 }
 
 TEST(Skinning, FoxWalksAndStaysConsistent) {
-  std::string path = std::string(DYNGI_SHARED_SCENES) + "/Fox.glb";
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "no shared scenes";
+  DYNGI_SHARED_SCENE_OR_SKIP(path, "Fox.glb");
   ecs::World w;
   AssetStore assets;
   ImportReport report;

@@ -1,29 +1,18 @@
 // Runs the real sample binary on bad input: one clear line on stderr, exit code 2, never a crash.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
 
+#include "support/sample_run.h"
 #include "support/temp_dir.h"
 
 namespace {
-struct SampleRun {
-  int exitCode = -1;
-  std::string err;
-};
-
-SampleRun runSample(const std::string& args, const dyngi::test::TempDir& dir) {
-  std::string errFile = dir.file("stderr.txt");
-  std::string cmd = std::string(DYNGI_SAMPLE_EXE) + " " + args + " >/dev/null 2>" + errFile;
-  int status = std::system(cmd.c_str());
-  SampleRun r;
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  std::ifstream f(errFile);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  r.err = ss.str();
-  return r;
+dyngi::test::SampleRun runSample(const std::string& args, const dyngi::test::TempDir& dir) {
+  return dyngi::test::runSample(DYNGI_SAMPLE_EXE, args, dir);
 }
 }  // namespace
 
@@ -43,13 +32,18 @@ TEST(SampleCli, BadInputExitsWithCode2AndOneLine) {
       {"--no-such-flag", "unknown option"},
       {"--headless --view vpls", "needs --gi svo --vpl-source rsm"},
       {"--headless --gi bvh --vpl-source rsm", "needs --gi svo"},
+      // Output paths go where they point: no directory is made on the side, before any rendering.
+      {"--headless --frames 1 --size 8x8 --out " + dir.file("no/such/dir/x.png"), "does not exist"},
+      {"--headless --frames 1 --size 8x8 --hdr-out /no-such-root-dir/x.exr", "does not exist"},
+      {"--headless --frames 1 --size 8x8 --stats " + dir.file(""), "is a directory"},
   };
   for (const Case& c : cases) {
-    SampleRun r = runSample(c.args, dir);
+    dyngi::test::SampleRun r = runSample(c.args, dir);
     EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.err;
     EXPECT_NE(r.err.find(c.mentions), std::string::npos) << c.args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << ": " << r.err;
   }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("no"))) << "a missing output directory was created";
 }
 
 TEST(SampleCli, HelpSucceeds) {

@@ -46,9 +46,12 @@ void IndirectGatherPass::record(render::FrameContext& frame, VkBuffer vpls, VkBu
   for (render::Image* in : {&t.position, &t.normal})
     in->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   raw.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  // The shader declares stores to these bindings (taken only when accumulating): the barrier must cover
+  // writes too, or synchronization validation sees a write after the layout transition.
   for (render::Image* unused : {&unusedSetSamples_, &unusedSums_})
     if (unused->valid() && unused->layout() != VK_IMAGE_LAYOUT_GENERAL)
-      unused->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+      unused->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
   const bool acc = accumulate_ && temporal;
   // Without accumulation the temporal bindings are never read; any valid buffer keeps them defined.

@@ -8,6 +8,7 @@
 //
 // Bad input never crashes and never half-populates the world: the file is read and validated in full
 // first, and any problem comes back as one line "<file>: <problem>".
+#include <cstdint>
 #include <string>
 
 #include "dyngi/engine/ecs/world.h"
@@ -38,5 +39,11 @@ struct ImportOptions {
 // Returns an empty string on success, else "<path>: <problem>".
 std::string importGltf(const std::string& path, ecs::World& world, AssetStore& assets,
                        ImportReport* report = nullptr, const ImportOptions& options = {});
+
+// The same from bytes in memory: a .glb when they start with "glTF", else .gltf text. External URIs
+// resolve against `baseDir`; `name` stands for the file in messages. (The fuzz target's entry point.)
+std::string importGltfFromMemory(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
+                                 ecs::World& world, AssetStore& assets, ImportReport* report = nullptr,
+                                 const ImportOptions& options = {});
 
 }  // namespace dyngi::scene
