@@ -10,6 +10,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <memory>
 #include <thread>
+#include <unistd.h>
 
 #include "dyngi/engine/ecs/scheduler.h"
 #include "dyngi/engine/platform/window.h"
@@ -76,6 +77,18 @@ class FlyCameraSystem final : public ecs::System {
   float yaw_ = 0, pitch_ = 0;
   bool initialised_ = false;
 };
+
+constexpr int kMemoryLogEvery = 100;  // frames between two --memory-log lines
+
+// Resident set size of this process, from /proc (0 where there is none).
+uint64_t residentKiB() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (!f) return 0;
+  unsigned long long sizePages = 0, residentPages = 0;
+  int n = std::fscanf(f, "%llu %llu", &sizePages, &residentPages);
+  std::fclose(f);
+  return n == 2 ? residentPages * uint64_t(sysconf(_SC_PAGESIZE)) / 1024 : 0;
+}
 
 bool writeText(const std::string& path, const std::string& text) {
   std::ofstream f(path);
@@ -284,6 +297,15 @@ int runApp(const Options& o) {
   ecs::FrameTime time;
   auto start = Clock::now(), last = start;
   int rendered = 0;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> memoryLog(nullptr, &std::fclose);
+  if (!o.memoryLog.empty()) {
+    memoryLog.reset(std::fopen(o.memoryLog.c_str(), "w"));
+    if (!memoryLog) {
+      std::fprintf(stderr, "dyngi_sample: %s: could not open the memory log\n", o.memoryLog.c_str());
+      return 1;
+    }
+    std::fprintf(memoryLog.get(), "frame\trss_kib\tvk_allocations\tvk_device_bytes\n");
+  }
   for (uint64_t frame = 0; frames < 0 || rendered < frames; ++frame) {
     auto t0 = Clock::now();
     if (window) {
@@ -316,6 +338,13 @@ int runApp(const Options& o) {
     if (swapchain && !fs.presented) swapchain->recreate(renderer.width(), renderer.height());
     double frameMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     ++rendered;
+    if (memoryLog && rendered % kMemoryLogEvery == 0) {
+      uint64_t deviceBytes = 0;
+      for (uint32_t h = 0; h < VK_MAX_MEMORY_HEAPS; ++h) deviceBytes += ctx.heapBytesInUse(h);
+      std::fprintf(memoryLog.get(), "%d\t%llu\t%llu\t%llu\n", rendered, (unsigned long long)residentKiB(),
+                   (unsigned long long)ctx.liveAllocations(), (unsigned long long)deviceBytes);
+      std::fflush(memoryLog.get());
+    }
     if (rendered > stats.warmupFrames) {
       stats.frameMs.push(frameMs);
       for (auto& [name, ms] : fs.gpuMs) stats.gpuStageMs[name].push(ms);

@@ -22,7 +22,7 @@ std::string usage() {
          "  --reshoot N                            VPLs reshot per frame (default: VPLs / T)\n"
          "  --vpl-source paths|rsm                 incremental light paths (default) or per-frame RSM sampling (svo)\n"
          "  --animate NAME                         static | moving-spot | rotating-object | moving-camera |\n"
-         "                                         walking-fox (benchmark scenes)\n"
+         "                                         walking-fox | fox-and-spot (benchmark and soak scenes)\n"
          "  --vpls N                               VPLs for --gi svo (default 512)\n"
          "  --interleave K                         K x K interleaved sub-images (default 4)\n"
          "  --clamp B                              distance clamp B in world units^2 (default 0.01)\n"
@@ -31,6 +31,7 @@ std::string usage() {
          "  --out FILE.png                         write the last frame (tone-mapped, sRGB)\n"
          "  --hdr-out FILE.exr                     write the last frame's linear radiance before exposure\n"
          "  --stats FILE.json                      write timings (medians over frames after warm-up)\n"
+         "  --memory-log FILE.tsv                  every 100 frames: frame, resident memory, live Vulkan allocations\n"
          "  --warmup N                             frames left out of the medians (default 2, fewer for shorter runs;\n"
          "                                         e.g. T + 2 to time the steady state once every temporal set is filled)\n"
          "  --view NAME                            final | voxels | svo-steps | indirect | vpls | subimages\n"
@@ -77,6 +78,7 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
     else if (a == "--out") { if (!value(o.out)) return std::nullopt; }
     else if (a == "--hdr-out") { if (!value(o.hdrOut)) return std::nullopt; }
     else if (a == "--stats") { if (!value(o.stats)) return std::nullopt; }
+    else if (a == "--memory-log") { if (!value(o.memoryLog)) return std::nullopt; }
     else if (a == "--clip") { if (!value(o.clip)) return std::nullopt; }
     else if (a == "--view") {
       if (!value(o.view)) return std::nullopt;
@@ -143,8 +145,9 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
     } else if (a == "--animate") {
       if (!value(o.animate)) return std::nullopt;
       if (o.animate != "static" && o.animate != "moving-spot" && o.animate != "rotating-object" && o.animate != "moving-camera" &&
-          o.animate != "walking-fox") {
-        error = "unknown --animate '" + o.animate + "' (available: static, moving-spot, rotating-object, moving-camera, walking-fox)";
+          o.animate != "walking-fox" && o.animate != "fox-and-spot") {
+        error = "unknown --animate '" + o.animate +
+                "' (available: static, moving-spot, rotating-object, moving-camera, walking-fox, fox-and-spot)";
         return std::nullopt;
       }
     } else if (a == "--vpls" || a == "--interleave") {
@@ -216,7 +219,8 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
 
 std::string checkOutputPaths(const Options& o) {
   namespace fs = std::filesystem;
-  const std::pair<const char*, const std::string*> outputs[] = {{"--out", &o.out}, {"--hdr-out", &o.hdrOut}, {"--stats", &o.stats}};
+  const std::pair<const char*, const std::string*> outputs[] = {
+      {"--out", &o.out}, {"--hdr-out", &o.hdrOut}, {"--stats", &o.stats}, {"--memory-log", &o.memoryLog}};
   for (const auto& [flag, path] : outputs) {
     if (path->empty()) continue;
     std::error_code ec;

@@ -21,7 +21,7 @@ struct Options {
   uint32_t temporal = 16;                   // T temporal VPL sets (svo/bvh with path VPLs)
   uint32_t reshoot = 0;                     // VPLs reshot per frame (0: vpls / T)
   std::string vplSource = "paths";          // paths (incremental, temporal) | rsm (per frame, svo only)
-  std::string animate;                      // static | moving-spot | rotating-object | walking-fox
+  std::string animate;                      // static | moving-spot | rotating-object | moving-camera | walking-fox | fox-and-spot
   uint32_t vpls = 512;                      // many-lights VPL count
   uint32_t interleave = 4;                  // many-lights K (K x K sub-images)
   float distanceClamp = 0.01f;              // many-lights B (world units^2)
@@ -30,6 +30,7 @@ struct Options {
   std::string out;                          // PNG of the last frame
   std::string hdrOut;                       // EXR, linear radiance before exposure
   std::string stats;                        // JSON
+  std::string memoryLog;                    // TSV: every 100 frames, resident memory and live Vulkan allocations
   std::string view = "final";               // final | voxels | svo-steps | indirect | vpls | subimages
   uint32_t voxelResolution = 128;           // voxel volume resolution (power of two, 64..512)
   std::string clip;                         // animation clip of a glTF scene (default: the first)

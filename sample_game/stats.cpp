@@ -21,7 +21,7 @@ double percentile(std::vector<double> v, double p) {
 void SampleSeries::push(double v) {
   ++seen_;
   if (kept_.size() < kCapacity) {
-    if (kept_.capacity() == 0) kept_.reserve(64);
+    if (kept_.capacity() == 0) kept_.reserve(kCapacity);  // all at once: a run's memory is flat from its first frame
     kept_.push_back(v);
     return;
   }

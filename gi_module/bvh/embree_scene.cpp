@@ -79,7 +79,7 @@ struct EmbreeScene::Impl {
     std::memcpy(v, m.positions.data(), m.positions.size() * 12);
   }
 
-  std::unordered_set<scene::MeshId> rebuiltThisSync;
+  std::unordered_set<scene::MeshId> rebuiltThisSync, refitThisSync;
 
   // Builds, refits or returns the bottom-level BVH of a mesh as its version requires.
   Blas& ensureBlas(const scene::MeshData& m, scene::MeshId id, bool deforming, BvhStats& st) {
@@ -94,6 +94,7 @@ struct EmbreeScene::Impl {
         rtcCommitScene(b.scene);  // REFIT geometry quality: refits the existing tree
         b.version = m.version;
         ++st.meshesRefit;
+        refitThisSync.insert(id);
         return b;
       }
       rtcReleaseGeometry(b.geometry);
@@ -177,6 +178,7 @@ const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetSto
   BvhStats st;
   bool topDirty = false;
   im.rebuiltThisSync.clear();
+  im.refitThisSync.clear();
 
   // Meshes written by skinning deform every frame: build those for refit.
   std::unordered_set<scene::MeshId> deforming;
@@ -199,13 +201,18 @@ const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetSto
       topDirty = true;  // instance bounds changed
     }
   }
-  // A rebuilt BLAS is a new RTCScene: point its existing instances at it.
-  if (!im.rebuiltThisSync.empty())
-    for (auto& [e, inst] : im.instances)
+  // A rebuilt BLAS is a new RTCScene: point its existing instances at it. A refit one has new bounds:
+  // its instances must be committed again too, or the top level keeps their old bounds (Embree rebuilds
+  // only modified geometries' entries) and rays miss whatever deformed out of them.
+  if (!im.rebuiltThisSync.empty() || !im.refitThisSync.empty())
+    for (auto& [e, inst] : im.instances) {
       if (im.rebuiltThisSync.count(inst.mesh)) {
         rtcSetGeometryInstancedScene(inst.geometry, im.blas.at(inst.mesh).scene);
         rtcCommitGeometry(inst.geometry);
+      } else if (im.refitThisSync.count(inst.mesh)) {
+        rtcCommitGeometry(inst.geometry);
       }
+    }
 
   // New or changed instances.
   auto upsert = [&](ecs::Entity e) {

@@ -26,7 +26,8 @@ void buildBuiltinScene(const std::string& name, ecs::World& world, scene::AssetS
 //  static           nothing moving;
 //  moving-spot      the spot sliding back and forth over the floor;
 //  rotating-object  a two-coloured object (red and blue halves) turning under the spot;
-//  walking-fox      the glTF fox walking on the floor (needs `sharedScenesDir`/Fox.glb).
+//  walking-fox      the glTF fox walking on the floor (needs `sharedScenesDir`/Fox.glb);
+//  fox-and-spot     the walking fox under the moving spot (the soak scene, scripts/soak.sh).
 // Returns an empty string on success, else the problem.
 std::string buildAnimatedScene(const std::string& name, ecs::World& world, scene::AssetStore& assets,
                                const std::string& sharedScenesDir);

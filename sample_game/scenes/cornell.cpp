@@ -144,6 +144,12 @@ std::string buildAnimatedScene(const std::string& name, ecs::World& w, AssetStor
     }
     return {};
   }
+  if (name == "fox-and-spot") {  // the soak scene: a skinned mesh deforming and a light moving, both at once
+    std::string err = buildAnimatedScene("walking-fox", w, assets, sharedScenesDir);
+    if (!err.empty()) return err;
+    oscillateAll<Light>(w, {0.6f, 0.0f, 0.0f}, 0.25f);
+    return {};
+  }
   if (name == "walking-fox") {
     std::string path = sharedScenesDir + "/Fox.glb";
     std::vector<Entity> existing;

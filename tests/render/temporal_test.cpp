@@ -2,11 +2,13 @@
 #include <gtest/gtest.h>
 
 #include <glm/gtc/quaternion.hpp>
+#include <glm/gtx/quaternion.hpp>
 
 #include "dyngi/engine/render/image_metrics.h"
 #include "dyngi/engine/scene/transform_system.h"
 #include "dyngi/gi/gi_system.h"
 #include "dyngi/gi/path_tracer.h"
+#include "render/cornell_regions.h"
 #include "render/render_fixture.h"
 #include "scenes/builtin_scenes.h"
 
@@ -248,4 +250,79 @@ TEST_F(RenderTest, SvoAndBvhVisibilityGiveTheSameImage) {
   double rel = render::relativeMse(svo.hdr(), bvh.hdr());
   std::printf("svo vs bvh visibility: relMSE %.5f\n", rel);
   EXPECT_LT(rel, 0.005);
+}
+
+// The default technique (incremental temporal VPL paths) in absolute terms: once every temporal set is
+// filled, each wall's and box face's mean radiance and the whole image's relMSE against the reference
+// path tracer at the same bounce count, for each kind of light.
+TEST_F(RenderTest, TemporalPathsMatchPathTracerPerRegionForEveryLightType) {
+  struct Case {
+    const char* name;
+    scene::LightType type;
+    float intensity;
+    glm::vec3 position, direction;  // direction: where the light points
+  };
+  const Case cases[] = {
+      {"spot", scene::LightType::Spot, sample::CornellLayout::kSpotIntensity, {0, 1.9f, 0}, {0, -1, 0}},
+      {"point", scene::LightType::Point, 3.0f, {0.2f, 1.6f, 0.1f}, {0, -1, 0}},
+      // The box is open towards +z: the sun comes in through the opening, from above and to the right.
+      {"directional", scene::LightType::Directional, 4.0f, {0, 0, 0}, glm::normalize(glm::vec3(-0.35f, -0.55f, -1.0f))},
+  };
+  for (const Case& c : cases) {
+    gi::GiSettings s = settings(4);
+    s.vplCount = 1024;
+    s.reshootBudget = 1024;
+    GiRun run(context(), s);
+    ecs::Entity light{};
+    run.world.each<scene::Light>([&](ecs::Entity e, const scene::Light&) { light = e; });
+    {
+      scene::Light& l = run.world.write<scene::Light>(light);
+      l.type = c.type;
+      l.intensity = c.intensity;
+      scene::Transform& t = run.world.write<scene::Transform>(light);
+      t.translation = c.position;
+      t.rotation = glm::rotation(glm::vec3(0, 0, -1), c.direction);  // lights shine along local -Z
+    }
+    run.step(6);  // 4 sets, one frame each, after the pool is filled
+    Frame f;
+    f.width = f.height = kSize;
+    f.hdr = run.hdr();
+    f.position = run.renderer->readback(render::TargetId::Position);
+    f.normal = run.renderer->readback(render::TargetId::Normal);
+    f.snapshot = render::extractSnapshot(run.world, run.assets, run.frame);
+
+    gi::EmbreeScene bvh;
+    bvh.sync(run.world, run.assets, 0);
+    gi::PathTracerSettings pts;
+    pts.spp = 512;
+    pts.bounces = 1;
+    pts.pixelJitter = false;  // the G-buffer's sample positions
+    render::ImageRgba ref = gi::pathTrace(f.snapshot, bvh, run.assets, kSize, kSize, pts);
+
+    Regions regions = cornellRegions(f, run.assets, kSize);
+    ASSERT_GE(regions.masks.size(), 6u) << c.name;
+    double brightest = 0;
+    for (auto& [name, mask] : regions.masks) brightest = std::max(brightest, luminance(render::meanOver(ref, &mask)));
+    double worst = 0;
+    std::string worstRegion;
+    for (auto& [name, mask] : regions.masks) {
+      size_t n = 0;
+      for (uint8_t m : mask) n += m;
+      double b = luminance(render::meanOver(ref, &mask));
+      if (n < 60 || b < 1e-3) continue;  // too small to average, or unlit (the directional case's hidden faces)
+      double a = luminance(render::meanOver(f.hdr, &mask));
+      // Regions lit directly (at least a tenth of the brightest) hold to 10%. Dim regions lit almost only
+      // by bounced light hold to 35%: there 1024 clamped VPLs leave 10-27% errors today (measured: the
+      // tall box's face to the red wall, the short box's front under the point light, the green wall
+      // under the sun), the VPL artifacts issue 16 is about.
+      const double tolerance = b >= 0.1 * brightest ? 0.10 : 0.35;
+      std::printf("%-11s %-16s temporal %.4f  path %.4f  ratio %.3f  (%zu px, tolerance %.0f%%)\n", c.name, name.c_str(), a, b, a / b, n,
+                  100 * tolerance);
+      if (std::abs(a / b - 1.0) > worst) worst = std::abs(a / b - 1.0), worstRegion = name;
+      EXPECT_NEAR(a / b, 1.0, tolerance) << c.name << ": " << name;
+    }
+    double rel = render::relativeMse(f.hdr, ref);
+    std::printf("%-11s relMSE %.4f, worst region %s off by %.1f%%\n", c.name, rel, worstRegion.c_str(), 100 * worst);
+    EXPECT_LE(rel, 0.04) << c.name;  // measured 0.0042 (spot), 0.0055 (point), 0.0251 (directional)
+  }
 }

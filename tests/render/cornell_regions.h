@@ -1,0 +1,21 @@
+#pragma once
+// The Cornell box's regions in a rendered frame, for per-region comparisons against the path tracer:
+// the interior pixels (all four neighbours alike) of each wall and of each face of the two boxes.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "render/render_fixture.h"
+
+namespace dyngi::test {
+
+struct Regions {
+  std::map<std::string, std::vector<uint8_t>> masks;  // "floor", "red wall", "tall_box -x", ... -> pixel mask
+};
+
+// From the frame's G-buffer (position, normal) and the boxes' transforms; `size` x `size` frames.
+Regions cornellRegions(const Frame& f, const scene::AssetStore& assets, uint32_t size);
+
+inline double luminance(const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+}  // namespace dyngi::test

@@ -1,0 +1,29 @@
+#pragma once
+// A two-bone skinned mesh built in code and loaded through the real glTF importer, for the GI tests
+// that must see a mesh deform (BVH refit, re-voxelization, VPL invalidation) without ../shared.
+//
+// The bar is a 0.16 x 1.2 x 0.16 box standing on `base`, cut into 12 rings along its height. Its lower
+// half follows the root joint, its upper half a second joint 0.6 above it (the ring between them is
+// weighted half and half), and the animation "bend" turns that joint about +Z from 0 to 90 degrees
+// between t = 0 and t = 1 s, so the bar folds over sideways towards -X.
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "dyngi/engine/ecs/world.h"
+#include "dyngi/engine/scene/assets.h"
+#include "support/temp_dir.h"
+
+namespace dyngi::test {
+
+struct SkinnedBar {
+  ecs::Entity mesh;      // the skinned mesh instance
+  ecs::Entity animator;  // plays "bend"
+  std::string error;     // empty when the import worked
+};
+
+// Imports the bar into `world` with material `baseColor`.
+SkinnedBar addSkinnedBar(ecs::World& world, scene::AssetStore& assets, const TempDir& dir, const glm::vec3& base,
+                         const glm::vec3& baseColor = glm::vec3(0.8f));
+
+}  // namespace dyngi::test
