@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The AddressSanitizer + UndefinedBehaviorSanitizer job (RelWithDebInfo, float-cast-overflow included,
-# no recovery: the first report fails the test). Builds build-asan/ and runs the unit, GI and end-to-end
-# tests and a subset of the render tests that keeps CI's time in bounds; extra arguments go to ctest.
+# no recovery: the first report fails the test). Builds build-asan/ and runs every unit, GI, end-to-end and
+# render test (the render tests one at a time, as in the Release job); extra arguments go to ctest.
 #
 # Lavapipe leaks a little at exit, and the Vulkan loader unloads the driver before LeakSanitizer's
 # report, so those leaks show as "<unknown module>" with no way to tell them from ours. The driver is
@@ -25,11 +25,10 @@ export LD_PRELOAD="$driver"
 export ASAN_OPTIONS="detect_leaks=1:verify_asan_link_order=0:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
-# Render tests: one per area (rasterizer, shadows, voxels + SVO, many lights, temporal VPLs, path tracer
-# against raster); the Release job runs them all.
-render='CornellRender.FloorIrradianceMatchesAnalyticSpotFormula|RenderTest.ShadowMapIsKept|RenderTest.ObjectFarOutsideTheScene'
-render+='|VoxelTest.SvoMarchEqualsDenseDdaAndGpuEqualsCppTwin|VoxelTest.ObjectLeavingTheVolume|ManyLightsTest.VisibilityIsUsedAndCorrect'
-render+='|RenderTest.TemporalAccumulationEqualsAllVplsInOneFrame|RenderTest.MovedObjectChangesIndirect|RenderTest.PathTracerDirectMatchesRasterizer'
 cd build-asan
 ctest --output-on-failure -j"$(nproc)" -L 'unit|gi|e2e' "$@"
-ctest --output-on-failure -j1 -L render -R "$render" "$@"
+# The validation layer's synchronization checks (Debian 12's layer, 1.3.239) leak 47,879 bytes in 325
+# allocations of their own in every process, whatever the test does: here the render tests run with the
+# layer's core checks only (the Release job keeps the synchronization checks on).
+# All 40 render tests take about 2.5 minutes here.
+DYNGI_SYNC_VALIDATION=0 ctest --output-on-failure -j1 -L render "$@"

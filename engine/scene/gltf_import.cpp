@@ -33,7 +33,7 @@ bool mulChecked(size_t a, size_t b, size_t& out) { return !__builtin_mul_overflo
 // offset against the buffer so a malformed file cannot make us read out of bounds.
 class AccessorReader {
  public:
-  AccessorReader(const tinygltf::Model& model, int index, const char* what) : model_(model), what_(what) {
+  AccessorReader(const tinygltf::Model& model, int index, const char* what) : what_(what) {
     const std::string name = std::string(what) + " accessor " + std::to_string(index);
     if (index < 0 || size_t(index) >= model.accessors.size()) fail(name + " does not exist");
     acc_ = &model.accessors[size_t(index)];
@@ -99,7 +99,6 @@ class AccessorReader {
   }
 
  private:
-  const tinygltf::Model& model_;
   const char* what_;
   const tinygltf::Accessor* acc_ = nullptr;
   const uint8_t* data_ = nullptr;

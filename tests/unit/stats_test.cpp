@@ -25,3 +25,30 @@ TEST(RunStats, NoTimedFrameIsNullNotZero) {
   s.frameMs = {10.0, 30.0, 20.0};
   EXPECT_NE(s.toJson().find("\"median\": 20.0000"), std::string::npos);
 }
+
+TEST(RunStats, SeriesKeepEverySampleUpToCapacityThenABoundedUniformSubset) {
+  using dyngi::sample::SampleSeries;
+  // Short runs: exact medians, as before.
+  SampleSeries shortRun;
+  for (int i = 0; i < 1001; ++i) shortRun.push(double(i));
+  EXPECT_EQ(shortRun.kept().size(), 1001u);
+  EXPECT_DOUBLE_EQ(shortRun.percentile(0.5), 500.0);
+  // A long windowed session (a million frames): memory stays at the capacity, and the median of the
+  // kept subset estimates the true one (uniform 0..1e6: 5e5) to about 1/sqrt(capacity) in rank.
+  SampleSeries longRun;
+  const size_t capacityBefore = [&] {
+    longRun.push(0.0);
+    return longRun.kept().capacity();
+  }();
+  for (int i = 1; i < 1000000; ++i) longRun.push(double(i));
+  EXPECT_EQ(longRun.seen(), 1000000u);
+  EXPECT_EQ(longRun.kept().size(), SampleSeries::kCapacity);
+  EXPECT_EQ(longRun.kept().capacity(), capacityBefore) << "no allocation after the first sample";
+  EXPECT_NEAR(longRun.percentile(0.5), 5e5, 0.05 * 1e6);
+  EXPECT_NEAR(longRun.percentile(0.95), 9.5e5, 0.05 * 1e6);
+  // Samples late in the run are represented: a run whose second half is slower shows it in its median.
+  SampleSeries stepUp;
+  for (int i = 0; i < 200000; ++i) stepUp.push(i < 100000 ? 10.0 : 30.0);
+  EXPECT_NEAR(stepUp.percentile(0.25), 10.0, 1e-9);
+  EXPECT_NEAR(stepUp.percentile(0.75), 30.0, 1e-9);
+}

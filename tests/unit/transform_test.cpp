@@ -79,6 +79,19 @@ TEST(TransformSystem, NonFiniteTransformKeepsLastGoodMatrix) {
   s.runFrame(w, {});
   expectNear(w.get<WorldTransform>(e).matrix, good, 0.0f);
   EXPECT_EQ(sys.rejectedNonFinite(), 1u);
+  // Finite but beyond the engine's coordinate range (a runaway object): kept back the same way, so no
+  // bounds or squared distance downstream overflows.
+  w.write<Transform>(e).translation = {1e19f, 0, 0};
+  s.runFrame(w, {});
+  expectNear(w.get<WorldTransform>(e).matrix, good, 0.0f);
+  w.write<Transform>(e).scale = glm::vec3(1e10f);
+  w.write<Transform>(e).translation = {1, 2, 3};
+  Entity child = w.create();
+  w.add(child, Transform{.translation = {1e9f, 0, 0}, .parent = e});  // 1e10 x 1e9: the product leaves the range
+  s.runFrame(w, {});
+  EXPECT_TRUE(withinCoordinateRange(w.get<WorldTransform>(e).matrix)) << "1e10 scale alone is in range";
+  EXPECT_FALSE(w.has<WorldTransform>(child)) << "never given a world matrix beyond the range";
+  EXPECT_EQ(sys.rejectedNonFinite(), 3u);
 }
 
 TEST(ScriptedMotion, IsAPureFunctionOfTime) {
