@@ -217,9 +217,7 @@ TEST(EmbreeScene, SkinnedTwoBoneBarRefitsAndMatchesBruteForceAsItBends) {
   test::SkinnedBar bar = test::addSkinnedBar(w, assets, dir, {0.4f, 0.0f, 0.0f});
   ASSERT_EQ(bar.error, "");
   ecs::Scheduler s;
-  s.add(ecs::Phase::Update, std::make_unique<AnimationSystem>());
-  s.add(ecs::Phase::PostUpdate, std::make_unique<TransformSystem>());
-  s.add(ecs::Phase::PostUpdate, std::make_unique<SkinningSystem>(assets));
+  test::addAnimationAndSkinning(s, assets);
   gi::EmbreeScene bvh;
   s.add(ecs::Phase::PostUpdate, std::make_unique<gi::BvhSyncSystem>(bvh, assets));
   const MeshId deformed = w.get<SkinnedMesh>(bar.mesh).deformed;
@@ -257,4 +255,47 @@ TEST(EmbreeScene, SkinnedTwoBoneBarRefitsAndMatchesBruteForceAsItBends) {
   const Aabb end = assets.mesh(deformed).bounds.transformed(w.get<WorldTransform>(bar.mesh).matrix);
   EXPECT_NEAR(end.min.x, 0.4f - 0.6f, 0.01f);  // the top, 0.6 above the joint, now 0.6 to its -X side
   EXPECT_NEAR(end.max.y, 0.68f, 0.01f);        // the joint's height plus the bar's half width
+}
+
+TEST(EmbreeScene, ZeroScaleInstanceLeavesTheBvhAndComesBack) {
+  // Scale 0 hides an object (legal glTF). Embree cannot invert such an instance's matrix (its rays would
+  // be NaN, which Debian's Embree asserts on): the instance leaves the BVH and returns with its scale.
+  ecs::World w;
+  AssetStore assets;
+  sample::buildBuiltinScene("cornell", w, assets);
+  ecs::Scheduler s;
+  s.add(ecs::Phase::PostUpdate, std::make_unique<TransformSystem>());
+  gi::EmbreeScene bvh;
+  s.add(ecs::Phase::PostUpdate, std::make_unique<gi::BvhSyncSystem>(bvh, assets));
+  s.runFrame(w, {});
+  Entity box{};
+  w.each<Name>([&](Entity e, const Name& n) { if (n.value == "tall_box") box = e; });
+  ASSERT_FALSE(box.isNull());
+  const glm::vec3 centre = glm::vec3(w.get<WorldTransform>(box).matrix[3]) + glm::vec3(0, 0.3f, 0);
+  const glm::vec3 from = centre + glm::vec3(0, 0, 0.9f), dir(0, 0, -1);
+  gi::RayHit before = bvh.intersect(from, dir, 0.0f, 10.0f);
+  ASSERT_TRUE(before.hit && before.entity == box);
+  const size_t instances = bvh.stats().instances;
+
+  w.write<Transform>(box).scale = glm::vec3(0.0f);
+  s.runFrame(w, {});
+  EXPECT_EQ(bvh.stats().instances, instances - 1);
+  gi::RayHit hidden = bvh.intersect(from, dir, 0.0f, 10.0f);
+  EXPECT_TRUE(hidden.hit) << "the back wall behind it";
+  EXPECT_NE(hidden.entity, box);
+  for (int i = 0; i < 64; ++i) {  // rays through where it was, in all directions: none may assert
+    glm::vec3 d = glm::normalize(glm::vec3(std::sin(float(i)), std::cos(float(i) * 1.7f), std::sin(float(i) * 0.3f) - 0.5f));
+    (void)bvh.intersect(centre + glm::vec3(0, 0, 0.5f), d, 0.0f, 10.0f);
+  }
+  // A NaN ray from a caller is a miss, not an assertion inside Embree.
+  const float nan = std::nanf("");
+  EXPECT_FALSE(bvh.intersect(glm::vec3(nan), dir, 0.0f, 10.0f).hit);
+  EXPECT_FALSE(bvh.occluded(gi::Segment{glm::vec3(0, nan, 0), glm::vec3(0, 1, 0)}, 1e-4f));
+
+  w.write<Transform>(box).scale = glm::vec3(1.0f);
+  s.runFrame(w, {});
+  EXPECT_EQ(bvh.stats().instances, instances);
+  gi::RayHit back = bvh.intersect(from, dir, 0.0f, 10.0f);
+  EXPECT_TRUE(back.hit && back.entity == box);
+  EXPECT_NEAR(back.t, before.t, 1e-5f);
 }

@@ -172,9 +172,7 @@ TEST(VplPaths, DeformingSkinnedMeshInvalidatesExactlyWhatItBlocksAndWhatLiesOnIt
   test::SkinnedBar bar = test::addSkinnedBar(world, assets, dir, {0.25f, 0.0f, 0.1f});
   ASSERT_EQ(bar.error, "");
   ecs::Scheduler scheduler;
-  scheduler.add(ecs::Phase::Update, std::make_unique<AnimationSystem>());
-  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<TransformSystem>());
-  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<SkinningSystem>(assets));
+  test::addAnimationAndSkinning(scheduler, assets);
   gi::EmbreeScene bvh;
   const MeshId deformed = world.get<SkinnedMesh>(bar.mesh).deformed;
   uint32_t version = 0;

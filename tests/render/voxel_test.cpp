@@ -485,9 +485,7 @@ TEST_F(VoxelTest, SkinnedBarReVoxelizesAsItBendsAndMatchesExactOverlap) {
   renderer = std::make_unique<render::Renderer>(context());
   renderer->addFeature(voxels.get());
   renderer->resize(32, 32);
-  scheduler.add(ecs::Phase::Update, std::make_unique<scene::AnimationSystem>());
-  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
-  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::SkinningSystem>(assets));
+  addAnimationAndSkinning(scheduler, assets);
   scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(*voxels, assets));
   step();  // t = 0: everything voxelized once
   for (int f = 1; f <= 5; ++f) {  // 0.2 s a step: the bar bends from 0 to 90 degrees

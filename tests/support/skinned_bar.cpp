@@ -7,6 +7,7 @@
 #include "dyngi/engine/scene/animation.h"
 #include "dyngi/engine/scene/components.h"
 #include "dyngi/engine/scene/gltf_import.h"
+#include "dyngi/engine/scene/transform_system.h"
 #include "support/gltf_writer.h"
 
 namespace dyngi::test {
@@ -67,6 +68,12 @@ SkinnedBar addSkinnedBar(ecs::World& world, scene::AssetStore& assets, const Tem
   out.animator = report.animator;
   world.each<scene::SkinnedMesh>([&](ecs::Entity e, const scene::SkinnedMesh&) { out.mesh = e; });
   return out;
+}
+
+void addAnimationAndSkinning(ecs::Scheduler& scheduler, scene::AssetStore& assets) {
+  scheduler.add(ecs::Phase::Update, std::make_unique<scene::AnimationSystem>());
+  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
+  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::SkinningSystem>(assets));
 }
 
 }  // namespace dyngi::test

@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "dyngi/engine/ecs/scheduler.h"
 #include "dyngi/engine/ecs/world.h"
 #include "dyngi/engine/scene/assets.h"
 #include "support/temp_dir.h"
@@ -25,5 +26,9 @@ struct SkinnedBar {
 // Imports the bar into `world` with material `baseColor`.
 SkinnedBar addSkinnedBar(ecs::World& world, scene::AssetStore& assets, const TempDir& dir, const glm::vec3& base,
                          const glm::vec3& baseColor = glm::vec3(0.8f));
+
+// The systems that make it bend: animation (Update), then transform propagation and skinning
+// (PostUpdate). A GI system added after them sees each frame's deformed mesh.
+void addAnimationAndSkinning(ecs::Scheduler& scheduler, scene::AssetStore& assets);
 
 }  // namespace dyngi::test
