@@ -1,6 +1,8 @@
 #include "dyngi/engine/render/snapshot.h"
 
 #include <algorithm>
+#include <atomic>
+#include <cstdio>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -34,15 +36,26 @@ RenderSnapshot extractSnapshot(const ecs::World& world, const scene::AssetStore&
   s.frame = frame;
   world.each<MeshInstance, WorldTransform>([&](Entity e, const MeshInstance& mi, const WorldTransform& wt) {
     if (mi.mesh >= assets.meshCount()) return;
+    const scene::MeshData& mesh = assets.mesh(mi.mesh);
+    const Aabb worldBounds = mesh.bounds.transformed(wt.matrix);
+    if (!mesh.usable || (mesh.bounds.valid() && !(withinCoordinateRange(worldBounds.min) && withinCoordinateRange(worldBounds.max)))) {
+      ++s.skippedDraws;  // nothing downstream (bounds, voxel volume, light views) may see an infinity
+      return;
+    }
     DrawItem d;
     d.entity = e;
     d.mesh = mi.mesh;
     d.model = wt.matrix;
     d.castShadows = mi.castShadows;
     if (const Material* m = world.tryGet<Material>(e)) d.material = *m;
-    s.sceneBounds.extend(assets.mesh(mi.mesh).bounds.transformed(wt.matrix));
+    s.sceneBounds.extend(worldBounds);
     s.draws.push_back(d);
   });
+  // One line when the number of left-out instances changes, not one a frame.
+  static std::atomic<uint32_t> lastSkipped{0};
+  if (uint32_t before = lastSkipped.exchange(s.skippedDraws); before != s.skippedDraws && s.skippedDraws > 0)
+    std::fprintf(stderr, "dyngi: warning: %u mesh instance(s) with non-finite vertices or beyond the coordinate range (1e18) left out of the frame\n",
+                 s.skippedDraws);
   world.each<Light, WorldTransform>([&](Entity e, const Light& l, const WorldTransform& wt) {
     LightItem li;
     li.entity = e;

@@ -1,4 +1,5 @@
 #include "dyngi/engine/scene/assets.h"
+#include "dyngi/engine/scene/components.h"
 
 #include <cmath>
 
@@ -16,7 +17,11 @@ Aabb Aabb::transformed(const glm::mat4& m) const {
 
 void MeshData::computeBounds() {
   bounds = Aabb{};
-  for (auto& p : positions) bounds.extend(p);
+  usable = true;
+  for (auto& p : positions) {
+    usable = usable && withinCoordinateRange(p);  // glm::min/max would quietly drop a NaN
+    bounds.extend(p);
+  }
 }
 
 void MeshData::generateNormals() {
@@ -35,7 +40,7 @@ void MeshData::generateNormals() {
 }
 
 MeshId AssetStore::addMesh(MeshData mesh) {
-  if (!mesh.bounds.valid()) mesh.computeBounds();
+  mesh.computeBounds();  // always: it also decides `usable`, which a host-built mesh must not skip
   meshes_.push_back(std::move(mesh));
   return MeshId(meshes_.size() - 1);
 }

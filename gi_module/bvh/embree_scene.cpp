@@ -59,6 +59,7 @@ struct EmbreeScene::Impl {
   }
 
   void clear() {
+    parked.clear();
     for (auto& [_, inst] : instances) {
       rtcDetachGeometry(top, inst.geomId);
       rtcReleaseGeometry(inst.geometry);
@@ -80,6 +81,7 @@ struct EmbreeScene::Impl {
   }
 
   std::unordered_set<scene::MeshId> rebuiltThisSync, refitThisSync;
+  std::unordered_set<ecs::Entity> parked;  // instances out of the BVH while their mesh is not usable
 
   // Builds, refits or returns the bottom-level BVH of a mesh as its version requires.
   Blas& ensureBlas(const scene::MeshData& m, scene::MeshId id, bool deforming, BvhStats& st) {
@@ -194,12 +196,26 @@ const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetSto
     if (!world.alive(e) || !world.has<scene::MeshInstance>(e)) im.removeInstance(e), ++st.instancesRemoved, topDirty = true;
   }
 
-  // Deformed meshes: refit once per mesh, whichever entities use them.
-  for (auto& [id, b] : im.blas) {
-    if (id < assets.meshCount() && assets.mesh(id).version != b.version) {
-      im.ensureBlas(assets.mesh(id), id, deforming.count(id) > 0, st);
-      topDirty = true;  // instance bounds changed
+  // Deformed meshes: refit once per mesh, whichever entities use them. (Ids first: a rebuild replaces the
+  // map's entry, which must not happen while the map is being walked.) A mesh deformed into NaN or
+  // beyond the coordinate range is not refit: its instances leave the BVH and wait in `parked`.
+  std::vector<scene::MeshId> changedMeshes;
+  std::unordered_set<scene::MeshId> unusable;
+  for (auto& [id, b] : im.blas)
+    if (id < assets.meshCount() && assets.mesh(id).version != b.version) changedMeshes.push_back(id);
+  for (scene::MeshId id : changedMeshes) {
+    if (!assets.mesh(id).usable) {
+      unusable.insert(id);
+      continue;
     }
+    im.ensureBlas(assets.mesh(id), id, deforming.count(id) > 0, st);
+    topDirty = true;  // instance bounds changed
+  }
+  if (!unusable.empty()) {
+    std::vector<ecs::Entity> leaving;
+    for (auto& [e, inst] : im.instances)
+      if (unusable.count(inst.mesh)) leaving.push_back(e);
+    for (ecs::Entity e : leaving) im.removeInstance(e), im.parked.insert(e), ++st.instancesRemoved, topDirty = true;
   }
   // A rebuilt BLAS is a new RTCScene: point its existing instances at it. A refit one has new bounds:
   // its instances must be committed again too, or the top level keeps their old bounds (Embree rebuilds
@@ -222,6 +238,12 @@ const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetSto
     const scene::MeshData& mesh = assets.mesh(mi->mesh);
     if (mesh.indices.empty()) return;
     auto it = im.instances.find(e);
+    if (!mesh.usable) {  // NaN or runaway vertices: out of the BVH (and of the frame) until usable again
+      if (it != im.instances.end()) im.removeInstance(e), ++st.instancesRemoved, topDirty = true;
+      im.parked.insert(e);
+      return;
+    }
+    im.parked.erase(e);
     // Embree transforms each ray into an instance's space with the inverse of its matrix: a singular
     // matrix (scale 0: a legal way to hide an object) would make NaN rays, which Embree asserts on.
     // Such an instance has no surface to hit, so it leaves the BVH until its transform is usable again.
@@ -253,6 +275,14 @@ const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetSto
   };
   world.forEachChanged<scene::WorldTransform>(since, upsert);
   world.forEachChanged<scene::MeshInstance>(since, upsert);
+  // Entities whose mesh was unusable come back as soon as it is usable again, changed or not.
+  if (!im.parked.empty()) {
+    std::vector<ecs::Entity> parked(im.parked.begin(), im.parked.end());
+    for (ecs::Entity e : parked) {
+      if (!world.alive(e) || !world.has<scene::MeshInstance>(e)) im.parked.erase(e);
+      else upsert(e);
+    }
+  }
 
   if (topDirty || since == 0) rtcCommitScene(im.top);
   st.instances = im.instances.size();

@@ -13,6 +13,7 @@
 #include "dyngi/engine/scene/scripted_motion.h"
 #include "dyngi/engine/scene/transform_system.h"
 #include "dyngi/gi/bvh.h"
+#include "dyngi/engine/render/snapshot.h"
 #include "dyngi/gi/bvh_sync.h"
 #include "scenes/builtin_scenes.h"
 #include "support/scene_triangles.h"
@@ -298,4 +299,64 @@ TEST(EmbreeScene, ZeroScaleInstanceLeavesTheBvhAndComesBack) {
   gi::RayHit back = bvh.intersect(from, dir, 0.0f, 10.0f);
   EXPECT_TRUE(back.hit && back.entity == box);
   EXPECT_NEAR(back.t, before.t, 1e-5f);
+}
+
+TEST(EmbreeScene, MeshesWithNanOrRunawayVerticesStayOutOfTheFrameAndTheBvh) {
+  // A host may hand over NaN vertices, or a skin may pull a mesh to infinity at run time. Such a mesh
+  // is left out of the snapshot (so of the bounds, voxels and shadows) and of the BVH, with no Embree
+  // assertion, and comes back once its vertices are usable again.
+  ecs::World w;
+  AssetStore assets;
+  sample::buildBuiltinScene("cornell", w, assets);
+  MeshData bad = makeBox({0.1f, 0.1f, 0.1f});
+  bad.positions[3].y = std::nanf("");
+  const MeshId badMesh = assets.addMesh(bad);
+  EXPECT_FALSE(assets.mesh(badMesh).usable);
+  const MeshId deforming = assets.addMesh(makeBox({0.1f, 0.1f, 0.1f}));
+  auto addEntity = [&](MeshId mesh, glm::vec3 at) {
+    Entity e = w.create();
+    w.add(e, Transform{.translation = at});
+    w.add(e, MeshInstance{mesh, true});
+    w.add(e, Material{});
+    return e;
+  };
+  Entity nanEntity = addEntity(badMesh, {0.5f, 1.0f, 0.0f});
+  Entity boxEntity = addEntity(deforming, {-0.5f, 1.0f, 0.0f});
+  ecs::Scheduler s;
+  s.add(ecs::Phase::PostUpdate, std::make_unique<TransformSystem>());
+  gi::EmbreeScene bvh;
+  s.add(ecs::Phase::PostUpdate, std::make_unique<gi::BvhSyncSystem>(bvh, assets));
+  s.runFrame(w, {});
+  dyngi::render::RenderSnapshot snap = dyngi::render::extractSnapshot(w, assets, 0);
+  EXPECT_EQ(snap.skippedDraws, 1u);
+  for (const auto& d : snap.draws) EXPECT_NE(d.entity, nanEntity);
+  EXPECT_TRUE(withinCoordinateRange(snap.sceneBounds.min) && withinCoordinateRange(snap.sceneBounds.max));
+  const size_t instances = bvh.stats().instances;
+  EXPECT_EQ(instances, snap.draws.size()) << "the NaN mesh is not in the BVH";
+  auto hitsBox = [&] {
+    gi::RayHit h = bvh.intersect({-0.5f, 1.0f, 0.9f}, {0, 0, -1}, 0.0f, 10.0f);
+    return h.hit && h.entity == boxEntity;
+  };
+  ASSERT_TRUE(hitsBox());
+
+  // The other box deforms into a runaway vertex (as a skin pulled by an infinite joint would): out...
+  {
+    MeshData& m = assets.meshForWrite(deforming);
+    m.positions[0].x = 1e30f;
+    m.computeBounds();
+  }
+  s.runFrame(w, {});
+  EXPECT_EQ(bvh.stats().instances, instances - 1);
+  EXPECT_FALSE(hitsBox());
+  EXPECT_EQ(dyngi::render::extractSnapshot(w, assets, 1).skippedDraws, 2u);
+  // ... and back when its vertices are sound again, though the entity itself never changed.
+  {
+    MeshData& m = assets.meshForWrite(deforming);
+    m = makeBox({0.1f, 0.1f, 0.1f});
+    m.version = 99;
+    m.computeBounds();
+  }
+  s.runFrame(w, {});
+  EXPECT_EQ(bvh.stats().instances, instances);
+  EXPECT_TRUE(hitsBox());
 }

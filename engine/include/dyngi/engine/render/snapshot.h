@@ -39,6 +39,7 @@ struct RenderSnapshot {
   std::vector<LightItem> lights;
   CameraView camera;
   scene::Aabb sceneBounds;  // of all draws, world space
+  uint32_t skippedDraws = 0;  // mesh instances left out: mesh not usable, or world bounds beyond the coordinate range
   const scene::AssetStore* assets = nullptr;
   uint64_t frame = 0;
 };

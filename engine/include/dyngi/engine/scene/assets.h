@@ -38,6 +38,9 @@ struct MeshData {
   std::vector<glm::vec4> weights;
   Aabb bounds;
   uint32_t version = 0;  // bumped when the vertices change (deforming meshes)
+  // Every position finite and within the coordinate range (set by computeBounds). A mesh that is not
+  // (NaN data from a host, a skin pulled to infinity) is left out of frames, the BVH and the voxels.
+  bool usable = true;
 
   size_t triangleCount() const { return indices.size() / 3; }
   void computeBounds();
