@@ -46,27 +46,24 @@ void GiSystem::attach(render::Renderer& renderer) {
 
 void GiSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {
   auto t0 = std::chrono::steady_clock::now();
-  // 1. What moved or deformed since the last run (change ticks only, no scan of the world).
-  std::unordered_set<ecs::Entity> moved;
-  world.forEachChanged<scene::WorldTransform>(ctx.lastRun, [&](ecs::Entity e) {
-    if (world.has<scene::MeshInstance>(e)) moved.insert(e);
-  });
-  world.forEachChanged<scene::MeshInstance>(ctx.lastRun, [&](ecs::Entity e) { moved.insert(e); });
-  world.each<scene::SkinnedMesh>([&](ecs::Entity e, const scene::SkinnedMesh& sm) {
-    uint32_t v = assets_.mesh(sm.deformed).version;
-    auto [it, fresh] = meshVersions_.try_emplace(sm.deformed, v);
-    if (!fresh && it->second != v) moved.insert(e);
-    it->second = v;
-  });
-  for (ecs::Entity e : world.removedSince<scene::MeshInstance>(ctx.lastRun)) moved.insert(e);
+  // 1. What changed since the last run, once, from the change ticks (no scan of the world); every
+  //    consumer below reads this one set.
+  const ChangeSet changes = changes_.compute(world, assets_, ctx.lastRun);
   // 2. BVH: instance transforms, refits, added/removed.
-  bvh_->sync(world, assets_, ctx.lastRun);
+  bvh_->sync(world, assets_, changes);
   // 3. Voxels: mark what must be re-voxelized (the GPU work is recorded by the VoxelScene feature).
-  if (voxelSync_) voxelSync_->run(world, ctx);
-  // 4-5. VPL invalidation and replacement.
+  if (voxelSync_) voxelSync_->apply(changes);
+  // 4-5. VPLs: those on a re-coloured surface keep their paths and take the new albedo (and so does
+  //      every later bounce); those on a surface that moved or deformed, with their later bounces, are
+  //      invalidated; then up to the budget are reshot.
   if (paths_) {
     render::RenderSnapshot snapshot = render::extractSnapshot(world, assets_, ctx.time.frame);
-    paths_->update(snapshot, *bvh_, assets_, moved);
+    const std::unordered_set<ecs::Entity> geometry = changes.geometryChanged();
+    std::unordered_set<ecs::Entity> recoloured;
+    for (ecs::Entity e : changes.materials)
+      if (!geometry.count(e)) recoloured.insert(e);
+    paths_->refreshMaterials(snapshot, *bvh_, assets_, recoloured);
+    paths_->update(snapshot, *bvh_, assets_, geometry);
   }
   syncMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }

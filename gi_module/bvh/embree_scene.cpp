@@ -175,6 +175,12 @@ EmbreeScene::EmbreeScene() : impl_(std::make_unique<Impl>()) {}
 EmbreeScene::~EmbreeScene() = default;
 
 const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetStore& assets, ecs::Tick since) {
+  // Deformations are found from the BLAS versions below, so a fresh tracker serves.
+  return sync(world, assets, ChangeTracker().compute(world, assets, since));
+}
+
+const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetStore& assets, const ChangeSet& changes) {
+  const ecs::Tick since = changes.since;
   auto t0 = std::chrono::steady_clock::now();
   Impl& im = *impl_;
   BvhStats st;
@@ -187,7 +193,7 @@ const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetSto
   world.each<scene::SkinnedMesh>([&](ecs::Entity, const scene::SkinnedMesh& s) { deforming.insert(s.deformed); });
 
   // Removed instances (entity destroyed or MeshInstance removed).
-  for (ecs::Entity e : world.removedSince<scene::MeshInstance>(since)) {
+  for (ecs::Entity e : changes.removed) {
     if (im.instances.count(e)) im.removeInstance(e), ++st.instancesRemoved, topDirty = true;
   }
   for (auto it = im.instances.begin(); it != im.instances.end();) {  // stale handles (cheap: instances only)
@@ -273,8 +279,8 @@ const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetSto
       topDirty = true;
     }
   };
-  world.forEachChanged<scene::WorldTransform>(since, upsert);
-  world.forEachChanged<scene::MeshInstance>(since, upsert);
+  for (ecs::Entity e : changes.moved) upsert(e);
+  for (ecs::Entity e : changes.meshWritten) upsert(e);
   // Entities whose mesh was unusable come back as soon as it is usable again, changed or not.
   if (!im.parked.empty()) {
     std::vector<ecs::Entity> parked(im.parked.begin(), im.parked.end());

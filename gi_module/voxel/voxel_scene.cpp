@@ -634,22 +634,14 @@ double VoxelScene::dispatchMarch(const render::Pipeline& pipeline, const std::ve
 }
 
 void VoxelSyncSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {
-  auto markIfMesh = [&](ecs::Entity e) {
-    if (world.has<scene::MeshInstance>(e)) voxels_.markDirty(e);
-  };
-  world.forEachChanged<scene::WorldTransform>(ctx.lastRun, markIfMesh);
-  world.forEachChanged<scene::MeshInstance>(ctx.lastRun, markIfMesh);
-  world.forEachChanged<scene::Material>(ctx.lastRun, markIfMesh);
-  for (ecs::Entity e : world.removedSince<scene::MeshInstance>(ctx.lastRun)) voxels_.markRemoved(e);
-  // Deforming meshes: their vertices change without any component write.
-  world.each<scene::SkinnedMesh, scene::MeshInstance>([&](ecs::Entity e, const scene::SkinnedMesh& s, const scene::MeshInstance&) {
-    uint32_t v = assets_.mesh(s.deformed).version;
-    auto it = meshVersions_.find(s.deformed);
-    if (it == meshVersions_.end() || it->second != v) {
-      meshVersions_[s.deformed] = v;
-      voxels_.markDirty(e);
-    }
-  });
+  apply(tracker_.compute(world, assets_, ctx.lastRun));
+}
+
+void VoxelSyncSystem::apply(const ChangeSet& changes) {
+  // Deforming meshes are in `deformed`: their vertices change without any component write.
+  for (const auto* list : {&changes.moved, &changes.meshWritten, &changes.materials, &changes.deformed})
+    for (ecs::Entity e : *list) voxels_.markDirty(e);
+  for (ecs::Entity e : changes.removed) voxels_.markRemoved(e);
 }
 
 }  // namespace dyngi::gi

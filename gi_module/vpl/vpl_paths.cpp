@@ -57,6 +57,39 @@ void VplPaths::update(const render::RenderSnapshot& snapshot, const EmbreeScene&
   replace(snapshot, bvh, assets);
 }
 
+void VplPaths::refreshMaterials(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
+                                const std::unordered_set<ecs::Entity>& recoloured) {
+  stats_.refreshedThisFrame = 0;
+  if (recoloured.empty()) return;
+  SceneSurfaces surfaces(snapshot, assets);
+  const uint32_t B = settings_.bounces;
+  for (uint32_t path = 0; path < paths_; ++path) {
+    bool carry = false;  // an earlier bounce of this path changed its flux
+    for (uint32_t b = 0; b < B; ++b) {
+      const uint32_t i = path * B + b;
+      PathVpl& v = vpls_[i];
+      if (!v.valid) break;  // invalid: the rest of the path is reshot anyway
+      bool changed = false;
+      if (carry) {
+        // Cosine sampling: the parent's whole reflected flux travels along the ray.
+        if (v.placed) v.incident = vpls_[i - 1].flux;
+        changed = true;
+      }
+      if (v.placed && recoloured.count(v.surface)) {
+        RayHit h = bvh.intersect(v.rayOrigin, v.rayDir, 0.0f, 1e30f);
+        SurfaceHit sh;
+        if (h.hit && h.entity == v.surface && surfaces.at(h, v.rayOrigin, v.rayDir, sh)) v.albedo = sh.diffuseAlbedo;
+        changed = true;
+      }
+      if (!changed) continue;
+      if (v.placed) v.flux = v.incident * v.albedo;
+      carry = true;
+      setDirty_[setOf(i)] = 1;
+      ++stats_.refreshedThisFrame;
+    }
+  }
+}
+
 void VplPaths::invalidateIndex(uint32_t index) {
   uint32_t path = index / settings_.bounces;
   for (uint32_t b = index % settings_.bounces; b < settings_.bounces; ++b) {
@@ -196,6 +229,8 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
   }
   PathVpl v;
   v.valid = true;
+  v.rayOrigin = origin;
+  v.rayDir = dir;
   RayHit h = bvh.intersect(origin, dir, 0.0f, 1e30f);
   SurfaceHit sh;
   if (h.hit && surfaces.at(h, origin, dir, sh)) {
@@ -209,6 +244,8 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
     v.placed = true;
     v.position = sh.position;
     v.normal = sh.shadingNormal;
+    v.incident = throughput;
+    v.albedo = sh.diffuseAlbedo;
     v.flux = throughput * sh.diffuseAlbedo;
     v.surface = sh.entity;
   }

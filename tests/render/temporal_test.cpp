@@ -326,3 +326,90 @@ TEST_F(RenderTest, TemporalPathsMatchPathTracerPerRegionForEveryLightType) {
     EXPECT_LE(rel, 0.04) << c.name;  // measured 0.0042 (spot), 0.0055 (point), 0.0251 (directional)
   }
 }
+
+// A material edit changes what a surface reflects, not where light goes: the VPLs lying on the edited
+// surface and every later bounce of their paths keep their positions and take the new colour in the same
+// frame; every other VPL stays exactly as it was. Then the indirect light follows the new colour where the
+// path tracer says it does. (Reshooting those VPLs instead, which the first version of this change did,
+// leaves the surface with only the share of new samples that land on it again: the ceiling's blue/red
+// then moved 0.956 -> 0.997 where the reference moves 0.947 -> 1.056.)
+TEST_F(RenderTest, MaterialEditRecoloursTheVplsOnThatSurfaceAndTheLightFollows) {
+  gi::GiSettings s = settings(4);
+  s.vplCount = 1024;
+  s.bounces = 2;
+  s.reshootBudget = 1024;
+  GiRun run(context(), s);
+  run.step(6);
+  const gi::VplPaths& paths = *run.gi->paths();
+  const std::vector<gi::PathVpl> before = paths.vpls();
+  const std::vector<uint32_t> shotBefore = paths.reshootCounts();
+  const ecs::Entity wall = run.named("left_wall_red");
+  ASSERT_FALSE(wall.isNull());
+  // Expected: on the wall, or a later bounce of a path that touched it.
+  std::vector<bool> expect(before.size(), false);
+  uint32_t expected = 0;
+  for (uint32_t i = 0; i < before.size(); ++i) {
+    const bool inheritsFromParent = i % s.bounces > 0 && expect[i - 1];
+    expect[i] = before[i].valid && (inheritsFromParent || (before[i].placed && before[i].surface == wall));
+    expected += expect[i];
+  }
+  ASSERT_GT(expected, 50u) << "the red wall holds a fair share of the VPLs";
+
+  const render::ImageRgba hdrBefore = run.hdr();
+  const glm::vec3 blue(0.1f, 0.2f, 0.8f), red(0.63f, 0.065f, 0.05f);
+  run.world.write<scene::Material>(wall).baseColor = glm::vec4(blue, 1.0f);
+  run.step(1);
+  EXPECT_EQ(paths.stats().refreshedThisFrame, expected);
+  EXPECT_EQ(paths.stats().invalidatedThisFrame, 0u) << "no path is thrown away";
+  uint32_t wrong = 0;
+  for (uint32_t i = 0; i < before.size(); ++i) {
+    const gi::PathVpl& v = paths.vpls()[i];
+    wrong += paths.reshootCounts()[i] != shotBefore[i];
+    wrong += v.position != before[i].position;
+    if (!expect[i]) wrong += v.flux != before[i].flux;
+    else if (before[i].placed && before[i].surface == wall && i % s.bounces == 0)
+      wrong += glm::any(glm::greaterThan(glm::abs(v.flux - before[i].flux / red * blue), 1e-5f * glm::vec3(1.0f) + 1e-4f * v.flux));
+  }
+  EXPECT_EQ(wrong, 0u) << "exactly the wall's VPLs and their later bounces took the new colour, nothing was reshot";
+
+  // After a full cycle of the temporal sets the bounced light has turned from red to blue where the path
+  // tracer says it does: every region whose colour the reference sees move by over 5% moves the same
+  // way, and the wall itself (its own albedo under direct and bounced light) matches the reference.
+  run.step(4);
+  Frame f;
+  f.width = f.height = kSize;
+  f.hdr = run.hdr();
+  f.position = run.renderer->readback(render::TargetId::Position);
+  f.normal = run.renderer->readback(render::TargetId::Normal);
+  f.snapshot = render::extractSnapshot(run.world, run.assets, run.frame);
+  auto reference = [&] {
+    gi::EmbreeScene bvh;
+    bvh.sync(run.world, run.assets, 0);
+    gi::PathTracerSettings pts;
+    pts.spp = 256;
+    pts.bounces = 2;
+    pts.pixelJitter = false;
+    return gi::pathTrace(render::extractSnapshot(run.world, run.assets, run.frame), bvh, run.assets, kSize, kSize, pts);
+  };
+  const render::ImageRgba refAfter = reference();
+  run.world.write<scene::Material>(wall).baseColor = glm::vec4(0.63f, 0.065f, 0.05f, 1.0f);  // the reference before
+  const render::ImageRgba refBefore = reference();
+  Regions regions = cornellRegions(f, run.assets, kSize);
+  auto blueOverRed = [&](const render::ImageRgba& img, const std::vector<uint8_t>& mask) {
+    glm::dvec3 c = render::meanOver(img, &mask);
+    return c.b / c.r;
+  };
+  int followed = 0;
+  for (auto& [name, mask] : regions.masks) {
+    const double oursBefore = blueOverRed(hdrBefore, mask), oursAfter = blueOverRed(f.hdr, mask);
+    const double refB = blueOverRed(refBefore, mask), refA = blueOverRed(refAfter, mask);
+    std::printf("%-13s blue/red  temporal %.3f -> %.3f   path %.3f -> %.3f\n", name.c_str(), oursBefore, oursAfter, refB, refA);
+    if (refA > 1.05 * refB) {
+      // Measured: 0.68-1.13 of the reference's change (0.38 on the ceiling when the VPLs were reshot).
+      EXPECT_NEAR((oursAfter - oursBefore) / (refA - refB), 1.0, 0.5) << name << " turns bluer as much as in the reference";
+      ++followed;
+    }
+  }
+  EXPECT_GE(followed, 5) << "the edit is seen beyond the wall itself";
+  EXPECT_NEAR(blueOverRed(f.hdr, regions.masks.at("red wall")) / blueOverRed(refAfter, regions.masks.at("red wall")), 1.0, 0.05);
+}

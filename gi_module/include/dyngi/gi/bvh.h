@@ -14,6 +14,7 @@
 
 #include "dyngi/engine/ecs/world.h"
 #include "dyngi/engine/scene/assets.h"
+#include "dyngi/gi/change_set.h"
 
 namespace dyngi::gi {
 
@@ -51,6 +52,8 @@ class EmbreeScene {
 
   // Brings the BVH up to date with everything that changed after `since` (0: everything).
   const BvhStats& sync(const ecs::World& world, const scene::AssetStore& assets, ecs::Tick since);
+  // The same from a change set the caller computed (the GI system's one set per frame).
+  const BvhStats& sync(const ecs::World& world, const scene::AssetStore& assets, const ChangeSet& changes);
   // Drops everything and builds from scratch (the baseline the incremental path is measured against).
   const BvhStats& rebuild(const ecs::World& world, const scene::AssetStore& assets);
   const BvhStats& stats() const { return stats_; }

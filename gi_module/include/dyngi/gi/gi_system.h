@@ -13,6 +13,7 @@
 
 #include "dyngi/engine/ecs/scheduler.h"
 #include "dyngi/engine/render/renderer.h"
+#include "dyngi/gi/change_set.h"
 #include "dyngi/gi/bvh.h"
 #include "dyngi/gi/many_lights.h"
 #include "dyngi/gi/temporal_indirect.h"
@@ -76,7 +77,7 @@ class GiSystem final : public ecs::System {
   std::unique_ptr<VplPaths> paths_;
   std::unique_ptr<TemporalIndirect> temporal_;
   std::unique_ptr<ManyLights> manyLights_;
-  std::unordered_map<scene::MeshId, uint32_t> meshVersions_;
+  ChangeTracker changes_;  // the one change set per frame
   double syncMs_ = 0;
 };
 

@@ -11,6 +11,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "dyngi/gi/change_set.h"
 #include "dyngi/engine/ecs/scheduler.h"
 #include "dyngi/engine/render/pipeline.h"
 #include "dyngi/engine/render/render_feature.h"
@@ -179,12 +180,15 @@ class VoxelSyncSystem final : public ecs::System {
  public:
   VoxelSyncSystem(VoxelScene& voxels, const scene::AssetStore& assets) : voxels_(voxels), assets_(assets) {}
   const char* name() const override { return "voxel_sync"; }
+  // On its own: computes what changed since its last run, then apply().
   void run(ecs::World& world, const ecs::SystemContext& ctx) override;
+  // Marks what `changes` says must be re-voxelized (moved, deformed, re-meshed, re-coloured) or dropped.
+  void apply(const ChangeSet& changes);
 
  private:
   VoxelScene& voxels_;
   const scene::AssetStore& assets_;
-  std::unordered_map<scene::MeshId, uint32_t> meshVersions_;
+  ChangeTracker tracker_;
 };
 
 }  // namespace dyngi::gi

@@ -4,7 +4,7 @@
 // The pool is an array: index = path * bounces + bounce. The VPL of path p at bounce b has as parent
 // the light (b = 0) or the VPL (p, b - 1). Each frame:
 //  1. invalidation: a VPL is invalid when its parent no longer sees it (Embree occlusion), when the
-//     entity its surface belongs to moved or deformed, when its light moved/turned/changed or is gone,
+//     entity its surface belongs to moved, deformed or changed its material, when its light moved/turned/changed or is gone,
 //     or when it left its spot light's cone; invalidating a VPL invalidates its children;
 //  2. replacement: at most `reshootBudget` VPLs are reshot, found by a round-robin cursor that goes on
 //     where the last frame stopped; a VPL is reshot only when its parent is valid. Light rays sample the
@@ -45,11 +45,18 @@ struct PathVpl {
   ecs::Entity surface{};         // entity the VPL lies on (null when the path left the scene)
   bool valid = false;
   bool placed = false;           // has a position (false: escaped ray, zero flux)
+  // How it was placed, so that a material edit re-evaluates the same path instead of drawing a new one:
+  // the ray that found it, the flux that arrived along it, and the surface's diffuse albedo there
+  // (flux = incident * albedo).
+  glm::vec3 rayOrigin{0.0f}, rayDir{0.0f, 0.0f, 1.0f};
+  glm::vec3 incident{0.0f};
+  glm::vec3 albedo{0.0f};
 };
 
 struct VplPathStats {
   uint32_t count = 0, valid = 0;
   uint32_t invalidatedThisFrame = 0, replacedThisFrame = 0;
+  uint32_t refreshedThisFrame = 0;  // VPLs whose flux a material edit re-evaluated (the paths kept)
   uint64_t invalidatedTotal = 0, replacedTotal = 0;
   uint32_t reshootBudget = 0;
   double invalidateMs = 0, replaceMs = 0;
@@ -64,6 +71,13 @@ class VplPaths {
   void update(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
               const std::unordered_set<ecs::Entity>& moved);
   void invalidate(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const std::unordered_set<ecs::Entity>& moved);
+  // A material edit changes what a surface reflects, not where paths go: each valid VPL on a re-coloured
+  // entity gets its albedo again (its ray re-traced to the same hit), and its flux and every later
+  // bounce's flux follow. Reshooting them instead would draw new directions, and the edited surface
+  // would keep only the share of them that lands on it again: a bias. Entities that also moved or
+  // deformed are left to invalidate().
+  void refreshMaterials(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
+                        const std::unordered_set<ecs::Entity>& recoloured);
   void replace(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets);
 
   const std::vector<PathVpl>& vpls() const { return vpls_; }

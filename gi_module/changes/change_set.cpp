@@ -1,0 +1,45 @@
+#include "dyngi/gi/change_set.h"
+
+#include "dyngi/engine/scene/animation.h"
+#include "dyngi/engine/scene/components.h"
+
+namespace dyngi::gi {
+
+std::unordered_set<ecs::Entity> ChangeSet::geometryChanged() const {
+  std::unordered_set<ecs::Entity> out(moved.begin(), moved.end());
+  out.insert(deformed.begin(), deformed.end());
+  out.insert(meshWritten.begin(), meshWritten.end());
+  out.insert(removed.begin(), removed.end());
+  return out;
+}
+
+std::unordered_set<ecs::Entity> ChangeSet::surfacesChanged() const {
+  std::unordered_set<ecs::Entity> out = geometryChanged();
+  out.insert(materials.begin(), materials.end());
+  return out;
+}
+
+ChangeSet ChangeTracker::compute(const ecs::World& world, const scene::AssetStore& assets, ecs::Tick since) {
+  ChangeSet c;
+  c.since = since;
+  world.forEachChanged<scene::WorldTransform>(since, [&](ecs::Entity e) {
+    if (world.has<scene::MeshInstance>(e)) c.moved.push_back(e);
+  });
+  world.forEachChanged<scene::MeshInstance>(since, [&](ecs::Entity e) { c.meshWritten.push_back(e); });
+  world.forEachChanged<scene::Material>(since, [&](ecs::Entity e) {
+    if (world.has<scene::MeshInstance>(e)) c.materials.push_back(e);
+  });
+  c.removed = world.removedSince<scene::MeshInstance>(since);
+  world.forEachChanged<scene::Light>(since, [&](ecs::Entity) { c.lights = true; });
+  c.lights = c.lights || !world.removedSince<scene::Light>(since).empty();
+  world.each<scene::SkinnedMesh, scene::MeshInstance>([&](ecs::Entity e, const scene::SkinnedMesh& sm, const scene::MeshInstance&) {
+    if (sm.deformed >= assets.meshCount()) return;
+    const uint32_t v = assets.mesh(sm.deformed).version;
+    auto [it, fresh] = meshVersions_.try_emplace(sm.deformed, v);
+    if (!fresh && it->second != v) c.deformed.push_back(e);
+    it->second = v;
+  });
+  return c;
+}
+
+}  // namespace dyngi::gi

@@ -1,0 +1,45 @@
+#pragma once
+// What changed in the world since the GI system last ran: computed once a frame from the ECS change
+// ticks (no scan of the world) and handed to every consumer, so the BVH sync, the voxel sync and the
+// VPL invalidation agree on one answer. A consumer used on its own (BvhSyncSystem, VoxelSyncSystem)
+// computes the same set with its own ChangeTracker.
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "dyngi/engine/ecs/world.h"
+#include "dyngi/engine/scene/assets.h"
+
+namespace dyngi::gi {
+
+struct ChangeSet {
+  ecs::Tick since = 0;                          // changes after this tick; 0: the first run, all is new
+  // Each list in the change logs' order (consumers that insert into a BVH keep the order they always
+  // had), each entity once per list.
+  std::vector<ecs::Entity> moved;        // mesh entities whose world transform changed
+  std::vector<ecs::Entity> deformed;     // skinned meshes whose deformed vertices changed
+  std::vector<ecs::Entity> meshWritten;  // MeshInstance added or written (another mesh, shadow flag)
+  std::vector<ecs::Entity> removed;      // MeshInstance removed or entity destroyed
+  std::vector<ecs::Entity> materials;    // Material added or written on a mesh entity (base colour, emission, ...)
+  bool lights = false;                          // a Light added, written or removed
+
+  // Entities whose surfaces are not what they were, in place, shape or material.
+  std::unordered_set<ecs::Entity> surfacesChanged() const;
+  // Geometry only (place or shape): what the BVH must update and what invalidates VPLs.
+  std::unordered_set<ecs::Entity> geometryChanged() const;
+  bool empty() const {
+    return moved.empty() && deformed.empty() && meshWritten.empty() && removed.empty() && materials.empty() && !lights;
+  }
+};
+
+// Computes change sets; remembers the deformed meshes' versions between calls (a skinned mesh changes
+// its vertices without any component write).
+class ChangeTracker {
+ public:
+  ChangeSet compute(const ecs::World& world, const scene::AssetStore& assets, ecs::Tick since);
+
+ private:
+  std::unordered_map<scene::MeshId, uint32_t> meshVersions_;
+};
+
+}  // namespace dyngi::gi
