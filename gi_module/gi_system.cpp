@@ -68,6 +68,12 @@ void GiSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {
   syncMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+uint32_t GiSystem::effectiveVplCount() const {
+  if (paths_) return paths_->paths() * paths_->bounces();
+  if (manyLights_) return manyLights_->vplCount();
+  return 0;
+}
+
 GiStats GiSystem::stats() const {
   GiStats s;
   s.bvh = bvh_->stats();

@@ -266,6 +266,9 @@ int runApp(const Options& o) {
       std::fprintf(stderr, "dyngi_sample: note: VPLs come from punctual lights only; this scene has none, so no indirect light\n");
     giOwned = std::make_unique<gi::GiSystem>(ctx, assets, gs);
     gi = giOwned.get();
+    if (gi->effectiveVplCount() != o.vpls)
+      std::fprintf(stderr, "dyngi_sample: note: --vpls %u with %u bounce(s) uses %u VPLs (a multiple of the bounces)\n", o.vpls,
+                   gs.bounces, gi->effectiveVplCount());
     gi->attach(renderer);
     if (gi->manyLights() && manyLightsView)
       gi->manyLights()->settings().view = o.view == "indirect" ? gi::ManyLightsView::Indirect
@@ -370,7 +373,8 @@ int runApp(const Options& o) {
   stats.scalars["validation_errors"] = ctx.validationErrorCount();
   if (gi) {
     gi::GiStats g = gi->stats();
-    stats.scalars["vpls"] = o.vpls;
+    stats.scalars["vpls"] = gi->effectiveVplCount();  // as used (see the note above), not as asked
+    stats.scalars["vpls_requested"] = o.vpls;
     stats.scalars["interleave"] = o.interleave;
     stats.scalars["bounces"] = std::clamp(o.bounces, 1u, 3u);
     if (gi->paths()) {

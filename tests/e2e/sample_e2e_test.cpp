@@ -209,3 +209,21 @@ TEST(SampleHostileInput, RenderSizeBeyondDeviceMemoryIsRefusedWithoutLeaks) {
   EXPECT_NE(r.err.find("MiB heap"), std::string::npos) << "names the limit: " << r.err;
   EXPECT_EQ(r.err.find("validation error"), std::string::npos) << r.err;
 }
+
+TEST(SampleOptions, AdjustedVplCountIsReportedAsUsed) {
+  // 100 VPLs over 3 bounces cannot split evenly: the technique uses 99, the stats say 99 (and what was
+  // asked), and one line says why. Both VPL techniques round the same way.
+  for (const char* technique : {"--gi svo", "--gi svo --vpl-source rsm"}) {
+    TempDir dir;
+    SampleRun r = runSample(std::string("--headless --size 32x32 --frames 2 --vpls 100 --bounces 3 ") + technique + " --stats " +
+                                dir.file("stats.json"),
+                            dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("--vpls 100 with 3 bounce(s) uses 99 VPLs"), std::string::npos) << r.err;
+    std::ifstream f(dir.file("stats.json"));
+    nlohmann::json j = nlohmann::json::parse(f, nullptr, false);
+    ASSERT_FALSE(j.is_discarded());
+    EXPECT_EQ(j["counts"].value("vpls", 0.0), 99.0) << technique;
+    EXPECT_EQ(j["counts"].value("vpls_requested", 0.0), 100.0) << technique;
+  }
+}

@@ -79,7 +79,7 @@ void ManyLights::resize(render::VulkanContext& ctx, uint32_t width, uint32_t hei
 void ManyLights::prepare(render::VulkanContext&, const render::RenderSnapshot& snapshot) {
   settings_.bounces = std::clamp(settings_.bounces, 1u, 3u);
   settings_.interleave = std::clamp(settings_.interleave, 1u, 8u);
-  perBounce_ = std::max(1u, settings_.vplCount / settings_.bounces);
+  perBounce_ = vplCount() / settings_.bounces;  // the one rounding rule (many_lights.h)
   std::vector<::dyngi::gpu::GpuLight> lights;
   std::vector<gpu::RsmLayer> layers;
   for (const render::LightItem& item : snapshot.lights) {

@@ -67,6 +67,9 @@ class GiSystem final : public ecs::System {
   VplPaths* paths() { return paths_.get(); }
   TemporalIndirect* temporal() { return temporal_.get(); }
   ManyLights* manyLights() { return manyLights_.get(); }
+  // The VPL count the technique uses: GiSettings::vplCount rounded down to a multiple of the bounces
+  // (each path or RSM bounce level holds the same number).
+  uint32_t effectiveVplCount() const;
 
  private:
   const scene::AssetStore& assets_;

@@ -4,6 +4,7 @@
 // gather with SVO-restart visibility, a geometry-aware merge filter. Writes targets.indirect; the
 // engine's lighting pass adds albedo x indirect to direct light. Stages: rsm, vpl_generate, vpl_bounce,
 // indirect, filter (plus the voxel scene's voxelize and svo_build).
+#include <algorithm>
 #include <memory>
 
 #include "dyngi/engine/render/pipeline.h"
@@ -47,6 +48,11 @@ class ManyLights final : public render::RenderFeature {
   void resize(render::VulkanContext& ctx, uint32_t width, uint32_t height) override;
 
   ManyLightsSettings& settings() { return settings_; }
+  // VPLs per frame as used: the requested count rounded down to a multiple of the bounces.
+  uint32_t vplCount() const {
+    const uint32_t bounces = std::clamp(settings_.bounces, 1u, 3u);  // as prepare() will clamp them
+    return std::max(1u, settings_.vplCount / bounces) * bounces;
+  }
   // The current VPLs (read back; tests and tools).
   std::vector<VplReadback> readbackVpls();
 
