@@ -9,7 +9,6 @@
 #include <fstream>
 #include <glm/gtc/quaternion.hpp>
 #include <memory>
-#include <thread>
 #include <unistd.h>
 
 #include "dyngi/engine/ecs/scheduler.h"
@@ -23,6 +22,7 @@
 #include "dyngi/gi/bvh_sync.h"
 #include "dyngi/gi/path_tracer.h"
 #include "dyngi/gi/gi_system.h"
+#include "dyngi/gi/job_pool.h"
 #include "dyngi/gi/many_lights.h"
 #include "dyngi/gi/voxel_scene.h"
 #include "scenes/builtin_scenes.h"
@@ -135,7 +135,7 @@ int runPathTracer(const Options& o, ecs::World& world, scene::AssetStore& assets
   stats.frames = frames;
   stats.width = o.width;
   stats.height = o.height;
-  stats.device = "cpu (" + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads)";
+  stats.device = "cpu (" + std::to_string(gi::jobThreads()) + " threads)";
   stats.frameMs.push(pstats.ms);
   stats.gpuStageMs.clear();
   stats.cpuStageMs["path_trace"].push(pstats.ms);

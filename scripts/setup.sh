@@ -9,7 +9,7 @@ PACKAGES=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-dev glslang-tools spirv-tools
   libtinygltf-dev libembree-dev libimgui-dev libstb-dev libtinyexr-dev
-  libgtest-dev libbenchmark-dev nlohmann-json3-dev
+  libgtest-dev libbenchmark-dev nlohmann-json3-dev libtbb-dev
   clang libclang-rt-14-dev libfuzzer-14-dev
   xvfb imagemagick
 )

@@ -14,11 +14,11 @@
 #include "dyngi/engine/scene/transform_system.h"
 #include "dyngi/gi/bvh.h"
 #include "dyngi/gi/bvh_sync.h"
+#include "dyngi/gi/job_pool.h"
 #include "dyngi/gi/path_tracer.h"
 #include "dyngi/gi/voxel_scene.h"
 #include "dyngi/engine/render/renderer.h"
 #include "dyngi/engine/scene/scripted_motion.h"
-#include <thread>
 #include "scenes/builtin_scenes.h"
 
 using namespace dyngi;
@@ -328,26 +328,19 @@ void BM_SvoVisibility_CpuTwin(benchmark::State& state) {
   static gi::SvoCpu svo(v.voxels->readbackNodes(), v.voxels->volume().resolution);
   const gi::VoxelVolume& vol = v.voxels->volume();
   std::vector<uint8_t> out(v.segments.size());
-  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   std::atomic<uint64_t> restarts{0};
   for (auto _ : state) {
-    std::vector<std::thread> pool;
-    size_t chunk = (v.segments.size() + threads - 1) / threads;
-    for (unsigned t = 0; t < threads; ++t) {
-      size_t b = t * chunk, e = std::min(v.segments.size(), b + chunk);
-      pool.emplace_back([&, b, e] {
-        uint64_t sum = 0;
-        for (size_t i = b; i < e; ++i) {
-          glm::dvec3 a = (glm::dvec3(v.segments[i].from) - glm::dvec3(vol.origin)) / double(vol.voxelSize);
-          glm::dvec3 c = (glm::dvec3(v.segments[i].to) - glm::dvec3(vol.origin)) / double(vol.voxelSize);
-          uint32_t steps = 0;
-          out[i] = svo.occluded(a, c, 1e-3, &steps) ? 1 : 0;
-          sum += steps;
-        }
-        restarts += sum;
-      });
-    }
-    for (auto& th : pool) th.join();
+    gi::parallelFor(0, v.segments.size(), 4096, [&](size_t b, size_t e) {
+      uint64_t sum = 0;
+      for (size_t i = b; i < e; ++i) {
+        glm::dvec3 a = (glm::dvec3(v.segments[i].from) - glm::dvec3(vol.origin)) / double(vol.voxelSize);
+        glm::dvec3 c = (glm::dvec3(v.segments[i].to) - glm::dvec3(vol.origin)) / double(vol.voxelSize);
+        uint32_t steps = 0;
+        out[i] = svo.occluded(a, c, 1e-3, &steps) ? 1 : 0;
+        sum += steps;
+      }
+      restarts += sum;
+    });
   }
   size_t blocked = 0;
   for (uint8_t b : out) blocked += b;
@@ -361,16 +354,8 @@ BENCHMARK(BM_SvoVisibility_CpuTwin)->UseRealTime()->Unit(benchmark::kMillisecond
 void BM_EmbreeOcclusion(benchmark::State& state) {
   VisibilitySet& v = visibilitySet();
   std::vector<uint8_t> out(v.segments.size());
-  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  for (auto _ : state) {
-    std::vector<std::thread> pool;
-    size_t chunk = (v.segments.size() + threads - 1) / threads;
-    for (unsigned t = 0; t < threads; ++t) {
-      size_t b = t * chunk, e = std::min(v.segments.size(), b + chunk);
-      pool.emplace_back([&, b, e] { v.bvh.occluded(v.segments.data() + b, e - b, out.data() + b); });
-    }
-    for (auto& th : pool) th.join();
-  }
+  for (auto _ : state)
+    gi::parallelFor(0, v.segments.size(), 4096, [&](size_t b, size_t e) { v.bvh.occluded(v.segments.data() + b, e - b, out.data() + b); });
   size_t blocked = 0;
   for (uint8_t b : out) blocked += b;
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(v.segments.size()));

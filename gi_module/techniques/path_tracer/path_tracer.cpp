@@ -4,10 +4,10 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <thread>
 #include <unordered_map>
 
 #include "dyngi/engine/scene/light_units.h"
+#include "dyngi/gi/job_pool.h"
 #include "dyngi/gi/scene_surfaces.h"
 #include "sampling.h"
 
@@ -110,13 +110,13 @@ render::ImageRgba pathTrace(const render::RenderSnapshot& snapshot, const Embree
   glm::mat4 proj = snapshot.camera.projection(float(width) / float(height));
   glm::mat4 invViewProj = glm::inverse(proj * snapshot.camera.view);
   const glm::vec3 eye = snapshot.camera.position;
-  uint32_t threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
   const uint32_t spp = std::max(1u, settings.spp);
 
   for (uint32_t pass = 0; pass < spp; ++pass) {
-    std::atomic<uint32_t> nextRow{0};
-    auto worker = [&] {
-      for (uint32_t y; (y = nextRow.fetch_add(1)) < height;) {
+    // Rows on the job pool; each pixel's random sequence depends on (seed, pass, pixel) only, so the
+    // image does not depend on how rows are split among threads.
+    parallelFor(0, height, 1, [&](size_t rowBegin, size_t rowEnd) {
+      for (uint32_t y = uint32_t(rowBegin); y < rowEnd; ++y) {
         for (uint32_t x = 0; x < width; ++x) {
           size_t idx = size_t(y) * width + x;
           Rng rng(mix64(settings.seed * 0x9E3779B97F4A7C15ULL + pass), idx);
@@ -130,11 +130,7 @@ render::ImageRgba pathTrace(const render::RenderSnapshot& snapshot, const Embree
           accum[idx] += glm::vec4(L, 1.0f);
         }
       }
-    };
-    std::vector<std::thread> pool;
-    for (uint32_t t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();
-    for (auto& th : pool) th.join();
+    }, settings.threads);
     if (progress) progress(pass + 1, spp);
   }
   for (auto& p : accum) p = glm::vec4(glm::vec3(p) / float(spp), 1.0f);

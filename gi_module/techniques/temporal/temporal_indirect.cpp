@@ -1,9 +1,10 @@
 #include "dyngi/gi/temporal_indirect.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
-#include <thread>
 
+#include "dyngi/gi/job_pool.h"
 #include "shaders/shared/gi_gpu_types.h"
 #include "spirv/temporal_reproject.comp.spv.h"
 #include "techniques/many_lights/indirect_passes.h"
@@ -104,38 +105,32 @@ void TemporalIndirect::computeBvhVisibility(render::FrameContext& frame, uint32_
   std::vector<uint32_t> bits(words, 0);
   const float scale = frame.snapshot.sceneBounds.valid() ? glm::length(frame.snapshot.sceneBounds.extent()) : 1.0f;
   const float lift = 2e-3f * scale;
-  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> pool;
-  std::vector<std::vector<uint32_t>> partial(threads, std::vector<uint32_t>(words, 0));
-  for (unsigned t = 0; t < threads; ++t)
-    pool.emplace_back([&, t] {
-      std::vector<Segment> segs;
-      std::vector<uint64_t> bitIndex;
-      std::vector<uint8_t> occ;
-      for (uint32_t y = t; y < H; y += threads) {
-        segs.clear();
-        bitIndex.clear();
-        for (uint32_t x = 0; x < W; ++x) {
-          size_t p = size_t(y) * W + x;
-          if (pos[p].w == 0.0f) continue;
-          glm::vec3 n = glm::normalize(glm::vec3(nrm[p]));
-          glm::vec3 from = glm::vec3(pos[p]) + n * lift;
-          uint32_t s = (x % K) + K * (y % K);
-          for (uint32_t m = 0, i = s; i < perSet_; i += K2, ++m) {
-            if (!setVpls_[i].valid) continue;
-            segs.push_back({from, setVpls_[i].position + setVpls_[i].normal * lift});
-            bitIndex.push_back(p * perPixel + m);
-          }
+  // Rows on the job pool; a row's bits may share a word with the next row's, so bits are set atomically.
+  parallelFor(0, H, 4, [&](size_t rowBegin, size_t rowEnd) {
+    std::vector<Segment> segs;
+    std::vector<uint64_t> bitIndex;
+    std::vector<uint8_t> occ;
+    for (uint32_t y = uint32_t(rowBegin); y < rowEnd; ++y) {
+      segs.clear();
+      bitIndex.clear();
+      for (uint32_t x = 0; x < W; ++x) {
+        size_t p = size_t(y) * W + x;
+        if (pos[p].w == 0.0f) continue;
+        glm::vec3 n = glm::normalize(glm::vec3(nrm[p]));
+        glm::vec3 from = glm::vec3(pos[p]) + n * lift;
+        uint32_t s = (x % K) + K * (y % K);
+        for (uint32_t m = 0, i = s; i < perSet_; i += K2, ++m) {
+          if (!setVpls_[i].valid) continue;
+          segs.push_back({from, setVpls_[i].position + setVpls_[i].normal * lift});
+          bitIndex.push_back(p * perPixel + m);
         }
-        occ.resize(segs.size());
-        bvh_->occluded(segs.data(), segs.size(), occ.data(), 1e-5f * scale);
-        for (size_t k = 0; k < segs.size(); ++k)
-          if (!occ[k]) partial[t][bitIndex[k] >> 5] |= 1u << (bitIndex[k] & 31u);
       }
-    });
-  for (auto& th : pool) th.join();
-  for (auto& part : partial)
-    for (size_t w = 0; w < words; ++w) bits[w] |= part[w];
+      occ.resize(segs.size());
+      bvh_->occluded(segs.data(), segs.size(), occ.data(), 1e-5f * scale);
+      for (size_t k = 0; k < segs.size(); ++k)
+        if (!occ[k]) std::atomic_ref<uint32_t>(bits[bitIndex[k] >> 5]).fetch_or(1u << (bitIndex[k] & 31u), std::memory_order_relaxed);
+    }
+  });
   VkDeviceSize bytes = std::max<VkDeviceSize>(words * 4, 16);
   if (bits_.size() < bytes) bits_ = Buffer(ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "visibility bits");
   bits_.upload(bits.data(), words * 4);
