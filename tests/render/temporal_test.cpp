@@ -45,6 +45,27 @@ struct GiRun {
     }
   }
   render::ImageRgba hdr() { return renderer->readback(render::TargetId::Hdr); }
+  // The last frame with its G-buffer and snapshot, for per-region comparisons (cornellRegions).
+  Frame readFrame() {
+    Frame f;
+    f.width = renderer->width();
+    f.height = renderer->height();
+    f.hdr = hdr();
+    f.position = renderer->readback(render::TargetId::Position);
+    f.normal = renderer->readback(render::TargetId::Normal);
+    f.snapshot = render::extractSnapshot(world, assets, frame);
+    return f;
+  }
+  // The reference path tracer on the world as it is now, at the G-buffer's sample positions.
+  render::ImageRgba pathTraced(uint32_t spp, uint32_t bounces) {
+    gi::EmbreeScene bvh;
+    bvh.sync(world, assets, 0);
+    gi::PathTracerSettings pts;
+    pts.spp = spp;
+    pts.bounces = bounces;
+    pts.pixelJitter = false;
+    return gi::pathTrace(render::extractSnapshot(world, assets, frame), bvh, assets, renderer->width(), renderer->height(), pts);
+  }
   render::ImageRgba indirect() { return renderer->readback(render::TargetId::Indirect); }
   ecs::Entity named(const std::string& n) {
     ecs::Entity found{};
@@ -284,20 +305,8 @@ TEST_F(RenderTest, TemporalPathsMatchPathTracerPerRegionForEveryLightType) {
       t.rotation = glm::rotation(glm::vec3(0, 0, -1), c.direction);  // lights shine along local -Z
     }
     run.step(6);  // 4 sets, one frame each, after the pool is filled
-    Frame f;
-    f.width = f.height = kSize;
-    f.hdr = run.hdr();
-    f.position = run.renderer->readback(render::TargetId::Position);
-    f.normal = run.renderer->readback(render::TargetId::Normal);
-    f.snapshot = render::extractSnapshot(run.world, run.assets, run.frame);
-
-    gi::EmbreeScene bvh;
-    bvh.sync(run.world, run.assets, 0);
-    gi::PathTracerSettings pts;
-    pts.spp = 512;
-    pts.bounces = 1;
-    pts.pixelJitter = false;  // the G-buffer's sample positions
-    render::ImageRgba ref = gi::pathTrace(f.snapshot, bvh, run.assets, kSize, kSize, pts);
+    const Frame f = run.readFrame();
+    const render::ImageRgba ref = run.pathTraced(512, 1);
 
     Regions regions = cornellRegions(f, run.assets, kSize);
     ASSERT_GE(regions.masks.size(), 6u) << c.name;
@@ -376,24 +385,10 @@ TEST_F(RenderTest, MaterialEditRecoloursTheVplsOnThatSurfaceAndTheLightFollows) 
   // tracer says it does: every region whose colour the reference sees move by over 5% moves the same
   // way, and the wall itself (its own albedo under direct and bounced light) matches the reference.
   run.step(4);
-  Frame f;
-  f.width = f.height = kSize;
-  f.hdr = run.hdr();
-  f.position = run.renderer->readback(render::TargetId::Position);
-  f.normal = run.renderer->readback(render::TargetId::Normal);
-  f.snapshot = render::extractSnapshot(run.world, run.assets, run.frame);
-  auto reference = [&] {
-    gi::EmbreeScene bvh;
-    bvh.sync(run.world, run.assets, 0);
-    gi::PathTracerSettings pts;
-    pts.spp = 256;
-    pts.bounces = 2;
-    pts.pixelJitter = false;
-    return gi::pathTrace(render::extractSnapshot(run.world, run.assets, run.frame), bvh, run.assets, kSize, kSize, pts);
-  };
-  const render::ImageRgba refAfter = reference();
-  run.world.write<scene::Material>(wall).baseColor = glm::vec4(0.63f, 0.065f, 0.05f, 1.0f);  // the reference before
-  const render::ImageRgba refBefore = reference();
+  const Frame f = run.readFrame();
+  const render::ImageRgba refAfter = run.pathTraced(256, 2);
+  run.world.write<scene::Material>(wall).baseColor = glm::vec4(red, 1.0f);  // the reference before
+  const render::ImageRgba refBefore = run.pathTraced(256, 2);
   Regions regions = cornellRegions(f, run.assets, kSize);
   auto blueOverRed = [&](const render::ImageRgba& img, const std::vector<uint8_t>& mask) {
     glm::dvec3 c = render::meanOver(img, &mask);
