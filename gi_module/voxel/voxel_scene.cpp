@@ -35,13 +35,14 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
     throw std::invalid_argument("voxel resolution must be a power of two in 8..1024, got " + std::to_string(r));
 
   const Binding markB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
-  mark_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_mark_comp), markB, 8, "svo_mark");
+  mark_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_mark_comp), markB, sizeof(gpu::SvoMarkPush), "svo_mark");
   const Binding levelB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS}};
-  level_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_level_comp), levelB, 4, "svo_level");
+  level_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_level_comp), levelB, sizeof(gpu::SvoLevelPush), "svo_level");
   const Binding expandB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS}};
-  expand_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_expand_comp), expandB, 8, "svo_expand");
+  expand_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_expand_comp), expandB, sizeof(gpu::SvoExpandPush), "svo_expand");
   const Binding attrB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}};
-  leafAttributes_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, 12, "svo_leaf_attributes");
+  leafAttributes_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, sizeof(gpu::SvoLeafAttributesPush),
+                                     "svo_leaf_attributes");
   // One bit per cell of every level 0..depth (DYNGI_SVO_LEVEL_BASE): level depth + 1 would start here.
   uint32_t depth = 0;
   while ((1u << depth) < settings_.resolution) ++depth;
@@ -51,12 +52,12 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
   staticOccupancy_ = Buffer(ctx, occupancy_.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                             MemoryUsage::GpuOnly, "svo static occupancy pyramid");
   const Binding marchB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
-  march_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_march_comp), marchB, 32, "svo_march");
+  march_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_march_comp), marchB, sizeof(gpu::SvoMarchPush), "svo_march");
   const uint32_t noMarch[] = {0u};
-  marchOff_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_march_comp), marchB, 32, "svo_march_off", noMarch);
+  marchOff_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_march_comp), marchB, sizeof(gpu::SvoMarchPush), "svo_march_off", noMarch);
   const Binding debugB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS},
                             {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
-  debug_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_voxel_debug_comp), debugB, 28, "voxel_debug");
+  debug_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_voxel_debug_comp), debugB, sizeof(gpu::VoxelDebugPush), "voxel_debug");
 
   // The first build gets the whole pool; afterwards it follows what the SVO uses (resizeNodePool).
   nodeGroupCapacity_ = std::max(settings.maxNodeGroups, 2u);
@@ -317,8 +318,8 @@ void VoxelScene::recordMark(VkCommandBuffer cmd, const render::Buffer& target, u
   if (chunkCount == 0) return;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mark_.handle());
   DescriptorWrites().storageBuffer(0, fragments_.handle()).storageBuffer(1, target.handle()).storageBuffer(2, markChunks_.handle()).push(ctx_, cmd, mark_);
-  const uint32_t mp[2] = {firstChunk, volume_.depth()};
-  vkCmdPushConstants(cmd, mark_.layout(), kCS, 0, sizeof(mp), mp);
+  const gpu::SvoMarkPush mp{firstChunk, volume_.depth()};
+  vkCmdPushConstants(cmd, mark_.layout(), kCS, 0, sizeof(mp), &mp);
   vkCmdDispatch(cmd, chunkCount, 1, 1);
 }
 
@@ -427,7 +428,8 @@ bool VoxelScene::record(render::FrameContext& frame) {
           .storageBuffer(3, nodeCells_.handle())
           .storageBuffer(4, occupancy_.handle())
           .push(ctx_, cmd, level_);
-      vkCmdPushConstants(cmd, level_.layout(), kCS, 0, 4, &l);
+      const gpu::SvoLevelPush lp{l};
+      vkCmdPushConstants(cmd, level_.layout(), kCS, 0, sizeof(lp), &lp);
       vkCmdDispatch(cmd, 1, 1, 1);
       render::computeWriteBarrier(cmd);
       if (l == depth) break;  // leaves: their range is known, they are never subdivided
@@ -439,8 +441,8 @@ bool VoxelScene::record(render::FrameContext& frame) {
           .storageBuffer(3, levels_.handle())
           .storageBuffer(4, svoCounters_.handle())
           .push(ctx_, cmd, expand_);
-      const uint32_t ep[2] = {l, depth};
-      vkCmdPushConstants(cmd, expand_.layout(), kCS, 0, sizeof(ep), ep);
+      const gpu::SvoExpandPush ep{l, depth};
+      vkCmdPushConstants(cmd, expand_.layout(), kCS, 0, sizeof(ep), &ep);
       vkCmdDispatchIndirect(cmd, levels_.handle(), VkDeviceSize(l) * sizeof(gpu::SvoLevel) + offsetof(gpu::SvoLevel, dispatch));
       render::computeWriteBarrier(cmd);
     }
@@ -455,8 +457,8 @@ bool VoxelScene::record(render::FrameContext& frame) {
           .storageBuffer(2, levels_.handle())
           .storageBuffer(3, attributes_.handle())
           .push(ctx_, cmd, leafAttributes_);
-      const uint32_t ap[3] = {depth, uint32_t(stats_.fragmentCapacity), slots};
-      vkCmdPushConstants(cmd, leafAttributes_.layout(), kCS, 0, sizeof(ap), ap);
+      const gpu::SvoLeafAttributesPush ap{depth, uint32_t(stats_.fragmentCapacity), slots};
+      vkCmdPushConstants(cmd, leafAttributes_.layout(), kCS, 0, sizeof(ap), &ap);
       vkCmdDispatch(cmd, std::max(dispatchGroups(slots, perGroup), 1u), 1, 1);
       render::computeWriteBarrier(cmd);
     }
@@ -478,13 +480,8 @@ void VoxelScene::recordAfterLighting(render::FrameContext& frame) {
       .storageBuffer(3, attributes_.handle())
       .storageImage(4, t.hdr.view())
       .push(ctx_, frame.cmd, debug_);
-  struct {
-    glm::vec4 worldToVoxel;
-    uint32_t depth;
-    float res;
-    uint32_t mode;
-  } pc{glm::vec4(volume_.origin, 1.0f / volume_.voxelSize), volume_.depth(), float(volume_.resolution),
-       settings_.debugView == VoxelDebugView::SvoSteps ? 1u : 0u};
+  const gpu::VoxelDebugPush pc{glm::vec4(volume_.origin, 1.0f / volume_.voxelSize), volume_.depth(), float(volume_.resolution),
+                               settings_.debugView == VoxelDebugView::SvoSteps ? 1u : 0u};
   vkCmdPushConstants(frame.cmd, debug_.layout(), kCS, 0, sizeof(pc), &pc);
   vkCmdDispatch(frame.cmd, (t.width + 7) / 8, (t.height + 7) / 8, 1);
 }
@@ -613,11 +610,8 @@ double VoxelScene::dispatchMarch(const render::Pipeline& pipeline, const std::ve
     uint32_t s = timer.begin(cmd, "svo_march");
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
     DescriptorWrites().storageBuffer(0, nodes_.handle()).storageBuffer(1, segBuf.handle()).storageBuffer(2, results.handle()).push(ctx_, cmd, pipeline);
-    struct {
-      glm::vec4 worldToVoxel;
-      uint32_t count, depth;
-      float res, eps;
-    } pc{glm::vec4(volume_.origin, 1.0f / volume_.voxelSize), uint32_t(segments.size()), volume_.depth(), float(volume_.resolution), epsVoxels};
+    const gpu::SvoMarchPush pc{glm::vec4(volume_.origin, 1.0f / volume_.voxelSize), uint32_t(segments.size()), volume_.depth(),
+                               float(volume_.resolution), epsVoxels};
     vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(pc), &pc);
     vkCmdDispatch(cmd, dispatchGroups(uint32_t(segments.size()), 64), 1, 1);
     timer.end(cmd, s);

@@ -152,6 +152,56 @@ struct TemporalQueue {
                            // w pixels queued
 };
 
+
+// Push constants of the GI module's compute passes. Each block's members are written once, here: C++
+// gets a struct of that layout (sizes checked below), each shader a push_constant block whose members it
+// reads as plain names, e.g. `layout(push_constant) uniform Push { DYNGI_SVO_MARK_PUSH };`. Members are
+// scalars after an optional leading vec4, so std430 and C++ place them alike.
+#define DYNGI_SVO_MARK_PUSH uint firstChunk; uint depth;
+#define DYNGI_SVO_LEVEL_PUSH uint level;
+#define DYNGI_SVO_EXPAND_PUSH uint level; uint depth;
+#define DYNGI_SVO_LEAF_ATTRIBUTES_PUSH uint depth; uint leafCapacity; uint slots;
+#define DYNGI_SVO_MARCH_PUSH                                                         \
+  vec4 worldToVoxel; /* xyz origin, w 1 / voxel size */                            \
+  uint count;                                                                      \
+  uint depth;                                                                      \
+  float res;                                                                       \
+  float eps;         /* voxel units */
+#define DYNGI_VOXEL_DEBUG_PUSH                                                       \
+  vec4 worldToVoxel; /* xyz origin, w 1 / voxel size */                            \
+  uint depth;                                                                      \
+  float res;                                                                       \
+  uint mode;         /* 0 voxels, 1 svo-steps */
+#define DYNGI_VPL_CDF_ROWS_PUSH uint res; uint layers;
+#define DYNGI_VPL_CDF_TOTAL_PUSH uint rows;
+#define DYNGI_VPL_SAMPLE_PUSH uint res; uint layers; uint count; uint seed;
+#define DYNGI_VPL_BOUNCE_PUSH                                                        \
+  vec4 worldToVoxel; /* xyz origin, w 1 / voxel size */                            \
+  uint parentFirst;  /* first VPL of bounce b-1 */                                 \
+  uint count;        /* VPLs per bounce */                                         \
+  uint bounce;                                                                     \
+  uint depth;                                                                      \
+  float res;                                                                       \
+  float lift;        /* voxel units the ray starts off its surface */
+#define DYNGI_MANY_LIGHTS_DEBUG_PUSH uint mode; uint K; uint vplCount;
+#define DYNGI_INDIRECT_FILTER_PUSH float planeTolerance;
+
+#ifdef __cplusplus
+using uint = uint32_t;
+struct SvoMarkPush { DYNGI_SVO_MARK_PUSH };
+struct SvoLevelPush { DYNGI_SVO_LEVEL_PUSH };
+struct SvoExpandPush { DYNGI_SVO_EXPAND_PUSH };
+struct SvoLeafAttributesPush { DYNGI_SVO_LEAF_ATTRIBUTES_PUSH };
+struct SvoMarchPush { DYNGI_SVO_MARCH_PUSH };
+struct VoxelDebugPush { DYNGI_VOXEL_DEBUG_PUSH };
+struct VplCdfRowsPush { DYNGI_VPL_CDF_ROWS_PUSH };
+struct VplCdfTotalPush { DYNGI_VPL_CDF_TOTAL_PUSH };
+struct VplSamplePush { DYNGI_VPL_SAMPLE_PUSH };
+struct VplBouncePush { DYNGI_VPL_BOUNCE_PUSH };
+struct ManyLightsDebugPush { DYNGI_MANY_LIGHTS_DEBUG_PUSH };
+struct IndirectFilterPush { DYNGI_INDIRECT_FILTER_PUSH };
+#endif
+
 #ifdef __cplusplus
 static_assert(sizeof(VoxelizePush) == 112);
 static_assert(sizeof(GpuVpl) == 48);
@@ -162,6 +212,10 @@ static_assert(sizeof(AccumulatePush) == 48);
 static_assert(sizeof(TemporalQueue) == 16);
 static_assert(sizeof(SvoLevel) == 32);
 static_assert(sizeof(SvoCounters) == 16);
+static_assert(sizeof(SvoMarkPush) == 8 && sizeof(SvoLevelPush) == 4 && sizeof(SvoExpandPush) == 8);
+static_assert(sizeof(SvoLeafAttributesPush) == 12 && sizeof(SvoMarchPush) == 32 && sizeof(VoxelDebugPush) == 28);
+static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && sizeof(VplSamplePush) == 16);
+static_assert(sizeof(VplBouncePush) == 40 && sizeof(ManyLightsDebugPush) == 12 && sizeof(IndirectFilterPush) == 4);
 }  // namespace dyngi::gi::gpu
 #endif
 

@@ -84,7 +84,7 @@ void IndirectFilterPass::record(render::FrameContext& frame, render::Image& inpu
                          {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
                          {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
     const uint32_t spec[] = {K};
-    pipeline = render::Pipeline::compute(ctx_, DYNGI_SHADER(spv_filter_comp), b, 4, "indirect_filter", spec);
+    pipeline = render::Pipeline::compute(ctx_, DYNGI_SHADER(spv_filter_comp), b, sizeof(gpu::IndirectFilterPush), "indirect_filter", spec);
   }
   render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "filter");
   VkCommandBuffer cmd = frame.cmd;
@@ -97,7 +97,8 @@ void IndirectFilterPass::record(render::FrameContext& frame, render::Image& inpu
       .storageImage(1, input.view())
       .storageImage(2, t.indirect.view())
       .push(ctx_, cmd, pipeline);
-  vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(float), &planeTolerance);
+  const gpu::IndirectFilterPush pc{planeTolerance};
+  vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(pc), &pc);
   vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
 }
 

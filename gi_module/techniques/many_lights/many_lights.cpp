@@ -22,18 +22,18 @@ ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const Man
     : ctx_(ctx), voxels_(voxels), settings_(settings) {
 
   const Binding rowsB[] = {{0, kSampled, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
-  cdfRows_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_cdf_rows_comp), rowsB, 8, "vpl_cdf_rows");
+  cdfRows_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_cdf_rows_comp), rowsB, sizeof(gpu::VplCdfRowsPush), "vpl_cdf_rows");
   const Binding totalB[] = {{0, kSSBO, kCS}};
-  cdfTotal_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_cdf_total_comp), totalB, 4, "vpl_cdf_total");
+  cdfTotal_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_cdf_total_comp), totalB, sizeof(gpu::VplCdfTotalPush), "vpl_cdf_total");
   const Binding sampleB[] = {{0, kSampled, kCS}, {1, kSampled, kCS}, {2, kSampled, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS}, {5, kSSBO, kCS}};
-  sample_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_sample_comp), sampleB, 16, "vpl_sample");
+  sample_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_sample_comp), sampleB, sizeof(gpu::VplSamplePush), "vpl_sample");
   const Binding bounceB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}};
-  bounce_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_bounce_comp), bounceB, 40, "vpl_bounce");
+  bounce_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_bounce_comp), bounceB, sizeof(gpu::VplBouncePush), "vpl_bounce");
   gatherPass_ = std::make_unique<IndirectGatherPass>(ctx);
   filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
   const Binding debugB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSampled, kCS}, {2, kStorageImage, kCS},
                             {3, kStorageImage, kCS}, {4, kSSBO, kCS}, {5, kStorageImage, kCS}};
-  debug_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_many_lights_debug_comp), debugB, 12, "many_lights_debug");
+  debug_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_many_lights_debug_comp), debugB, sizeof(gpu::ManyLightsDebugPush), "many_lights_debug");
 
   lights_ = Buffer(ctx, sizeof(::dyngi::gpu::GpuLight) * DYNGI_MAX_LIGHTS, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "rsm lights");
   layers_ = Buffer(ctx, sizeof(gpu::RsmLayer) * DYNGI_MAX_RSM_LAYERS, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "rsm layers");
@@ -202,13 +202,14 @@ bool ManyLights::record(render::FrameContext& frame) {
     uint32_t rows = res * rsmLayers_;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cdfRows_.handle());
     DescriptorWrites().sampledImage(0, rsmFlux_.view(), frame.nearestSampler, ro).storageBuffer(1, rowPrefix_.handle()).storageBuffer(2, rowCdf_.handle()).push(ctx_, cmd, cdfRows_);
-    uint32_t rp[2] = {res, rsmLayers_};
-    vkCmdPushConstants(cmd, cdfRows_.layout(), kCS, 0, sizeof(rp), rp);
+    const gpu::VplCdfRowsPush rp{res, rsmLayers_};
+    vkCmdPushConstants(cmd, cdfRows_.layout(), kCS, 0, sizeof(rp), &rp);
     vkCmdDispatch(cmd, dispatchGroups(rows, 64), 1, 1);
     render::computeWriteBarrier(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cdfTotal_.handle());
     DescriptorWrites().storageBuffer(0, rowCdf_.handle()).push(ctx_, cmd, cdfTotal_);
-    vkCmdPushConstants(cmd, cdfTotal_.layout(), kCS, 0, 4, &rows);
+    const gpu::VplCdfTotalPush tp{rows};
+    vkCmdPushConstants(cmd, cdfTotal_.layout(), kCS, 0, sizeof(tp), &tp);
     vkCmdDispatch(cmd, 1, 1, 1);
     render::computeWriteBarrier(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, sample_.handle());
@@ -220,8 +221,8 @@ bool ManyLights::record(render::FrameContext& frame) {
         .storageBuffer(4, rowCdf_.handle())
         .storageBuffer(5, vpls_.handle())
         .push(ctx_, cmd, sample_);
-    uint32_t sp[4] = {res, rsmLayers_, perBounce_, settings_.seed * 7919u};
-    vkCmdPushConstants(cmd, sample_.layout(), kCS, 0, sizeof(sp), sp);
+    const gpu::VplSamplePush sp{res, rsmLayers_, perBounce_, settings_.seed * 7919u};
+    vkCmdPushConstants(cmd, sample_.layout(), kCS, 0, sizeof(sp), &sp);
     vkCmdDispatch(cmd, dispatchGroups(perBounce_, 64), 1, 1);
     render::computeWriteBarrier(cmd);
   }
@@ -236,11 +237,8 @@ bool ManyLights::record(render::FrameContext& frame) {
           .storageBuffer(2, voxels_.levels().handle())
           .storageBuffer(3, voxels_.leafAttributes().handle())
           .push(ctx_, cmd, bounce_);
-      struct {
-        glm::vec4 worldToVoxel;
-        uint32_t parentFirst, count, bounce, depth;
-        float res, lift;
-      } pc{glm::vec4(vol.origin, 1.0f / vol.voxelSize), (b - 1) * perBounce_, perBounce_, b, vol.depth(), float(vol.resolution), settings_.liftVoxels};
+      const gpu::VplBouncePush pc{glm::vec4(vol.origin, 1.0f / vol.voxelSize), (b - 1) * perBounce_, perBounce_, b, vol.depth(),
+                                  float(vol.resolution), settings_.liftVoxels};
       vkCmdPushConstants(cmd, bounce_.layout(), kCS, 0, sizeof(pc), &pc);
       vkCmdDispatch(cmd, dispatchGroups(perBounce_, 64), 1, 1);
       render::computeWriteBarrier(cmd);
@@ -279,8 +277,8 @@ void ManyLights::recordAfterLighting(render::FrameContext& frame) {
       .push(ctx_, frame.cmd, debug_);
   uint32_t mode = settings_.view == ManyLightsView::Indirect ? 0u : settings_.view == ManyLightsView::Vpls ? 1u : 2u;
   uint32_t vplTotal = perBounce_ * settings_.bounces;
-  uint32_t pc[3] = {mode, settings_.interleave, vplTotal};
-  vkCmdPushConstants(frame.cmd, debug_.layout(), kCS, 0, sizeof(pc), pc);
+  const gpu::ManyLightsDebugPush pc{mode, settings_.interleave, vplTotal};
+  vkCmdPushConstants(frame.cmd, debug_.layout(), kCS, 0, sizeof(pc), &pc);
   uint32_t n = mode == 1 ? vplTotal : t.width * t.height;
   vkCmdDispatch(frame.cmd, dispatchGroups(n, 64), 1, 1);
 }

@@ -14,7 +14,7 @@ layout(set = 0, binding = 1) buffer NodeCells { uint nodeCells[]; };
 layout(set = 0, binding = 2) readonly buffer Occupancy { uint occupancy[]; };
 layout(set = 0, binding = 3) readonly buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = 4) buffer Counters { SvoCounters counters; };
-layout(push_constant) uniform Push { uint level; uint depth; };
+layout(push_constant) uniform Push { DYNGI_SVO_EXPAND_PUSH };
 
 // The occupancy of the 8 children of the cell with Morton code m at level l (bit c: child c).
 uint childOccupancy(uint l, uint m) {

@@ -9,7 +9,7 @@ layout(set = 0, binding = 0) readonly buffer Fragments { uvec4 fragments[]; };
 layout(set = 0, binding = 1) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = 2) readonly buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = 3) buffer Attributes { int attributes[]; };  // 8 ints per leaf
-layout(push_constant) uniform Push { uint depth; uint leafCapacity; uint slots; };
+layout(push_constant) uniform Push { DYNGI_SVO_LEAF_ATTRIBUTES_PUSH };
 
 vec3 unpackEmission(uint e) {
   vec4 v = unpackUnorm4x8(e);

@@ -10,7 +10,7 @@ layout(set = 0, binding = 1) buffer Counters { SvoCounters counters; };
 layout(set = 0, binding = 2) buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = 3) buffer NodeCells { uint nodeCells[]; };
 layout(set = 0, binding = 4) readonly buffer Occupancy { uint occupancy[]; };
-layout(push_constant) uniform Push { uint level; };
+layout(push_constant) uniform Push { DYNGI_SVO_LEVEL_PUSH };
 void main() {
   uint used = min(counters.groups.x, counters.groups.y);
   if (level == 0u) {

@@ -9,13 +9,7 @@ layout(set = 0, binding = 0) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = 1) readonly buffer Segments { vec4 segments[]; };  // pairs: from, to (world)
 layout(set = 0, binding = 2) buffer Results { uint results[]; };             // 1 = occluded
 #include "svo_traverse.glsl"
-layout(push_constant) uniform Push {
-  vec4 worldToVoxel;  // xyz origin, w 1 / voxel size
-  uint count;
-  uint depth;
-  float res;
-  float eps;          // voxel units
-};
+layout(push_constant) uniform Push { DYNGI_SVO_MARCH_PUSH };
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= count) return;

@@ -12,12 +12,7 @@ layout(set = 0, binding = 2) readonly buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = 3) readonly buffer Attributes { int attributes[]; };
 layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D outHdr;
 #include "svo_traverse.glsl"
-layout(push_constant) uniform Push {
-  vec4 worldToVoxel;  // xyz origin, w 1 / voxel size
-  uint depth;
-  float res;
-  uint mode;          // 0 voxels, 1 svo-steps
-};
+layout(push_constant) uniform Push { DYNGI_VOXEL_DEBUG_PUSH };
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return;

@@ -7,12 +7,13 @@
 // tap is one fetch of the packed input (filter_input.glsl): depth, normal and light together.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
+#include "shared/gi_gpu_types.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const uint K = 4u;
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = 1, rgba32ui) uniform readonly uimage2D filterInput;
 layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D outIndirect;
-layout(push_constant) uniform Push { float planeTolerance; };
+layout(push_constant) uniform Push { DYNGI_INDIRECT_FILTER_PUSH };
 #include "filter_input.glsl"
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);

@@ -13,7 +13,7 @@ layout(set = 0, binding = 2, rgba32f) uniform readonly image2D indirect;
 layout(set = 0, binding = 3, rgba32ui) uniform readonly uimage2D raw;  // filter_input.glsl's packing
 layout(set = 0, binding = 4) readonly buffer Vpls { GpuVpl vpls[]; };
 layout(set = 0, binding = 5, rgba32f) uniform image2D hdr;
-layout(push_constant) uniform Push { uint mode; uint K; uint vplCount; };
+layout(push_constant) uniform Push { DYNGI_MANY_LIGHTS_DEBUG_PUSH };
 #include "filter_input.glsl"
 void main() {
   uint i = gl_GlobalInvocationID.x;

@@ -9,15 +9,7 @@ layout(set = 0, binding = 1) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = 2) readonly buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = 3) readonly buffer Attributes { int attributes[]; };
 #include "svo_traverse.glsl"
-layout(push_constant) uniform Push {
-  vec4 worldToVoxel;  // xyz origin, w 1 / voxel size
-  uint parentFirst;   // first VPL of bounce b-1
-  uint count;         // VPLs per bounce
-  uint bounce;
-  uint depth;
-  float res;
-  float lift;         // voxel units the ray starts off its surface
-};
+layout(push_constant) uniform Push { DYNGI_VPL_BOUNCE_PUSH };
 
 float halton(uint i, uint base) {
   float f = 1.0, r = 0.0;

@@ -1,10 +1,12 @@
 #version 460
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gi_gpu_types.h"
 // VPL sampling, step 1: per RSM row, the running sum of texel luminance (flux) along the row.
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform sampler2DArray rsmFlux;
 layout(set = 0, binding = 1) writeonly buffer RowPrefix { float rowPrefix[]; };  // per texel, inclusive
 layout(set = 0, binding = 2) writeonly buffer RowSums { float rowSums[]; };      // per row
-layout(push_constant) uniform Push { uint res; uint layers; };
+layout(push_constant) uniform Push { DYNGI_VPL_CDF_ROWS_PUSH };
 void main() {
   uint row = gl_GlobalInvocationID.x;
   if (row >= res * layers) return;

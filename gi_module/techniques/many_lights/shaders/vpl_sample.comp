@@ -10,7 +10,7 @@ layout(set = 0, binding = 2) uniform sampler2DArray rsmFlux;
 layout(set = 0, binding = 3) readonly buffer RowPrefix { float rowPrefix[]; };
 layout(set = 0, binding = 4) readonly buffer RowCdf { float rowCdf[]; };
 layout(set = 0, binding = 5) writeonly buffer Vpls { GpuVpl vpls[]; };
-layout(push_constant) uniform Push { uint res; uint layers; uint count; uint seed; };
+layout(push_constant) uniform Push { DYNGI_VPL_SAMPLE_PUSH };
 
 float hash(uint x) {
   x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
