@@ -13,12 +13,6 @@ std::unordered_set<ecs::Entity> ChangeSet::geometryChanged() const {
   return out;
 }
 
-std::unordered_set<ecs::Entity> ChangeSet::surfacesChanged() const {
-  std::unordered_set<ecs::Entity> out = geometryChanged();
-  out.insert(materials.begin(), materials.end());
-  return out;
-}
-
 ChangeSet ChangeTracker::compute(const ecs::World& world, const scene::AssetStore& assets, ecs::Tick since) {
   ChangeSet c;
   c.since = since;
@@ -30,8 +24,6 @@ ChangeSet ChangeTracker::compute(const ecs::World& world, const scene::AssetStor
     if (world.has<scene::MeshInstance>(e)) c.materials.push_back(e);
   });
   c.removed = world.removedSince<scene::MeshInstance>(since);
-  world.forEachChanged<scene::Light>(since, [&](ecs::Entity) { c.lights = true; });
-  c.lights = c.lights || !world.removedSince<scene::Light>(since).empty();
   world.each<scene::SkinnedMesh, scene::MeshInstance>([&](ecs::Entity e, const scene::SkinnedMesh& sm, const scene::MeshInstance&) {
     if (sm.deformed >= assets.meshCount()) return;
     const uint32_t v = assets.mesh(sm.deformed).version;

@@ -17,7 +17,7 @@
 #include "dyngi/gi/bvh_sync.h"
 #include "scenes/builtin_scenes.h"
 #include "support/scene_triangles.h"
-#include "support/skinned_bar.h"
+#include "gi/skinned_bar_room.h"
 
 using namespace dyngi;
 using namespace dyngi::scene;
@@ -211,17 +211,15 @@ TEST(EmbreeScene, PacketOcclusionEqualsSingleRays) {
 TEST(EmbreeScene, SkinnedTwoBoneBarRefitsAndMatchesBruteForceAsItBends) {
   // A skinned mesh made in code (no ../shared needed): as it bends, each frame refits its BLAS (no
   // rebuild) and the BVH answers every ray as a brute-force test over the deformed triangles does.
-  ecs::World w;
-  AssetStore assets;
-  test::TempDir dir;
-  sample::buildBuiltinScene("cornell", w, assets);
-  test::SkinnedBar bar = test::addSkinnedBar(w, assets, dir, {0.4f, 0.0f, 0.0f});
-  ASSERT_EQ(bar.error, "");
-  ecs::Scheduler s;
-  test::addAnimationAndSkinning(s, assets);
+  test::SkinnedBarRoom room({0.4f, 0.0f, 0.0f});
+  ASSERT_EQ(room.bar.error, "");
+  ecs::World& w = room.world;
+  AssetStore& assets = room.assets;
+  const test::SkinnedBar& bar = room.bar;
+  ecs::Scheduler& s = room.scheduler;
   gi::EmbreeScene bvh;
   s.add(ecs::Phase::PostUpdate, std::make_unique<gi::BvhSyncSystem>(bvh, assets));
-  const MeshId deformed = w.get<SkinnedMesh>(bar.mesh).deformed;
+  const MeshId deformed = room.deformed;
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> U(0.0f, 1.0f);
   w.write<Animator>(bar.animator).loop = false;  // hold the last pose at t = 1 s

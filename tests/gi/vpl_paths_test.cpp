@@ -8,7 +8,7 @@
 #include "dyngi/gi/vpl_paths.h"
 #include "scenes/builtin_scenes.h"
 #include "support/scene_triangles.h"
-#include "support/skinned_bar.h"
+#include "gi/skinned_bar_room.h"
 #include "dyngi/engine/scene/animation.h"
 
 using namespace dyngi;
@@ -165,16 +165,14 @@ TEST(VplPaths, DeformingSkinnedMeshInvalidatesExactlyWhatItBlocksAndWhatLiesOnIt
   // The two-bone bar stands in the spot's cone and folds over as its animation plays. The VPLs to
   // invalidate are those on the bar, those whose segment the folded bar now blocks, and their
   // descendants: a brute-force oracle over the deformed triangles decides, VPL by VPL.
-  ecs::World world;
-  AssetStore assets;
-  test::TempDir dir;
-  sample::buildBuiltinScene("cornell", world, assets);
-  test::SkinnedBar bar = test::addSkinnedBar(world, assets, dir, {0.25f, 0.0f, 0.1f});
-  ASSERT_EQ(bar.error, "");
-  ecs::Scheduler scheduler;
-  test::addAnimationAndSkinning(scheduler, assets);
+  test::SkinnedBarRoom room({0.25f, 0.0f, 0.1f});
+  ASSERT_EQ(room.bar.error, "");
+  ecs::World& world = room.world;
+  AssetStore& assets = room.assets;
+  const test::SkinnedBar& bar = room.bar;
+  ecs::Scheduler& scheduler = room.scheduler;
   gi::EmbreeScene bvh;
-  const MeshId deformed = world.get<SkinnedMesh>(bar.mesh).deformed;
+  const MeshId deformed = room.deformed;
   uint32_t version = 0;
   // One frame at time t; `moved` as the GI system finds it: entities whose deformed mesh changed.
   auto frame = [&](double t, uint64_t n, std::unordered_set<ecs::Entity>& moved) {

@@ -21,15 +21,10 @@ struct ChangeSet {
   std::vector<ecs::Entity> meshWritten;  // MeshInstance added or written (another mesh, shadow flag)
   std::vector<ecs::Entity> removed;      // MeshInstance removed or entity destroyed
   std::vector<ecs::Entity> materials;    // Material added or written on a mesh entity (base colour, emission, ...)
-  bool lights = false;                          // a Light added, written or removed
+  // Lights are not listed: the VPLs compare each light with the state their paths were shot from.
 
-  // Entities whose surfaces are not what they were, in place, shape or material.
-  std::unordered_set<ecs::Entity> surfacesChanged() const;
-  // Geometry only (place or shape): what the BVH must update and what invalidates VPLs.
+  // Geometry (place or shape): what the BVH must update and what invalidates VPLs. Materials apart.
   std::unordered_set<ecs::Entity> geometryChanged() const;
-  bool empty() const {
-    return moved.empty() && deformed.empty() && meshWritten.empty() && removed.empty() && materials.empty() && !lights;
-  }
 };
 
 // Computes change sets; remembers the deformed meshes' versions between calls (a skinned mesh changes
