@@ -23,7 +23,6 @@
 #include "dyngi/gi/path_tracer.h"
 #include "dyngi/gi/gi_system.h"
 #include "dyngi/gi/job_pool.h"
-#include "dyngi/gi/many_lights.h"
 #include "dyngi/gi/voxel_scene.h"
 #include "scenes/builtin_scenes.h"
 #include "stats.h"
@@ -117,10 +116,7 @@ int runPathTracer(const Options& o, ecs::World& world, scene::AssetStore& assets
     for (auto& t : scheduler.lastTimings()) stats.cpuStageMs[t.name].push(t.cpuMs);
   }
   render::RenderSnapshot snapshot = render::extractSnapshot(world, assets, uint64_t(frames - 1));
-  gi::PathTracerSettings pts;
-  pts.spp = o.spp;
-  pts.bounces = o.bounces;
-  pts.seed = o.seed;
+  const gi::PathTracerSettings& pts = o.pathTracer;
   gi::PathTracerStats pstats;
   auto start = Clock::now();
   auto lastReport = start;
@@ -139,8 +135,10 @@ int runPathTracer(const Options& o, ecs::World& world, scene::AssetStore& assets
   stats.frameMs.push(pstats.ms);
   stats.gpuStageMs.clear();
   stats.cpuStageMs["path_trace"].push(pstats.ms);
-  stats.scalars["spp"] = o.spp;
-  stats.scalars["bounces"] = o.bounces;
+  gi::PathTracerSettings used = pts;
+  for (const gi::OptionRef& r : gi::bindOptions(used)) stats.sections["settings"][r.spec->name] = r.get();
+  stats.scalars["spp"] = pts.spp;
+  stats.scalars["bounces"] = pts.bounces;
   stats.scalars["msamples_per_second"] = pstats.samplesPerSecond * 1e-6;
   stats.scalars["bvh_instances"] = double(bvh.stats().instances);
   stats.scalars["draws"] = double(snapshot.draws.size());
@@ -245,40 +243,28 @@ int runApp(const Options& o) {
 
   // GI: one ECS system plus its render features.
   const bool voxelView = o.view == "voxels" || o.view == "svo-steps";
-  const bool manyLightsView = o.view == "indirect" || o.view == "vpls" || o.view == "subimages";
   const gi::VoxelDebugView voxelDebug = o.view == "voxels" ? gi::VoxelDebugView::Voxels : gi::VoxelDebugView::SvoSteps;
   std::unique_ptr<gi::GiSystem> giOwned;
   gi::GiSystem* gi = nullptr;
   std::unique_ptr<gi::VoxelScene> standaloneVoxels;  // --view voxels without GI
-  if (o.gi == "svo" || o.gi == "bvh") {
-    gi::GiSettings gs;
-    gs.mode = o.vplSource == "rsm" ? gi::GiMode::ManyLightsRsm : gi::GiMode::Temporal;
-    gs.visibility = o.gi == "bvh" ? gi::VisibilityBackend::Bvh : gi::VisibilityBackend::Svo;
-    gs.vplCount = o.vpls;
-    gs.bounces = std::clamp(o.bounces, 1u, 3u);
-    gs.temporalSets = o.temporal;
-    gs.reshootBudget = o.reshoot;
-    gs.interleave = o.interleave;
-    gs.distanceClamp = o.distanceClamp;
-    gs.svoResolution = o.voxelResolution;
-    gs.seed = o.seed;
+  if (o.usesGiSystem()) {
     if (world.count<scene::Light>() == 0)
       std::fprintf(stderr, "dyngi_sample: note: VPLs come from punctual lights only; this scene has none, so no indirect light\n");
-    giOwned = std::make_unique<gi::GiSystem>(ctx, assets, gs);
+    giOwned = std::make_unique<gi::GiSystem>(ctx, assets, o.giSettings);
     gi = giOwned.get();
-    if (gi->effectiveVplCount() != o.vpls)
-      std::fprintf(stderr, "dyngi_sample: note: --vpls %u with %u bounce(s) uses %u VPLs (a multiple of the bounces)\n", o.vpls,
-                   gs.bounces, gi->effectiveVplCount());
+    // A value the technique adjusted (a VPL count rounded to a multiple of the bounces) is reported as used.
+    gi::GiSettings asked = o.giSettings;
+    for (const std::string& line : gi::adjustedOptions(gi->techniqueEntry().options(asked), gi->technique().options()))
+      std::fprintf(stderr, "dyngi_sample: note: %s (the value the technique uses; --stats lists every value used)\n", line.c_str());
     gi->attach(renderer);
-    if (gi->manyLights() && manyLightsView)
-      gi->manyLights()->settings().view = o.view == "indirect" ? gi::ManyLightsView::Indirect
-                                          : o.view == "vpls"   ? gi::ManyLightsView::Vpls
-                                                               : gi::ManyLightsView::SubImages;
+    if (!voxelView) gi->technique().setDebugView(o.view);  // parseOptions checked the name
   }
   gi::VoxelScene* voxels = gi ? gi->voxels() : nullptr;
   if (voxelView && voxels) voxels->setDebugView(voxelDebug);
   if (voxelView && !voxels) {
-    standaloneVoxels = std::make_unique<gi::VoxelScene>(ctx, gi::VoxelSettings{.resolution = o.voxelResolution, .debugView = voxelDebug});
+    gi::VoxelSettings vs = o.giSettings.voxels;
+    vs.debugView = voxelDebug;
+    standaloneVoxels = std::make_unique<gi::VoxelScene>(ctx, vs);
     renderer.addFeature(standaloneVoxels.get());
     voxels = standaloneVoxels.get();
   }
@@ -356,13 +342,8 @@ int runApp(const Options& o) {
       stats.cpuStageMs["render_record"].push(fs.cpuRecordMs);
       stats.cpuStageMs["render_wait"].push(fs.cpuWaitMs);
       if (gi) {
-        gi::GiStats g = gi->stats();
-        stats.cpuStageMs["gi_bvh_update"].push(g.bvh.updateMs);
-        if (gi->paths()) {
-          stats.cpuStageMs["gi_vpl_invalidate"].push(g.vpl.invalidateMs);
-          stats.cpuStageMs["gi_vpl_replace"].push(g.vpl.replaceMs);
-        }
-        if (o.gi == "bvh") stats.cpuStageMs["gi_bvh_visibility"].push(g.bvhVisibilityMs);
+        stats.cpuStageMs["gi_bvh_update"].push(gi->stats().bvh.updateMs);
+        for (const auto& [name, ms] : gi->technique().cpuMs()) stats.cpuStageMs[name].push(ms);
       }
     }
   }
@@ -372,23 +353,24 @@ int runApp(const Options& o) {
   stats.scalars["draws"] = double(render::extractSnapshot(world, assets, 0).draws.size());
   stats.scalars["validation_errors"] = ctx.validationErrorCount();
   if (gi) {
-    gi::GiStats g = gi->stats();
     stats.scalars["vpls"] = gi->effectiveVplCount();  // as used (see the note above), not as asked
-    stats.scalars["vpls_requested"] = o.vpls;
-    stats.scalars["interleave"] = o.interleave;
-    stats.scalars["bounces"] = std::clamp(o.bounces, 1u, 3u);
-    if (gi->paths()) {
-      stats.scalars["temporal_sets"] = o.temporal;
-      stats.sections["vpl"] = {{"count", g.vpl.count},
-                               {"valid", g.vpl.valid},
-                               {"invalidated_total", double(g.vpl.invalidatedTotal)},
-                               {"replaced_total", double(g.vpl.replacedTotal)},
-                               {"reshoot_budget", g.vpl.reshootBudget}};
+    gi::GiSettings asked = o.giSettings;
+    for (const gi::OptionRef& r : gi->techniqueEntry().options(asked))
+      if (std::string_view(r.spec->name) == "vpls") stats.scalars["vpls_requested"] = r.get();
+    for (const gi::OptionRef& r : gi->technique().options()) {
+      const std::string_view name = r.spec->name;
+      if (name == "interleave" || name == "bounces") stats.scalars[std::string(name)] = r.get();
+      if (name == "temporal") stats.scalars["temporal_sets"] = r.get();
+      stats.sections["settings"][r.spec->name] = r.get();
     }
+    for (auto& [section, values] : gi->technique().statsSections())
+      for (auto& [key, value] : values) stats.sections[section][key] = value;
   }
   if (voxels) {
     const gi::VoxelStats& v = voxels->stats();
-    stats.scalars["voxel_resolution"] = o.voxelResolution;
+    stats.scalars["voxel_resolution"] = o.giSettings.voxels.resolution;
+    gi::VoxelSettings used = o.giSettings.voxels;
+    for (const gi::OptionRef& r : gi::bindOptions(used)) stats.sections["settings"][r.spec->name] = r.get();
     stats.scalars["voxel_fragments"] = double(v.fragments);
     stats.scalars["svo_nodes"] = double(v.nodes);
     stats.scalars["svo_leaves"] = double(v.leaves);

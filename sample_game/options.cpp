@@ -8,40 +8,104 @@
 
 namespace dyngi::sample {
 
+namespace {
+
 const char* const kGiModes[] = {"off", "svo", "bvh", "path"};
+const char* const kEngineViews[] = {"final", "voxels", "svo-steps"};  // the voxel scene's and the default
+
+// The command line that selects each technique of the registry (a new technique adds its --gi here).
+std::string flagsOf(std::string_view technique) {
+  if (technique == "temporal") return "--gi svo | --gi bvh";
+  if (technique == "many_lights") return "--gi svo --vpl-source rsm";
+  return "--gi " + std::string(technique);
+}
+
+// --gi and --vpl-source pick the technique (and the temporal technique's visibility).
+void selectTechnique(Options& o) {
+  if (!o.usesGiSystem()) return;
+  o.giSettings.technique = o.vplSource == "rsm" ? "many_lights" : "temporal";
+  o.giSettings.temporal.visibility = o.gi == "bvh" ? gi::VisibilityBackend::Bvh : gi::VisibilityBackend::Svo;
+}
+
+bool parseUint(const std::string& s, uint32_t& out) {
+  auto r = std::from_chars(s.data(), s.data() + s.size(), out);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+
+void append(std::vector<gi::OptionRef>& to, std::vector<gi::OptionRef> from) { to.insert(to.end(), from.begin(), from.end()); }
+
+// Every option this run can take: the technique's, the path tracer's (--gi path), the voxel scene's.
+std::vector<gi::OptionRef> acceptedOptions(Options& o) {
+  std::vector<gi::OptionRef> refs;
+  if (o.usesGiSystem())
+    if (const gi::TechniqueEntry* e = gi::findTechnique(o.giSettings.technique)) append(refs, e->options(o.giSettings));
+  if (o.gi == "path") append(refs, gi::bindOptions(o.pathTracer));
+  append(refs, gi::bindOptions(o.giSettings.voxels));
+  return refs;
+}
+
+// The error for a table option this run does not take: which --gi it belongs to, when any.
+std::string notForThisRun(const Options& o, const std::string& flag) {
+  const std::string name = flag.substr(2);
+  gi::GiSettings probe;
+  for (const gi::TechniqueEntry& e : gi::techniqueRegistry())
+    for (const gi::OptionRef& r : e.options(probe))
+      if (name == r.spec->name) return flag + " is an option of " + flagsOf(e.name) + ", not of --gi " + o.gi + (o.gi == "svo" ? " --vpl-source " + o.vplSource : "");
+  gi::PathTracerSettings pt;
+  for (const gi::OptionRef& r : gi::bindOptions(pt))
+    if (name == r.spec->name) return flag + " is an option of --gi path, not of --gi " + o.gi;
+  return "unknown option '" + flag + "' (see --help)";
+}
+
+}  // namespace
+
+std::vector<gi::OptionRef> Options::giOptions() {
+  std::vector<gi::OptionRef> refs;
+  if (usesGiSystem())
+    if (const gi::TechniqueEntry* e = gi::findTechnique(giSettings.technique)) append(refs, e->options(giSettings));
+  if (gi == "path") append(refs, gi::bindOptions(pathTracer));
+  if (usesGiSystem() || view == "voxels" || view == "svo-steps") append(refs, gi::bindOptions(giSettings.voxels));
+  return refs;
+}
 
 std::string usage() {
-  return "usage: dyngi_sample [options]\n"
-         "  --scene PATH|cornell|cornell-dynamic   scene to render (default cornell-dynamic)\n"
-         "  --headless                             render offscreen, no window\n"
-         "  --size WxH                             render size (default 768x768)\n"
-         "  --frames N                             frames to render (default: 60 headless, until closed windowed)\n"
-         "  --gi MODE                              global illumination: off | svo (VPLs, SVO visibility on the GPU) |\n"
-         "                                         bvh (VPLs, Embree visibility on the CPU) | path (reference path tracer)\n"
-         "  --temporal T                           temporal VPL sets for svo/bvh (default 16; 1 = all VPLs every frame)\n"
-         "  --reshoot N                            VPLs reshot per frame (default: VPLs / T)\n"
-         "  --vpl-source paths|rsm                 incremental light paths (default) or per-frame RSM sampling (svo)\n"
-         "  --animate NAME                         static | moving-spot | rotating-object | moving-camera |\n"
-         "                                         walking-fox | fox-and-spot (benchmark and soak scenes)\n"
-         "  --vpls N                               VPLs for --gi svo (default 512)\n"
-         "  --interleave K                         K x K interleaved sub-images (default 4)\n"
-         "  --clamp B                              distance clamp B in world units^2 (default 0.01)\n"
-         "  --spp N                                path tracer samples per pixel (default 64)\n"
-         "  --bounces B                            indirect bounces: 0 = direct only, 1 = one bounce (default 1)\n"
-         "  --out FILE.png                         write the last frame (tone-mapped, sRGB)\n"
-         "  --hdr-out FILE.exr                     write the last frame's linear radiance before exposure\n"
-         "  --stats FILE.json                      write timings (medians over frames after warm-up)\n"
-         "  --memory-log FILE.tsv                  every 100 frames: frame, resident memory, live Vulkan allocations\n"
-         "  --warmup N                             frames left out of the medians (default 2, fewer for shorter runs;\n"
-         "                                         e.g. T + 2 to time the steady state once every temporal set is filled)\n"
-         "  --view NAME                            final | voxels | svo-steps | indirect | vpls | subimages\n"
-         "  --voxel-res N                          voxel resolution, a power of two in 64..512 (default 128)\n"
-         "  --clip NAME                            glTF animation clip to play (default: the first)\n"
-         "  --seed N                               seed of the path tracer's and the VPLs' random numbers (default 1)\n"
-         "  --exposure X                           linear exposure multiplier (default 1)\n"
-         "  --validation                           enable Vulkan validation layers\n"
-         "  --help                                 this text\n"
-         "Windowed: WASD move, hold the right mouse button to look, Q/E down/up, Esc quits.\n";
+  std::string u =
+      "usage: dyngi_sample [options]\n"
+      "  --scene PATH|cornell|cornell-dynamic   scene to render (default cornell-dynamic)\n"
+      "  --headless                             render offscreen, no window\n"
+      "  --size WxH                             render size (default 768x768)\n"
+      "  --frames N                             frames to render (default: 60 headless, until closed windowed)\n"
+      "  --gi MODE                              global illumination: off | svo (VPLs, SVO visibility on the GPU) |\n"
+      "                                         bvh (VPLs, Embree visibility on the CPU) | path (reference path tracer)\n"
+      "  --vpl-source paths|rsm                 incremental light paths (default) or per-frame RSM sampling (svo)\n"
+      "  --animate NAME                         static | moving-spot | rotating-object | moving-camera |\n"
+      "                                         walking-fox | fox-and-spot (benchmark and soak scenes)\n"
+      "  --out FILE.png                         write the last frame (tone-mapped, sRGB)\n"
+      "  --hdr-out FILE.exr                     write the last frame's linear radiance before exposure\n"
+      "  --stats FILE.json                      write timings (medians over frames after warm-up) and the settings used\n"
+      "  --memory-log FILE.tsv                  every 100 frames: frame, resident memory, live Vulkan allocations\n"
+      "  --warmup N                             frames left out of the medians (default 2, fewer for shorter runs;\n"
+      "                                         e.g. T + 2 to time the steady state once every temporal set is filled)\n"
+      "  --view NAME                            final | voxels | svo-steps | a technique's debug view (below)\n"
+      "  --clip NAME                            glTF animation clip to play (default: the first)\n"
+      "  --exposure X                           linear exposure multiplier (default 1)\n"
+      "  --validation                           enable Vulkan validation layers\n"
+      "  --help                                 this text\n";
+  gi::GiSettings defaults;
+  for (const gi::TechniqueEntry& e : gi::techniqueRegistry()) {
+    u += "\nTechnique " + std::string(e.name) + " (" + flagsOf(e.name) + "): " + e.summary + "\n";
+    if (!e.debugViews.empty()) {
+      u += "  views:";
+      for (const char* v : e.debugViews) u += std::string(" ") + v;
+      u += "\n";
+    }
+    u += gi::optionHelp(e.options(defaults));
+  }
+  gi::PathTracerSettings pt;
+  u += "\nReference path tracer (--gi path):\n" + gi::optionHelp(gi::bindOptions(pt));
+  u += "\nVoxel scene (--gi svo, --view voxels | svo-steps):\n" + gi::optionHelp(gi::bindOptions(defaults.voxels));
+  u += "\nWindowed: WASD move, hold the right mouse button to look, Q/E down/up, Esc quits.\n";
+  return u;
 }
 
 int Options::warmupFrames() const {
@@ -50,16 +114,11 @@ int Options::warmupFrames() const {
   return total > 0 ? std::min(2, total - 1) : 2;
 }
 
-namespace {
-bool parseUint(const std::string& s, uint32_t& out) {
-  auto r = std::from_chars(s.data(), s.data() + s.size(), out);
-  return r.ec == std::errc() && r.ptr == s.data() + s.size();
-}
-}  // namespace
-
 std::optional<Options> parseOptions(int argc, const char* const* argv, std::string& error) {
   Options o;
   std::vector<std::string> args(argv + 1, argv + argc);
+  // Table options wait until --gi and --vpl-source are known: they say which tables apply.
+  std::vector<std::pair<std::string, std::optional<std::string>>> deferred;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&](std::string& v) {
@@ -80,23 +139,7 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
     else if (a == "--stats") { if (!value(o.stats)) return std::nullopt; }
     else if (a == "--memory-log") { if (!value(o.memoryLog)) return std::nullopt; }
     else if (a == "--clip") { if (!value(o.clip)) return std::nullopt; }
-    else if (a == "--view") {
-      if (!value(o.view)) return std::nullopt;
-      const char* views[] = {"final", "voxels", "svo-steps", "indirect", "vpls", "subimages"};
-      bool known = false;
-      for (const char* name : views) known |= o.view == name;
-      if (!known) {
-        error = "unknown --view '" + o.view + "' (available: final, voxels, svo-steps, indirect, vpls, subimages)";
-        return std::nullopt;
-      }
-    } else if (a == "--voxel-res") {
-      if (!value(v)) return std::nullopt;
-      if (!parseUint(v, o.voxelResolution) || o.voxelResolution < 64 || o.voxelResolution > 512 ||
-          (o.voxelResolution & (o.voxelResolution - 1)) != 0) {
-        error = "--voxel-res wants a power of two in 64..512, got '" + v + "'";
-        return std::nullopt;
-      }
-    }
+    else if (a == "--view") { if (!value(o.view)) return std::nullopt; }
     else if (a == "--size") {
       if (!value(v)) return std::nullopt;
       auto x = v.find('x');
@@ -121,21 +164,6 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
         return std::nullopt;
       }
       o.warmup = int(n);
-    } else if (a == "--seed") {
-      if (!value(v)) return std::nullopt;
-      if (!parseUint(v, o.seed)) {
-        error = "--seed wants a non-negative integer, got '" + v + "'";
-        return std::nullopt;
-      }
-    } else if (a == "--temporal" || a == "--reshoot") {
-      uint32_t n;
-      if (!value(v)) return std::nullopt;
-      bool isT = a == "--temporal";
-      if (!parseUint(v, n) || (isT ? (n < 1 || n > 32) : n > 1000000)) {
-        error = a + (isT ? " wants 1..32" : " wants 0..1000000") + ", got '" + v + "'";
-        return std::nullopt;
-      }
-      (isT ? o.temporal : o.reshoot) = n;
     } else if (a == "--vpl-source") {
       if (!value(o.vplSource)) return std::nullopt;
       if (o.vplSource != "paths" && o.vplSource != "rsm") {
@@ -150,33 +178,6 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
                 "' (available: static, moving-spot, rotating-object, moving-camera, walking-fox, fox-and-spot)";
         return std::nullopt;
       }
-    } else if (a == "--vpls" || a == "--interleave") {
-      uint32_t n;
-      if (!value(v)) return std::nullopt;
-      bool isVpls = a == "--vpls";
-      if (!parseUint(v, n) || (isVpls ? (n < 16 || n > 65536) : (n < 1 || n > 8))) {
-        error = a + (isVpls ? " wants 16..65536" : " wants 1..8") + ", got '" + v + "'";
-        return std::nullopt;
-      }
-      (isVpls ? o.vpls : o.interleave) = n;
-    } else if (a == "--clamp") {
-      if (!value(v)) return std::nullopt;
-      float f = 0;
-      auto r = std::from_chars(v.data(), v.data() + v.size(), f);
-      if (r.ec != std::errc() || r.ptr != v.data() + v.size() || !std::isfinite(f) || f < 0) {
-        error = "--clamp wants a number >= 0, got '" + v + "'";
-        return std::nullopt;
-      }
-      o.distanceClamp = f;
-    } else if (a == "--spp" || a == "--bounces") {
-      uint32_t n;
-      if (!value(v)) return std::nullopt;
-      bool isSpp = a == "--spp";
-      if (!parseUint(v, n) || (isSpp && (n == 0 || n > 1000000)) || (!isSpp && n > 64)) {
-        error = a + (isSpp ? " wants 1..1000000" : " wants 0..64") + ", got '" + v + "'";
-        return std::nullopt;
-      }
-      (isSpp ? o.spp : o.bounces) = n;
     } else if (a == "--exposure") {
       if (!value(v)) return std::nullopt;
       float f = 0;
@@ -194,19 +195,47 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
         error = "unknown --gi mode '" + o.gi + "' (available: off, svo, bvh, path)";
         return std::nullopt;
       }
+    } else if (a.rfind("--", 0) == 0 && a.size() > 2) {
+      std::optional<std::string> next;
+      if (i + 1 < args.size()) next = args[++i];
+      deferred.emplace_back(a, next);
     } else {
       error = "unknown option '" + a + "' (see --help)";
       return std::nullopt;
     }
   }
-  // Combinations, checked here so bad input is refused before any device is created.
-  const bool manyLightsView = o.view == "indirect" || o.view == "vpls" || o.view == "subimages";
   if (o.vplSource == "rsm" && o.gi == "bvh") {
     error = "--vpl-source rsm needs --gi svo";
     return std::nullopt;
   }
-  if (manyLightsView && !(o.gi == "svo" && o.vplSource == "rsm")) {
-    error = "--view " + o.view + " needs --gi svo --vpl-source rsm";
+  selectTechnique(o);
+  const std::vector<gi::OptionRef> accepted = acceptedOptions(o);
+  for (const auto& [flag, text] : deferred) {
+    auto it = std::find_if(accepted.begin(), accepted.end(), [&](const gi::OptionRef& r) { return flag.substr(2) == r.spec->name; });
+    if (it == accepted.end()) {
+      error = notForThisRun(o, flag);
+      return std::nullopt;
+    }
+    if (!text) {
+      error = flag + " needs a value";
+      return std::nullopt;
+    }
+    error = gi::parseOptionValue(*it, *text);
+    if (!error.empty()) return std::nullopt;
+  }
+  // --view: the voxel scene's views, or one of the technique's.
+  bool knownView = std::find(std::begin(kEngineViews), std::end(kEngineViews), o.view) != std::end(kEngineViews);
+  const gi::TechniqueEntry* active = o.usesGiSystem() ? gi::findTechnique(o.giSettings.technique) : nullptr;
+  if (!knownView && active)
+    for (const char* v : active->debugViews) knownView |= o.view == v;
+  if (!knownView) {
+    for (const gi::TechniqueEntry& e : gi::techniqueRegistry())
+      for (const char* v : e.debugViews)
+        if (o.view == v) {
+          error = "--view " + o.view + " needs " + flagsOf(e.name) + " (a view of the " + e.name + " technique)";
+          return std::nullopt;
+        }
+    error = "unknown --view '" + o.view + "' (see --help for each technique's views)";
     return std::nullopt;
   }
   const int frames = o.frames > 0 ? o.frames : (o.headless ? kHeadlessDefaultFrames : -1);

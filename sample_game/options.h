@@ -1,8 +1,15 @@
 #pragma once
-// The sample's command line. parseOptions never exits: it returns an error line for main to print.
+// The sample's command line. Its own flags (scene, size, outputs, ...) are written here; every GI
+// setting comes from the option tables of the technique the run uses (gi_module: OptionTable), so its
+// name, default, range and help live in one place. parseOptions never exits: it returns an error line
+// for main to print.
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
+
+#include "dyngi/gi/gi_system.h"
+#include "dyngi/gi/path_tracer.h"
 
 namespace dyngi::sample {
 
@@ -18,26 +25,25 @@ struct Options {
   // The warm-up this run uses: `warmup` when given, else 2 but always leaving one frame to time.
   int warmupFrames() const;
   std::string gi = "off";                   // off | svo | bvh | path
-  uint32_t temporal = 16;                   // T temporal VPL sets (svo/bvh with path VPLs)
-  uint32_t reshoot = 0;                     // VPLs reshot per frame (0: vpls / T)
   std::string vplSource = "paths";          // paths (incremental, temporal) | rsm (per frame, svo only)
   std::string animate;                      // static | moving-spot | rotating-object | moving-camera | walking-fox | fox-and-spot
-  uint32_t vpls = 512;                      // many-lights VPL count
-  uint32_t interleave = 4;                  // many-lights K (K x K sub-images)
-  float distanceClamp = 0.01f;              // many-lights B (world units^2)
-  uint32_t spp = 64;                        // path tracer samples per pixel
-  uint32_t bounces = 1;                     // indirect bounces (path tracer; later the GI techniques)
   std::string out;                          // PNG of the last frame
   std::string hdrOut;                       // EXR, linear radiance before exposure
   std::string stats;                        // JSON
   std::string memoryLog;                    // TSV: every 100 frames, resident memory and live Vulkan allocations
-  std::string view = "final";               // final | voxels | svo-steps | indirect | vpls | subimages
-  uint32_t voxelResolution = 128;           // voxel volume resolution (power of two, 64..512)
+  std::string view = "final";               // final | voxels | svo-steps | a technique's debug view
   std::string clip;                         // animation clip of a glTF scene (default: the first)
-  uint32_t seed = 1;                        // random sequences (path tracer, VPLs)
   float exposure = 1.0f;
   bool validation = false;
   bool help = false;
+
+  // GI settings, filled through the option tables: the technique's options (giSettings.technique
+  // names it; "" for --gi off and path), the voxel scene's, and the path tracer's for --gi path.
+  gi::GiSettings giSettings;
+  gi::PathTracerSettings pathTracer;
+  bool usesGiSystem() const { return gi == "svo" || gi == "bvh"; }
+  // The tables this run reads (bound to giSettings / pathTracer): what --stats lists under "settings".
+  std::vector<gi::OptionRef> giOptions();
 };
 
 std::string usage();

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 namespace dyngi::sample {
 
 double percentile(std::vector<double> v, double p) {
@@ -32,63 +34,35 @@ void SampleSeries::push(double v) {
 }
 
 namespace {
-std::string escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\', o += c;
-    else if (c == '\n') o += "\\n";
-    else if (static_cast<unsigned char>(c) < 0x20) o += ' ';
-    else o += c;
-  }
-  return o;
-}
-std::string num(double v) {
-  char buf[64];
-  if (!std::isfinite(v)) return "null";
-  std::snprintf(buf, sizeof buf, "%.4f", v);
-  return buf;
-}
+// A number, or null for "not measured" (NaN: nothing timed), never a zero that reads as "free".
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 }  // namespace
 
 std::string RunStats::toJson() const {
-  std::ostringstream j;
-  j << "{\n";
-  j << "  \"scene\": \"" << escape(scene) << "\",\n";
-  j << "  \"size\": [" << width << ", " << height << "],\n";
-  j << "  \"gi\": \"" << escape(gi) << "\",\n";
-  j << "  \"device\": \"" << escape(device) << "\",\n";
-  j << "  \"frames\": " << frames << ",\n";
-  j << "  \"warmup_frames\": " << warmupFrames << ",\n";
-  j << "  \"frame_ms\": {\"median\": " << num(frameMs.percentile(0.5)) << ", \"p95\": " << num(frameMs.percentile(0.95)) << "},\n";
-  auto section = [&](const char* key, const std::map<std::string, SampleSeries>& m, bool last) {
-    j << "  \"" << key << "\": {";
-    bool first = true;
-    for (auto& [name, v] : m) {
-      j << (first ? "" : ", ") << "\"" << escape(name) << "\": " << num(v.percentile(0.5));
-      first = false;
-    }
-    j << "}" << (last ? "\n" : ",\n");
+  nlohmann::ordered_json j;
+  j["scene"] = scene;
+  j["size"] = {width, height};
+  j["gi"] = gi;
+  j["device"] = device;
+  j["frames"] = frames;
+  j["warmup_frames"] = warmupFrames;
+  j["frame_ms"] = {{"median", number(frameMs.percentile(0.5))}, {"p95", number(frameMs.percentile(0.95))}};
+  auto medians = [](const std::map<std::string, SampleSeries>& m) {
+    nlohmann::ordered_json o = nlohmann::ordered_json::object();
+    for (auto& [name, v] : m) o[name] = number(v.percentile(0.5));
+    return o;
   };
-  section("stages_ms", gpuStageMs, false);
-  section("cpu_ms", cpuStageMs, false);
-  j << "  \"counts\": {";
-  bool first = true;
-  for (auto& [name, v] : scalars) {
-    j << (first ? "" : ", ") << "\"" << escape(name) << "\": " << num(v);
-    first = false;
-  }
-  j << "}";
+  j["stages_ms"] = medians(gpuStageMs);
+  j["cpu_ms"] = medians(cpuStageMs);
+  j["counts"] = nlohmann::ordered_json::object();
+  for (auto& [name, v] : scalars) j["counts"][name] = number(v);
   for (auto& [key, values] : sections) {
-    j << ",\n  \"" << escape(key) << "\": {";
-    bool firstValue = true;
-    for (auto& [name, v] : values) {
-      j << (firstValue ? "" : ", ") << "\"" << escape(name) << "\": " << num(v);
-      firstValue = false;
-    }
-    j << "}";
+    nlohmann::ordered_json o = nlohmann::ordered_json::object();
+    for (auto& [name, v] : values) o[name] = number(v);
+    j[key] = o;
   }
-  j << "\n}\n";
-  return j.str();
+  // Invalid UTF-8 (a scene path from the command line) is replaced, not thrown.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 std::string RunStats::table() const {

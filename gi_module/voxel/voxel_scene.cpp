@@ -24,6 +24,12 @@
 
 namespace dyngi::gi {
 
+const OptionTable<VoxelSettings>& VoxelSettings::table() {
+  static const OptionTable<VoxelSettings> t = OptionTable<VoxelSettings>().add(
+      {"voxel-res", "voxel volume resolution (the SVO's finest level)", 64, 512, /*powerOfTwo=*/true}, &VoxelSettings::resolution);
+  return t;
+}
+
 namespace {
 constexpr uint32_t kAttributeInts = 8;  // ints per leaf in the attribute buffer
 constexpr uint32_t kMinNodeGroups = 1u << 12;  // the node pool never shrinks below this (128 KB)

@@ -36,19 +36,19 @@ float lightPower(const render::LightItem& l, const scene::Aabb& bounds) {
 }
 }  // namespace
 
-VplPaths::VplPaths(const VplPathSettings& s) : settings_(s) {
-  settings_.bounces = std::clamp(settings_.bounces, 1u, 3u);
+VplPaths::VplPaths(const TemporalOptions& s) : settings_(s) {
+  settings_.vpl.bounces = std::clamp(settings_.vpl.bounces, 1u, 3u);
   settings_.temporalSets = std::max(1u, settings_.temporalSets);
-  paths_ = std::max(1u, settings_.count / settings_.bounces);
-  uint32_t n = paths_ * settings_.bounces;
-  settings_.count = n;
-  if (settings_.reshootBudget == 0) settings_.reshootBudget = std::max(1u, n / settings_.temporalSets);
+  settings_.vpl.vplCount = settings_.vpl.effectiveVplCount();
+  paths_ = settings_.vpl.vplCount / settings_.vpl.bounces;
+  const uint32_t n = settings_.vpl.vplCount;
+  reshootBudget_ = settings_.reshootBudget == 0 ? std::max(1u, n / settings_.temporalSets) : settings_.reshootBudget;
   vpls_.assign(n, PathVpl{});
   pathLight_.assign(paths_, LightState{});
   setDirty_.assign(settings_.temporalSets, 1);
   reshootCounts_.assign(n, 0);
   stats_.count = n;
-  stats_.reshootBudget = settings_.reshootBudget;
+  stats_.reshootBudget = reshootBudget_;
 }
 
 void VplPaths::update(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
@@ -62,7 +62,7 @@ void VplPaths::refreshMaterials(const render::RenderSnapshot& snapshot, const Em
   stats_.refreshedThisFrame = 0;
   if (recoloured.empty()) return;
   SceneSurfaces surfaces(snapshot, assets);
-  const uint32_t B = settings_.bounces;
+  const uint32_t B = settings_.vpl.bounces;
   for (uint32_t path = 0; path < paths_; ++path) {
     bool carry = false;  // an earlier bounce of this path changed its flux
     for (uint32_t b = 0; b < B; ++b) {
@@ -91,9 +91,9 @@ void VplPaths::refreshMaterials(const render::RenderSnapshot& snapshot, const Em
 }
 
 void VplPaths::invalidateIndex(uint32_t index) {
-  uint32_t path = index / settings_.bounces;
-  for (uint32_t b = index % settings_.bounces; b < settings_.bounces; ++b) {
-    uint32_t i = path * settings_.bounces + b;
+  uint32_t path = index / settings_.vpl.bounces;
+  for (uint32_t b = index % settings_.vpl.bounces; b < settings_.vpl.bounces; ++b) {
+    uint32_t i = path * settings_.vpl.bounces + b;
     if (!vpls_[i].valid) continue;
     vpls_[i].valid = false;
     setDirty_[setOf(i)] = 1;
@@ -109,7 +109,7 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
   for (uint32_t i = 0; i < vpls_.size(); ++i) {
     PathVpl& v = vpls_[i];
     if (!v.valid) continue;
-    uint32_t path = i / settings_.bounces, b = i % settings_.bounces;
+    uint32_t path = i / settings_.vpl.bounces, b = i % settings_.vpl.bounces;
     const LightState& ls = pathLight_[path];
     // The light it came from: gone, switched off, moved, turned or changed.
     const render::LightItem* light = nullptr;
@@ -128,7 +128,7 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
       lightOk = now == ls && !lightMoved && !turned;
     }
     if (!lightOk) {
-      invalidateIndex(path * settings_.bounces);  // the whole path
+      invalidateIndex(path * settings_.vpl.bounces);  // the whole path
       continue;
     }
     if (!v.placed) continue;  // escaped ray: nothing to see, valid while its parent is
@@ -162,8 +162,8 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
 }
 
 bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const SceneSurfaces& surfaces) {
-  uint32_t path = index / settings_.bounces, b = index % settings_.bounces;
-  uint64_t rng = mix64(settings_.seed * 0x51ED27ULL + (++shotCounter_) * 0x2545F4914F6CDD1DULL + index);
+  uint32_t path = index / settings_.vpl.bounces, b = index % settings_.vpl.bounces;
+  uint64_t rng = mix64(settings_.vpl.seed * 0x51ED27ULL + (++shotCounter_) * 0x2545F4914F6CDD1DULL + index);
   const float scale = surfaces.sceneScale();
   glm::vec3 origin, dir, throughput;
   if (b == 0) {
@@ -257,7 +257,7 @@ void VplPaths::replace(const render::RenderSnapshot& snapshot, const EmbreeScene
   auto t0 = Clock::now();
   stats_.replacedThisFrame = 0;
   const uint32_t n = uint32_t(vpls_.size());
-  uint32_t budget = settings_.reshootBudget;
+  uint32_t budget = reshootBudget_;
   SceneSurfaces surfaces(snapshot, assets);
   for (uint32_t visited = 0; visited < n && budget > 0; ++visited) {
     uint32_t i = cursor_;
@@ -265,7 +265,7 @@ void VplPaths::replace(const render::RenderSnapshot& snapshot, const EmbreeScene
     if (vpls_[i].valid) continue;
     // A VPL is reshot only from a valid parent: start at the first invalid VPL of its path.
     uint32_t first = i;
-    while (first % settings_.bounces > 0 && !vpls_[first - 1].valid) --first;
+    while (first % settings_.vpl.bounces > 0 && !vpls_[first - 1].valid) --first;
     for (uint32_t j = first; j <= i && budget > 0; ++j) {
       if (!shoot(j, snapshot, bvh, surfaces)) break;
       --budget;

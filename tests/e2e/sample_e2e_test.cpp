@@ -239,11 +239,16 @@ TEST(SampleOptions, AdjustedVplCountIsReportedAsUsed) {
                                 dir.file("stats.json"),
                             dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.err.find("--vpls 100 with 3 bounce(s) uses 99 VPLs"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--vpls 100 is used as 99"), std::string::npos) << r.err;
     std::ifstream f(dir.file("stats.json"));
     nlohmann::json j = nlohmann::json::parse(f, nullptr, false);
     ASSERT_FALSE(j.is_discarded());
     EXPECT_EQ(j["counts"].value("vpls", 0.0), 99.0) << technique;
     EXPECT_EQ(j["counts"].value("vpls_requested", 0.0), 100.0) << technique;
+    // Every setting the technique used, from its option table.
+    ASSERT_TRUE(j.contains("settings")) << j.dump();
+    EXPECT_EQ(j["settings"].value("vpls", 0.0), 99.0);
+    EXPECT_EQ(j["settings"].value("bounces", 0.0), 3.0);
+    EXPECT_TRUE(j["settings"].contains("interleave") && j["settings"].contains("clamp") && j["settings"].contains("voxel-res")) << j.dump();
   }
 }

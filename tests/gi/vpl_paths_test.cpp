@@ -50,7 +50,7 @@ TEST(VplPaths, OccluderInvalidatesExactlyWhatItBlocksAndDescendants) {
   f.world.add(occ, Material{});
   std::unordered_set<ecs::Entity> moved;
   auto snap = f.frame(&moved);
-  gi::VplPaths paths(gi::VplPathSettings{.count = 3000, .bounces = 3, .reshootBudget = 100000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 3000, .bounces = 3}, .reshootBudget = 100000});
   paths.update(snap, f.bvh, f.assets, moved);
   ASSERT_EQ(paths.stats().valid, 3000u);
   std::vector<gi::PathVpl> before = paths.vpls();
@@ -101,7 +101,7 @@ TEST(VplPaths, BudgetIsRespectedRestoreIsTimelyAndCursorIsFair) {
   Fixture f;
   auto snap = f.frame();
   const uint32_t budget = 37;
-  gi::VplPaths paths(gi::VplPathSettings{.count = 600, .bounces = 2, .reshootBudget = budget});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 600, .bounces = 2}, .reshootBudget = budget});
   std::unordered_set<ecs::Entity> none;
   // From empty: valid grows by exactly the budget per frame and is complete after ceil(600/37) frames.
   uint32_t frames = 0;
@@ -137,7 +137,7 @@ TEST(VplPaths, BudgetIsRespectedRestoreIsTimelyAndCursorIsFair) {
 }
 
 TEST(VplPaths, TemporalSetsPartitionThePool) {
-  gi::VplPaths paths(gi::VplPathSettings{.count = 512, .bounces = 1, .temporalSets = 16});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 512, .bounces = 1}, .temporalSets = 16});
   std::vector<int> seen(512, 0);
   for (uint32_t set = 0; set < 16; ++set)
     for (uint32_t i = set; i < 512; i += 16) {
@@ -150,7 +150,7 @@ TEST(VplPaths, TemporalSetsPartitionThePool) {
 TEST(VplPaths, LightSwitchedOffLeavesNoValidVpl) {
   Fixture f;
   auto snap = f.frame();
-  gi::VplPaths paths(gi::VplPathSettings{.count = 256, .bounces = 2, .reshootBudget = 1000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 256, .bounces = 2}, .reshootBudget = 1000});
   std::unordered_set<ecs::Entity> none;
   paths.update(snap, f.bvh, f.assets, none);
   ASSERT_EQ(paths.stats().valid, 256u);
@@ -188,7 +188,7 @@ TEST(VplPaths, DeformingSkinnedMeshInvalidatesExactlyWhatItBlocksAndWhatLiesOnIt
   // Hold the animation at t = 0 while the paths are shot: the bar stands straight.
   world.write<Animator>(bar.animator).playing = false;
   auto snap = frame(0.0, 0, moved);
-  gi::VplPaths paths(gi::VplPathSettings{.count = 3000, .bounces = 3, .reshootBudget = 100000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 3000, .bounces = 3}, .reshootBudget = 100000});
   paths.update(snap, bvh, assets, moved);
   ASSERT_EQ(paths.stats().valid, 3000u);
   const std::vector<gi::PathVpl> before = paths.vpls();

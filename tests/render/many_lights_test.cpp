@@ -23,7 +23,7 @@ class ManyLightsTest : public RenderTest {
  protected:
   void SetUp() override { sample::buildBuiltinScene("cornell", world, assets); }
 
-  Frame renderSvo(const gi::ManyLightsSettings& s) {
+  Frame renderSvo(const gi::ManyLightsOptions& s) {
     gi::VoxelScene voxels(context(), gi::VoxelSettings{.resolution = 128});
     gi::ManyLights ml(context(), voxels, s);
     render::Renderer renderer(context());
@@ -60,9 +60,9 @@ class ManyLightsTest : public RenderTest {
 
 TEST_F(ManyLightsTest, MatchesPathTracerPerRegionWithColourBleeding) {
   for (uint32_t bounces : {1u, 2u}) {
-    gi::ManyLightsSettings s;
-    s.vplCount = 1024 * bounces;
-    s.bounces = bounces;
+    gi::ManyLightsOptions s;
+    s.vpl.vplCount = 1024 * bounces;
+    s.vpl.bounces = bounces;
     Frame f = renderSvo(s);
     const render::ImageRgba& ref = reference(bounces);
     Regions regions = cornellRegions(f, assets, kSize);
@@ -96,8 +96,8 @@ TEST_F(ManyLightsTest, MatchesPathTracerPerRegionWithColourBleeding) {
 }
 
 TEST_F(ManyLightsTest, VisibilityIsUsedAndCorrect) {
-  gi::ManyLightsSettings s;
-  s.vplCount = 1024;
+  gi::ManyLightsOptions s;
+  s.vpl.vplCount = 1024;
   Frame withV = renderSvo(s);
   s.visibility = false;
   Frame noV = renderSvo(s);
@@ -108,10 +108,10 @@ TEST_F(ManyLightsTest, VisibilityIsUsedAndCorrect) {
 }
 
 TEST_F(ManyLightsTest, MoreVplsKeepEnergyAndReduceError) {
-  gi::ManyLightsSettings s;
-  s.vplCount = 512;
+  gi::ManyLightsOptions s;
+  s.vpl.vplCount = 512;
   Frame f512 = renderSvo(s);
-  s.vplCount = 4096;
+  s.vpl.vplCount = 4096;
   Frame f4096 = renderSvo(s);
   const render::ImageRgba& ref = reference(1);
   double m512 = luminance(render::meanOver(f512.hdr)), m4096 = luminance(render::meanOver(f4096.hdr));
@@ -131,7 +131,7 @@ TEST_F(ManyLightsTest, TexturedSurfaceGivesItsVplsTheTextureColour) {
   const glm::vec3 colour(srgbToLinear(200 / 255.0f), srgbToLinear(100 / 255.0f), srgbToLinear(50 / 255.0f));
   auto meanFloorVplFlux = [&] {
     gi::VoxelScene voxels(context(), gi::VoxelSettings{.resolution = 64});
-    gi::ManyLights ml(context(), voxels, gi::ManyLightsSettings{.vplCount = 256});
+    gi::ManyLights ml(context(), voxels, gi::ManyLightsOptions{.vpl = {.vplCount = 256}});
     render::Renderer renderer(context());
     renderer.addFeature(&voxels);
     renderer.addFeature(&ml);

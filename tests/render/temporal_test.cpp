@@ -76,11 +76,11 @@ struct GiRun {
 
 gi::GiSettings settings(uint32_t T, gi::VisibilityBackend vis = gi::VisibilityBackend::Svo) {
   gi::GiSettings s;
-  s.mode = gi::GiMode::Temporal;
-  s.visibility = vis;
-  s.vplCount = 512;
-  s.temporalSets = T;
-  s.reshootBudget = 512;  // fill the pool in the first frame; the sets then take T frames to render
+  s.technique = "temporal";
+  s.temporal.visibility = vis;
+  s.temporal.vpl.vplCount = 512;
+  s.temporal.temporalSets = T;
+  s.temporal.reshootBudget = 512;  // fill the pool in the first frame; the sets then take T frames to render
   return s;
 }
 double meanLum(const render::ImageRgba& img) {
@@ -210,7 +210,7 @@ TEST_F(RenderTest, LightOffDrivesIndirectToZeroAndBack) {
 TEST_F(RenderTest, MovedObjectChangesIndirectWherePathTracerSays) {
   const uint32_t T = 4;
   gi::GiSettings s = settings(T);
-  s.vplCount = 2048;
+  s.temporal.vpl.vplCount = 2048;
   GiRun run(context(), s);
   run.step(T + 1);
   render::ImageRgba before = run.indirect();
@@ -291,8 +291,8 @@ TEST_F(RenderTest, TemporalPathsMatchPathTracerPerRegionForEveryLightType) {
   };
   for (const Case& c : cases) {
     gi::GiSettings s = settings(4);
-    s.vplCount = 1024;
-    s.reshootBudget = 1024;
+    s.temporal.vpl.vplCount = 1024;
+    s.temporal.reshootBudget = 1024;
     GiRun run(context(), s);
     ecs::Entity light{};
     run.world.each<scene::Light>([&](ecs::Entity e, const scene::Light&) { light = e; });
@@ -344,9 +344,9 @@ TEST_F(RenderTest, TemporalPathsMatchPathTracerPerRegionForEveryLightType) {
 // then moved 0.956 -> 0.997 where the reference moves 0.947 -> 1.056.)
 TEST_F(RenderTest, MaterialEditRecoloursTheVplsOnThatSurfaceAndTheLightFollows) {
   gi::GiSettings s = settings(4);
-  s.vplCount = 1024;
-  s.bounces = 2;
-  s.reshootBudget = 1024;
+  s.temporal.vpl.vplCount = 1024;
+  s.temporal.vpl.bounces = 2;
+  s.temporal.reshootBudget = 1024;
   GiRun run(context(), s);
   run.step(6);
   const gi::VplPaths& paths = *run.gi->paths();
@@ -358,7 +358,7 @@ TEST_F(RenderTest, MaterialEditRecoloursTheVplsOnThatSurfaceAndTheLightFollows) 
   std::vector<bool> expect(before.size(), false);
   uint32_t expected = 0;
   for (uint32_t i = 0; i < before.size(); ++i) {
-    const bool inheritsFromParent = i % s.bounces > 0 && expect[i - 1];
+    const bool inheritsFromParent = i % s.temporal.vpl.bounces > 0 && expect[i - 1];
     expect[i] = before[i].valid && (inheritsFromParent || (before[i].placed && before[i].surface == wall));
     expected += expect[i];
   }
@@ -376,7 +376,7 @@ TEST_F(RenderTest, MaterialEditRecoloursTheVplsOnThatSurfaceAndTheLightFollows) 
     wrong += paths.reshootCounts()[i] != shotBefore[i];
     wrong += v.position != before[i].position;
     if (!expect[i]) wrong += v.flux != before[i].flux;
-    else if (before[i].placed && before[i].surface == wall && i % s.bounces == 0)
+    else if (before[i].placed && before[i].surface == wall && i % s.temporal.vpl.bounces == 0)
       wrong += glm::any(glm::greaterThan(glm::abs(v.flux - before[i].flux / red * blue), 1e-5f * glm::vec3(1.0f) + 1e-4f * v.flux));
   }
   EXPECT_EQ(wrong, 0u) << "exactly the wall's VPLs and their later bounces took the new colour, nothing was reshot";

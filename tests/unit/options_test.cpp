@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "dyngi/gi/options.h"
 #include "options.h"
 
 using dyngi::sample::parseOptions;
@@ -46,15 +47,84 @@ TEST(Options, ParsesGiOptions) {
                  err);
   ASSERT_TRUE(o) << err;
   EXPECT_EQ(o->gi, "bvh");
-  EXPECT_EQ(o->temporal, 8u);
-  EXPECT_EQ(o->reshoot, 20u);
-  EXPECT_EQ(o->vpls, 1024u);
-  EXPECT_EQ(o->interleave, 2u);
-  EXPECT_FLOAT_EQ(o->distanceClamp, 0.05f);
+  const dyngi::gi::GiSettings& g = o->giSettings;
+  EXPECT_EQ(g.technique, "temporal");
+  EXPECT_EQ(g.temporal.visibility, dyngi::gi::VisibilityBackend::Bvh);
+  EXPECT_EQ(g.temporal.temporalSets, 8u);
+  EXPECT_EQ(g.temporal.reshootBudget, 20u);
+  EXPECT_EQ(g.temporal.vpl.vplCount, 1024u);
+  EXPECT_EQ(g.temporal.vpl.interleave, 2u);
+  EXPECT_FLOAT_EQ(g.temporal.vpl.distanceClamp, 0.05f);
   EXPECT_EQ(o->animate, "moving-spot");
-  EXPECT_EQ(o->voxelResolution, 256u);
+  EXPECT_EQ(g.voxels.resolution, 256u);
   EXPECT_EQ(o->view, "voxels");
-  EXPECT_EQ(o->seed, 7u);
+  EXPECT_EQ(g.temporal.vpl.seed, 7u);
+}
+
+// Every GI setting travels from the command line into the one options struct the technique reads,
+// and a default is the struct's member initializer: nothing in the sample restates it.
+TEST(Options, GiSettingsComeFromTheTechniquesTables) {
+  std::string err;
+  auto o = parse({"--gi", "svo", "--vpl-source", "rsm", "--vpls", "2048", "--bounces", "3", "--rsm-res", "128", "--indirect-shadows", "off"},
+                 err);
+  ASSERT_TRUE(o) << err;
+  EXPECT_EQ(o->giSettings.technique, "many_lights");
+  EXPECT_EQ(o->giSettings.manyLights.vpl.vplCount, 2048u);
+  EXPECT_EQ(o->giSettings.manyLights.vpl.bounces, 3u);
+  EXPECT_EQ(o->giSettings.manyLights.rsmResolution, 128u);
+  EXPECT_FALSE(o->giSettings.manyLights.visibility);
+  // Untouched values are the structs' defaults.
+  auto d = parse({"--gi", "svo"}, err);
+  ASSERT_TRUE(d) << err;
+  EXPECT_EQ(d->giSettings.temporal.vpl.vplCount, dyngi::gi::VplOptions{}.vplCount);
+  EXPECT_EQ(d->giSettings.temporal.temporalSets, dyngi::gi::TemporalOptions{}.temporalSets);
+  auto p = parse({"--gi", "path", "--spp", "9", "--bounces", "12", "--seed", "3"}, err);
+  ASSERT_TRUE(p) << err;
+  EXPECT_EQ(p->pathTracer.spp, 9u);
+  EXPECT_EQ(p->pathTracer.bounces, 12u);
+  EXPECT_EQ(p->pathTracer.seed, 3u);
+}
+
+TEST(Options, ATableOptionOutsideItsRangeOrTechniqueIsOneClearLine) {
+  struct Case {
+    std::vector<const char*> args;
+    const char* mentions;
+  };
+  const Case cases[] = {
+      {{"--gi", "svo", "--vpls", "3"}, "--vpls wants an integer in 16..65536, got '3'"},
+      {{"--gi", "svo", "--bounces", "4"}, "--bounces wants an integer in 1..3"},
+      {{"--gi", "path", "--bounces", "65"}, "--bounces wants an integer in 0..64"},
+      {{"--gi", "svo", "--voxel-res", "100"}, "--voxel-res wants a power of two in 64..512"},
+      {{"--gi", "svo", "--clamp", "nan"}, "--clamp wants a number in 0..100"},
+      {{"--gi", "svo", "--incremental", "maybe"}, "--incremental wants on or off"},
+      {{"--gi", "svo", "--rsm-res", "256"}, "--rsm-res is an option of --gi svo --vpl-source rsm"},
+      {{"--gi", "off", "--vpls", "64"}, "--vpls is an option of"},
+      {{"--gi", "svo", "--spp", "4"}, "--spp is an option of --gi path"},
+      {{"--gi", "svo", "--vpls"}, "--vpls needs a value"},
+      {{"--gi", "bvh", "--view", "vpls"}, "--view vpls needs --gi svo --vpl-source rsm"},
+  };
+  for (const Case& c : cases) {
+    std::string err;
+    EXPECT_FALSE(parse(c.args, err)) << c.mentions;
+    EXPECT_NE(err.find(c.mentions), std::string::npos) << err;
+    EXPECT_EQ(err.find('\n'), std::string::npos) << err;
+  }
+}
+
+// --help is generated from the tables: every option of every technique appears with its default.
+TEST(Options, HelpListsEveryTableOptionWithItsDefault) {
+  const std::string help = dyngi::sample::usage();
+  dyngi::gi::GiSettings defaults;
+  for (const dyngi::gi::TechniqueEntry& e : dyngi::gi::techniqueRegistry()) {
+    EXPECT_NE(help.find(std::string("Technique ") + e.name), std::string::npos) << e.name;
+    for (const dyngi::gi::OptionRef& r : e.options(defaults)) {
+      const std::string flag = std::string("--") + r.spec->name + " ";
+      EXPECT_NE(help.find(flag), std::string::npos) << flag;
+      EXPECT_NE(help.find(r.spec->help), std::string::npos) << flag;
+    }
+  }
+  EXPECT_NE(help.find("VPLs over all bounces (rounded down to a multiple of the bounces) (default 512, 16..65536)"), std::string::npos)
+      << help;
 }
 
 TEST(Options, WarmupFramesAreLeftOutOfTheMedians) {
@@ -86,4 +156,42 @@ TEST(Options, RejectsBadValuesClearly) {
   parse({"--gi", "magic"}, err);
   EXPECT_NE(err.find("magic"), std::string::npos);
   EXPECT_NE(err.find("available"), std::string::npos);
+}
+
+TEST(OptionTable, ParsesChecksAndReportsAdjustedValues) {
+  struct Knobs {
+    uint32_t count = 8;
+    float scale = 0.5f;
+    bool on = true;
+    uint32_t size = 64;
+    static const dyngi::gi::OptionTable<Knobs>& table() {
+      static const auto t = dyngi::gi::OptionTable<Knobs>()
+                                .add({"count", "how many", 1, 100}, &Knobs::count)
+                                .add({"scale", "how much", 0, 2}, &Knobs::scale)
+                                .add({"on", "whether", 0, 1}, &Knobs::on)
+                                .add({"size", "how big", 16, 256, true}, &Knobs::size);
+      return t;
+    }
+  };
+  Knobs k;
+  auto refs = dyngi::gi::bindOptions(k);
+  ASSERT_EQ(refs.size(), 4u);
+  EXPECT_EQ(dyngi::gi::parseOptionValue(refs[0], "42"), "");
+  EXPECT_EQ(k.count, 42u);
+  EXPECT_NE(dyngi::gi::parseOptionValue(refs[0], "101"), "");
+  EXPECT_NE(dyngi::gi::parseOptionValue(refs[0], "4x"), "");
+  EXPECT_EQ(k.count, 42u) << "a rejected value leaves the option as it was";
+  EXPECT_EQ(dyngi::gi::parseOptionValue(refs[1], "1.25"), "");
+  EXPECT_FLOAT_EQ(k.scale, 1.25f);
+  EXPECT_NE(dyngi::gi::parseOptionValue(refs[1], "inf"), "");
+  EXPECT_EQ(dyngi::gi::parseOptionValue(refs[2], "off"), "");
+  EXPECT_FALSE(k.on);
+  EXPECT_NE(dyngi::gi::parseOptionValue(refs[3], "100"), "") << "not a power of two";
+  EXPECT_EQ(dyngi::gi::parseOptionValue(refs[3], "128"), "");
+  EXPECT_EQ(k.size, 128u);
+  Knobs used = k;
+  used.count = 40;
+  const auto lines = dyngi::gi::adjustedOptions(dyngi::gi::bindOptions(k), dyngi::gi::bindOptions(used));
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(lines[0], "--count 42 is used as 40");
 }

@@ -1,6 +1,8 @@
 // The sample's run statistics: medians as documented, and nothing timed reads as null, not as zero.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <filesystem>
 
@@ -22,11 +24,16 @@ TEST(RunStats, NoTimedFrameIsNullNotZero) {
   RunStats s;
   s.frames = 2;
   s.warmupFrames = 2;
-  std::string j = s.toJson();
-  EXPECT_NE(j.find("\"frame_ms\": {\"median\": null, \"p95\": null}"), std::string::npos) << j;
+  nlohmann::json j = nlohmann::json::parse(s.toJson());
+  EXPECT_TRUE(j["frame_ms"]["median"].is_null()) << j;
+  EXPECT_TRUE(j["frame_ms"]["p95"].is_null()) << j;
   EXPECT_NE(s.table().find("no frame timed"), std::string::npos);
   s.frameMs = {10.0, 30.0, 20.0};
-  EXPECT_NE(s.toJson().find("\"median\": 20.0000"), std::string::npos);
+  s.sections["settings"]["clamp"] = 1e-5;  // written exactly, not rounded to a fixed number of decimals
+  s.scene = "caf\xe9.glb";                  // not UTF-8: replaced, not thrown
+  j = nlohmann::json::parse(s.toJson());
+  EXPECT_EQ(j["frame_ms"]["median"], 20.0);
+  EXPECT_EQ(j["settings"]["clamp"], 1e-5);
 }
 
 TEST(RunStats, SeriesKeepEverySampleUpToCapacityThenABoundedUniformSubset) {

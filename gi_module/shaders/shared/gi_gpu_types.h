@@ -95,6 +95,21 @@ struct RsmPush {
   uvec4 info;           // x layer
 };
 
+// Bindings of the shared indirect gather (gather.glsl); a technique's gather variant adds its own after
+// them (temporal_gather.comp).
+#define DYNGI_GATHER_BINDING_FRAME 0
+#define DYNGI_GATHER_BINDING_POSITION 1
+#define DYNGI_GATHER_BINDING_NORMAL 2
+#define DYNGI_GATHER_BINDING_VPLS 3
+#define DYNGI_GATHER_BINDING_SVO_NODES 4
+#define DYNGI_GATHER_BINDING_OUTPUT 5
+#define DYNGI_GATHER_BINDING_VISIBILITY_BITS 6
+#define DYNGI_GATHER_FIRST_TECHNIQUE_BINDING 7
+#define DYNGI_TEMPORAL_GATHER_BINDING_SET_SAMPLES (DYNGI_GATHER_FIRST_TECHNIQUE_BINDING + 0)
+#define DYNGI_TEMPORAL_GATHER_BINDING_SUMS (DYNGI_GATHER_FIRST_TECHNIQUE_BINDING + 1)
+#define DYNGI_TEMPORAL_GATHER_BINDING_QUEUE (DYNGI_GATHER_FIRST_TECHNIQUE_BINDING + 2)
+#define DYNGI_TEMPORAL_GATHER_BINDING_QUEUE_ARGS (DYNGI_GATHER_FIRST_TECHNIQUE_BINDING + 3)
+
 // Settings of the indirect gather (push constants).
 #ifdef __cplusplus
 struct alignas(16) GatherPush {

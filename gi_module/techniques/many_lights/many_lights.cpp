@@ -5,7 +5,7 @@
 
 #include "dyngi/engine/render/light_views.h"
 #include "shaders/shared/gi_gpu_types.h"
-#include "techniques/many_lights/indirect_passes.h"
+#include "indirect/indirect_passes.h"
 #include "spirv/many_lights_debug.comp.spv.h"
 #include "spirv/rsm.frag.spv.h"
 #include "spirv/rsm.vert.spv.h"
@@ -18,9 +18,13 @@
 
 namespace dyngi::gi {
 
-ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const ManyLightsSettings& settings)
+ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const ManyLightsOptions& settings)
     : ctx_(ctx), voxels_(voxels), settings_(settings) {
-
+  // The values used from here on (Technique::options() reports them): bounces and K clamped, the VPL
+  // count rounded to a multiple of the bounces.
+  settings_.vpl.bounces = std::clamp(settings_.vpl.bounces, 1u, 3u);
+  settings_.vpl.interleave = std::clamp(settings_.vpl.interleave, 1u, 8u);
+  settings_.vpl.vplCount = settings_.vpl.effectiveVplCount();
   const Binding rowsB[] = {{0, kSampled, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
   cdfRows_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_cdf_rows_comp), rowsB, sizeof(gpu::VplCdfRowsPush), "vpl_cdf_rows");
   const Binding totalB[] = {{0, kSSBO, kCS}};
@@ -77,9 +81,9 @@ void ManyLights::resize(render::VulkanContext& ctx, uint32_t width, uint32_t hei
 }
 
 void ManyLights::prepare(render::VulkanContext&, const render::RenderSnapshot& snapshot) {
-  settings_.bounces = std::clamp(settings_.bounces, 1u, 3u);
-  settings_.interleave = std::clamp(settings_.interleave, 1u, 8u);
-  perBounce_ = vplCount() / settings_.bounces;  // the one rounding rule (many_lights.h)
+  settings_.vpl.bounces = std::clamp(settings_.vpl.bounces, 1u, 3u);
+  settings_.vpl.interleave = std::clamp(settings_.vpl.interleave, 1u, 8u);
+  perBounce_ = vplCount() / settings_.vpl.bounces;  // the one rounding rule (VplOptions::effectiveVplCount)
   std::vector<::dyngi::gpu::GpuLight> lights;
   std::vector<gpu::RsmLayer> layers;
   for (const render::LightItem& item : snapshot.lights) {
@@ -100,7 +104,7 @@ void ManyLights::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   ensureRsm(rsmLayersUsed_);
   if (!lights.empty()) lights_.upload(lights.data(), lights.size() * sizeof(lights[0]));
   if (!layers.empty()) layers_.upload(layers.data(), layers.size() * sizeof(layers[0]));
-  VkDeviceSize vplBytes = VkDeviceSize(perBounce_) * settings_.bounces * sizeof(gpu::GpuVpl);
+  VkDeviceSize vplBytes = VkDeviceSize(perBounce_) * settings_.vpl.bounces * sizeof(gpu::GpuVpl);
   if (!vpls_.valid() || vpls_.size() < vplBytes)
     vpls_ = Buffer(ctx_, vplBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "vpls");
 }
@@ -129,7 +133,7 @@ bool ManyLights::record(render::FrameContext& frame) {
   if (!voxels_.hasVolume() || !raw_.valid()) return false;
   VkCommandBuffer cmd = frame.cmd;
   const uint32_t res = settings_.rsmResolution;
-  const uint32_t vplTotal = perBounce_ * settings_.bounces;
+  const uint32_t vplTotal = perBounce_ * settings_.vpl.bounces;
   const VoxelVolume& vol = voxels_.volume();
 
   {  // 1. reflective shadow maps
@@ -221,15 +225,15 @@ bool ManyLights::record(render::FrameContext& frame) {
         .storageBuffer(4, rowCdf_.handle())
         .storageBuffer(5, vpls_.handle())
         .push(ctx_, cmd, sample_);
-    const gpu::VplSamplePush sp{res, rsmLayers_, perBounce_, settings_.seed * 7919u};
+    const gpu::VplSamplePush sp{res, rsmLayers_, perBounce_, settings_.vpl.seed * 7919u};
     vkCmdPushConstants(cmd, sample_.layout(), kCS, 0, sizeof(sp), &sp);
     vkCmdDispatch(cmd, dispatchGroups(perBounce_, 64), 1, 1);
     render::computeWriteBarrier(cmd);
   }
 
-  if (settings_.bounces > 1) {  // 3. further bounces through the voxel scene
+  if (settings_.vpl.bounces > 1) {  // 3. further bounces through the voxel scene
     render::ScopedPass scope(ctx_, frame.timer, cmd, "vpl_bounce");
-    for (uint32_t b = 1; b < settings_.bounces; ++b) {
+    for (uint32_t b = 1; b < settings_.vpl.bounces; ++b) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bounce_.handle());
       DescriptorWrites()
           .storageBuffer(0, vpls_.handle())
@@ -238,22 +242,26 @@ bool ManyLights::record(render::FrameContext& frame) {
           .storageBuffer(3, voxels_.leafAttributes().handle())
           .push(ctx_, cmd, bounce_);
       const gpu::VplBouncePush pc{glm::vec4(vol.origin, 1.0f / vol.voxelSize), (b - 1) * perBounce_, perBounce_, b, vol.depth(),
-                                  float(vol.resolution), settings_.liftVoxels};
+                                  float(vol.resolution), settings_.vpl.liftVoxels};
       vkCmdPushConstants(cmd, bounce_.layout(), kCS, 0, sizeof(pc), &pc);
       vkCmdDispatch(cmd, dispatchGroups(perBounce_, 64), 1, 1);
       render::computeWriteBarrier(cmd);
     }
   }
 
-  const uint32_t K = settings_.interleave;
+  const uint32_t K = settings_.vpl.interleave;
   {  // 4. interleaved gather with SVO visibility, 5. merge + geometry-aware filter
-    gpu::GatherPush pc;
+    IndirectGatherPass::Inputs in;
+    in.vpls = vpls_.handle();
+    in.nodes = voxels_.nodes().handle();
+    in.bits = vpls_.handle();  // unused: SVO visibility or none
+    gpu::GatherPush& pc = in.push;
     pc.worldToVoxel = glm::vec4(vol.origin, 1.0f / vol.voxelSize);
-    pc.params = glm::vec4(settings_.distanceClamp, settings_.luminanceThreshold, settings_.liftVoxels, float(vol.resolution));
+    pc.params = glm::vec4(settings_.vpl.distanceClamp, settings_.vpl.luminanceThreshold, settings_.vpl.liftVoxels, float(vol.resolution));
     pc.info = glm::uvec4(vplTotal, K, settings_.visibility ? 0u : 1u, vol.depth());
     pc.range = glm::uvec4(0u);
-    gatherPass_->record(frame, vpls_.handle(), voxels_.nodes().handle(), vpls_.handle(), raw_, pc);
-    filterPass_->record(frame, raw_, K, settings_.filterPlaneTolerance);
+    gatherPass_->record(frame, raw_, in);
+    filterPass_->record(frame, raw_, K, settings_.vpl.filterPlaneTolerance);
   }
   return true;
 }
@@ -276,8 +284,8 @@ void ManyLights::recordAfterLighting(render::FrameContext& frame) {
       .storageImage(5, t.hdr.view())
       .push(ctx_, frame.cmd, debug_);
   uint32_t mode = settings_.view == ManyLightsView::Indirect ? 0u : settings_.view == ManyLightsView::Vpls ? 1u : 2u;
-  uint32_t vplTotal = perBounce_ * settings_.bounces;
-  const gpu::ManyLightsDebugPush pc{mode, settings_.interleave, vplTotal};
+  uint32_t vplTotal = perBounce_ * settings_.vpl.bounces;
+  const gpu::ManyLightsDebugPush pc{mode, settings_.vpl.interleave, vplTotal};
   vkCmdPushConstants(frame.cmd, debug_.layout(), kCS, 0, sizeof(pc), &pc);
   uint32_t n = mode == 1 ? vplTotal : t.width * t.height;
   vkCmdDispatch(frame.cmd, dispatchGroups(n, 64), 1, 1);
@@ -286,7 +294,7 @@ void ManyLights::recordAfterLighting(render::FrameContext& frame) {
 std::vector<VplReadback> ManyLights::readbackVpls() {
   std::vector<VplReadback> out;
   if (!vpls_.valid()) return out;
-  uint32_t n = perBounce_ * settings_.bounces;
+  uint32_t n = perBounce_ * settings_.vpl.bounces;
   Buffer host(ctx_, VkDeviceSize(n) * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "vpl readback");
   ctx_.immediate([&](VkCommandBuffer cmd) {
     VkBufferCopy c{0, 0, VkDeviceSize(n) * sizeof(gpu::GpuVpl)};

@@ -12,6 +12,15 @@
 #include "sampling.h"
 
 namespace dyngi::gi {
+
+const OptionTable<PathTracerSettings>& PathTracerSettings::table() {
+  static const OptionTable<PathTracerSettings> t =
+      OptionTable<PathTracerSettings>()
+          .add({"spp", "path tracer samples per pixel", 1, 1000000}, &PathTracerSettings::spp)
+          .add({"bounces", "indirect bounces (0: direct light only)", 0, 64}, &PathTracerSettings::bounces)
+          .add({"seed", "seed of the path tracer's random numbers", 0, 4294967295.0}, &PathTracerSettings::seed);
+  return t;
+}
 namespace {
 
 constexpr float kPi = 3.14159265358979f;

@@ -7,21 +7,27 @@
 #include "dyngi/gi/job_pool.h"
 #include "shaders/shared/gi_gpu_types.h"
 #include "spirv/temporal_reproject.comp.spv.h"
-#include "techniques/many_lights/indirect_passes.h"
+#include "indirect/indirect_passes.h"
+#include "spirv/temporal_gather.comp.spv.h"
 
 #include "gpu_aliases.h"
 
 namespace dyngi::gi {
 
-TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, VoxelScene* voxels, const EmbreeScene* bvh,
-                                   const TemporalSettings& settings)
-    : ctx_(ctx), paths_(paths), voxels_(voxels), bvh_(bvh), settings_(settings) {
+TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, VoxelScene* voxels, const EmbreeScene* bvh)
+    : ctx_(ctx), paths_(paths), voxels_(voxels), bvh_(bvh), settings_(paths.settings()) {
+  const TemporalOptions& settings = settings_;
   if (settings.visibility == VisibilityBackend::Svo && !voxels) throw std::invalid_argument("SVO visibility needs a VoxelScene");
   if (settings.visibility == VisibilityBackend::Bvh && !bvh) throw std::invalid_argument("BVH visibility needs an EmbreeScene");
   sets_ = std::min(paths.settings().temporalSets, uint32_t(DYNGI_MAX_TEMPORAL_SETS));
-  perSet_ = (paths.settings().count + sets_ - 1) / sets_;
+  perSet_ = (paths.settings().vpl.vplCount + sets_ - 1) / sets_;
   lastRendered_.assign(sets_, -1);
-  gatherPass_ = std::make_unique<IndirectGatherPass>(ctx, /*accumulate=*/true);
+  const Binding accumulate[] = {{DYNGI_TEMPORAL_GATHER_BINDING_SET_SAMPLES, kStorageImage, kCS},
+                                {DYNGI_TEMPORAL_GATHER_BINDING_SUMS, kStorageImage, kCS},
+                                {DYNGI_TEMPORAL_GATHER_BINDING_QUEUE, kSSBO, kCS},
+                                {DYNGI_TEMPORAL_GATHER_BINDING_QUEUE_ARGS, kSSBO, kCS}};
+  gatherPass_ = std::make_unique<IndirectGatherPass>(ctx, DYNGI_SHADER(spv_temporal_gather_comp), accumulate, uint32_t(sizeof(gpu::AccumulatePush)),
+                                                     "temporal_gather");
   filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
   vpls_ = Buffer(ctx, VkDeviceSize(perSet_) * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "temporal vpls");
   // Sized as the reprojection shader declares it (a uniform array).
@@ -164,14 +170,15 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     if (setCameras_[s] == cam.viewProj) sameCamera |= 1u << s;
   }
   {
-    gpu::GatherPush pc{};
+    IndirectGatherPass::Inputs in;
+    gpu::GatherPush& pc = in.push;
     if (voxels_ && voxels_->hasVolume()) {
       const VoxelVolume& vol = voxels_->volume();
       pc.worldToVoxel = glm::vec4(vol.origin, 1.0f / vol.voxelSize);
-      pc.params = glm::vec4(settings_.distanceClamp, settings_.luminanceThreshold, settings_.liftVoxels, float(vol.resolution));
+      pc.params = glm::vec4(settings_.vpl.distanceClamp, settings_.vpl.luminanceThreshold, settings_.vpl.liftVoxels, float(vol.resolution));
       pc.info = glm::uvec4(perSet_, K, 0u, vol.depth());
     } else {
-      pc.params = glm::vec4(settings_.distanceClamp, settings_.luminanceThreshold, 0.0f, 1.0f);
+      pc.params = glm::vec4(settings_.vpl.distanceClamp, settings_.vpl.luminanceThreshold, 0.0f, 1.0f);
       pc.info = glm::uvec4(perSet_, K, 1u, 0u);
     }
     if (settings_.visibility == VisibilityBackend::Bvh) pc.info.z = 2u;
@@ -180,22 +187,32 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     for (render::Image* img : {&setSamples_, &sums_})
       img->transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    IndirectGatherPass::TemporalBuffers tb{setSamples_.view(), sums_.view(), queue_.handle(), queueArgs_.handle(), {}};
-    tb.push.sets = glm::uvec4(sets_, currentSet_, validMask, sameCamera);
+    gpu::AccumulatePush acc{};
+    acc.sets = glm::uvec4(sets_, currentSet_, validMask, sameCamera);
     // With an unchanged camera the gather queues the few pixels whose surface changed; otherwise every
     // pixel needs the full reprojection and the pass runs over all of them.
-    tb.push.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, 0u, 0u);
-    tb.push.params = glm::vec4(settings_.reprojectionCutoff, 0.0f, 0.0f, 0.0f);
+    acc.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, 0u, 0u);
+    acc.params = glm::vec4(settings_.reprojectionCutoff, 0.0f, 0.0f, 0.0f);
     if (incremental) {
       const gpu::TemporalQueue empty{glm::uvec4(0u, 1u, 1u, 0u)};
       vkCmdUpdateBuffer(frame.cmd, queueArgs_.handle(), 0, sizeof(empty), &empty);
       render::memoryBarrier(frame.cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     }
-    gatherPass_->record(frame, vpls_.handle(), voxels_ ? voxels_->nodes().handle() : vpls_.handle(), bits_.handle(), accumulated_, pc, &tb);
-    recordReprojection(frame, tb.push, incremental);
+    in.vpls = vpls_.handle();
+    in.nodes = voxels_ ? voxels_->nodes().handle() : vpls_.handle();
+    in.bits = bits_.handle();
+    in.extraWrites = [&](DescriptorWrites& w) {
+      w.storageImage(DYNGI_TEMPORAL_GATHER_BINDING_SET_SAMPLES, setSamples_.view())
+          .storageImage(DYNGI_TEMPORAL_GATHER_BINDING_SUMS, sums_.view())
+          .storageBuffer(DYNGI_TEMPORAL_GATHER_BINDING_QUEUE, queue_.handle())
+          .storageBuffer(DYNGI_TEMPORAL_GATHER_BINDING_QUEUE_ARGS, queueArgs_.handle());
+    };
+    in.extraPush = &acc;
+    gatherPass_->record(frame, accumulated_, in);
+    recordReprojection(frame, acc, incremental);
   }
-  filterPass_->record(frame, accumulated_, K, settings_.filterPlaneTolerance);
+  filterPass_->record(frame, accumulated_, K, settings_.vpl.filterPlaneTolerance);
   return true;
 }
 

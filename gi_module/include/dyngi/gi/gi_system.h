@@ -5,41 +5,31 @@
 //   gi->attach(renderer);                                           // its render features
 //   scheduler.add(dyngi::ecs::Phase::PostUpdate, std::move(gi));    // after transforms and skinning
 //
-// Per frame (run): collect what moved or deformed since the last run (change ticks) -> BVH update ->
-// voxel/SVO update (dirty entities) -> VPL invalidation -> replacement; the render features then pick
-// the temporal set, gather, reproject and filter. Nothing in engine/ knows about any of this.
+// Per frame (run): what changed since the last run (one ChangeSet) -> BVH update -> voxel/SVO update
+// (dirty entities) -> the technique's CPU work (VPL invalidation and replacement); the render features
+// then record the voxel update and the technique's passes. The technique is chosen by name from the
+// registry (technique.h); nothing in engine/ knows about any of this.
 #include <memory>
-#include <unordered_map>
+#include <string>
 
 #include "dyngi/engine/ecs/scheduler.h"
 #include "dyngi/engine/render/renderer.h"
-#include "dyngi/gi/change_set.h"
 #include "dyngi/gi/bvh.h"
+#include "dyngi/gi/change_set.h"
 #include "dyngi/gi/many_lights.h"
+#include "dyngi/gi/technique.h"
 #include "dyngi/gi/temporal_indirect.h"
 #include "dyngi/gi/voxel_scene.h"
 #include "dyngi/gi/vpl_paths.h"
 
 namespace dyngi::gi {
 
-enum class GiMode {
-  ManyLightsRsm,  // VPLs sampled from reflective shadow maps every frame (SVO visibility)
-  Temporal,       // incremental VPL paths, temporal sets, reprojection (SVO or BVH visibility)
-};
-
+// Every technique's options, each struct the one home of its defaults; `technique` picks which is used.
 struct GiSettings {
-  GiMode mode = GiMode::Temporal;
-  VisibilityBackend visibility = VisibilityBackend::Svo;
-  uint32_t vplCount = 512;
-  uint32_t bounces = 1;
-  uint32_t temporalSets = 16;     // T
-  uint32_t reshootBudget = 0;     // 0: vplCount / T per frame (one set's worth: steady frame time)
-  uint32_t interleave = 4;        // K
-  float distanceClamp = 0.01f;    // B (world units^2)
-  uint32_t svoResolution = 128;
-  float reprojectionCutoff = 0.02f;
-  float lightMoveTolerance = 0.02f;  // see VplPathSettings
-  uint64_t seed = 1;
+  std::string technique = "temporal";  // a name from techniqueRegistry()
+  VoxelSettings voxels;                // the voxel scene, for techniques that use one (resolution)
+  ManyLightsOptions manyLights;
+  TemporalOptions temporal;
 };
 
 struct GiStats {
@@ -53,33 +43,42 @@ struct GiStats {
 
 class GiSystem final : public ecs::System {
  public:
+  // Throws std::invalid_argument for a technique name the registry does not know.
   GiSystem(render::VulkanContext& ctx, const scene::AssetStore& assets, const GiSettings& settings = {});
   ~GiSystem() override;
   const char* name() const override { return "gi"; }
   void run(ecs::World& world, const ecs::SystemContext& ctx) override;
-  // Adds the render features (voxel scene, then the technique) to the renderer.
+  // Adds the render features (voxel scene, then the technique's) to the renderer.
   void attach(render::Renderer& renderer);
 
   const GiSettings& settings() const { return settings_; }
+  Technique& technique() { return *technique_; }
+  const TechniqueEntry& techniqueEntry() const { return *entry_; }
   GiStats stats() const;
   EmbreeScene& bvh() { return *bvh_; }
   VoxelScene* voxels() { return voxels_.get(); }
-  VplPaths* paths() { return paths_.get(); }
-  TemporalIndirect* temporal() { return temporal_.get(); }
-  ManyLights* manyLights() { return manyLights_.get(); }
-  // The VPL count the technique uses: GiSettings::vplCount rounded down to a multiple of the bounces
-  // (each path or RSM bounce level holds the same number).
+  // The technique's parts, when it is the one that has them (tests and tools).
+  VplPaths* paths();
+  TemporalIndirect* temporal();
+  ManyLights* manyLights();
+  // The VPL count the technique uses: its options' count rounded down to a multiple of the bounces.
   uint32_t effectiveVplCount() const;
 
  private:
+  template <class F>
+  F* findFeature() const {
+    for (render::RenderFeature* f : technique_->features())
+      if (auto* typed = dynamic_cast<F*>(f)) return typed;
+    return nullptr;
+  }
+
   const scene::AssetStore& assets_;
   GiSettings settings_;
+  const TechniqueEntry* entry_ = nullptr;
   std::unique_ptr<EmbreeScene> bvh_;
   std::unique_ptr<VoxelScene> voxels_;
   std::unique_ptr<VoxelSyncSystem> voxelSync_;
-  std::unique_ptr<VplPaths> paths_;
-  std::unique_ptr<TemporalIndirect> temporal_;
-  std::unique_ptr<ManyLights> manyLights_;
+  std::unique_ptr<Technique> technique_;
   ChangeTracker changes_;  // the one change set per frame
   double syncMs_ = 0;
 };

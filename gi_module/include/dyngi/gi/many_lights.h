@@ -9,24 +9,20 @@
 
 #include "dyngi/engine/render/pipeline.h"
 #include "dyngi/engine/render/render_feature.h"
+#include "dyngi/gi/vpl_options.h"
 #include "dyngi/gi/voxel_scene.h"
 
 namespace dyngi::gi {
 
 enum class ManyLightsView { Final, Indirect, Vpls, SubImages };
 
-struct ManyLightsSettings {
-  uint32_t vplCount = 512;          // total over all bounces (per bounce: vplCount / bounces)
-  uint32_t bounces = 1;             // 1..3
-  uint32_t interleave = 4;          // K: the G-buffer is split into K x K sub-images
-  float distanceClamp = 0.01f;      // B (world units^2): G = cos cos / max(B, d^2)
-  float luminanceThreshold = 0.01f; // skip VPLs dimmer than this fraction of a first-bounce VPL
-  uint32_t rsmResolution = 256;
+struct ManyLightsOptions {
+  VplOptions vpl;
+  uint32_t rsmResolution = 256;     // RSM texels per side, per light layer
   bool visibility = true;           // false: V = 1 (no indirect shadows), for comparisons
-  float liftVoxels = 1.5f;          // segment ends leave their surface by this many voxels
-  float filterPlaneTolerance = 0.02f;  // relative to the view distance
-  uint32_t seed = 1;
-  ManyLightsView view = ManyLightsView::Final;
+  ManyLightsView view = ManyLightsView::Final;  // a debug view (Technique::setDebugView), not a table row
+
+  static const OptionTable<ManyLightsOptions>& table();
 };
 
 struct VplReadback {
@@ -38,7 +34,7 @@ struct VplReadback {
 
 class ManyLights final : public render::RenderFeature {
  public:
-  ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const ManyLightsSettings& settings = {});
+  ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const ManyLightsOptions& settings = {});
   ~ManyLights() override;
 
   const char* name() const override { return "many_lights"; }
@@ -47,12 +43,9 @@ class ManyLights final : public render::RenderFeature {
   void recordAfterLighting(render::FrameContext& frame) override;
   void resize(render::VulkanContext& ctx, uint32_t width, uint32_t height) override;
 
-  ManyLightsSettings& settings() { return settings_; }
+  ManyLightsOptions& settings() { return settings_; }
   // VPLs per frame as used: the requested count rounded down to a multiple of the bounces.
-  uint32_t vplCount() const {
-    const uint32_t bounces = std::clamp(settings_.bounces, 1u, 3u);  // as prepare() will clamp them
-    return std::max(1u, settings_.vplCount / bounces) * bounces;
-  }
+  uint32_t vplCount() const { return settings_.vpl.effectiveVplCount(); }
   // The current VPLs (read back; tests and tools).
   std::vector<VplReadback> readbackVpls();
 
@@ -61,7 +54,7 @@ class ManyLights final : public render::RenderFeature {
 
   render::VulkanContext& ctx_;
   VoxelScene& voxels_;
-  ManyLightsSettings settings_;
+  ManyLightsOptions settings_;
   uint32_t rsmLayers_ = 0, rsmLayersUsed_ = 0, perBounce_ = 0;
   render::Image rsmPosition_, rsmNormal_, rsmFlux_, rsmDepth_;
   render::Buffer layers_, lights_, rowPrefix_, rowCdf_, vpls_;

@@ -9,6 +9,7 @@
 #include "dyngi/engine/render/image_metrics.h"
 #include "dyngi/engine/render/snapshot.h"
 #include "dyngi/gi/bvh.h"
+#include "dyngi/gi/options.h"
 
 namespace dyngi::gi {
 
@@ -20,6 +21,8 @@ struct PathTracerSettings {
   uint64_t seed = 1;
   bool pixelJitter = true;      // false: every sample through the pixel centre (as the rasterizer samples)
   glm::vec3 background{0.0f};   // radiance of rays that leave the scene
+
+  static const OptionTable<PathTracerSettings>& table();  // spp, bounces, seed
 };
 
 struct PathTracerStats {

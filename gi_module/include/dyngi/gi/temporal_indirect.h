@@ -18,6 +18,7 @@
 #include "dyngi/engine/render/pipeline.h"
 #include "dyngi/engine/render/render_feature.h"
 #include "dyngi/gi/bvh.h"
+#include "dyngi/gi/temporal_options.h"
 #include "dyngi/gi/voxel_scene.h"
 #include "dyngi/gi/vpl_paths.h"
 
@@ -27,21 +28,6 @@ namespace gpu {
 struct AccumulatePush;
 }
 
-enum class VisibilityBackend { Svo, Bvh, None };
-
-struct TemporalSettings {
-  uint32_t interleave = 4;
-  float distanceClamp = 0.01f;
-  float luminanceThreshold = 0.01f;
-  float liftVoxels = 1.5f;              // SVO: segment ends leave their surface by this many voxels
-  float reprojectionCutoff = 0.02f;     // relative to the view distance
-  // false: every pixel is reprojected from every set each frame, as when the camera moves (the reference
-  // the O(1) update for a still camera is tested against).
-  bool incrementalAccumulation = true;
-  float filterPlaneTolerance = 0.02f;
-  VisibilityBackend visibility = VisibilityBackend::Svo;
-};
-
 struct TemporalVpl {
   glm::vec3 position, normal;
   bool valid;
@@ -49,9 +35,9 @@ struct TemporalVpl {
 
 class TemporalIndirect final : public render::RenderFeature {
  public:
-  // `voxels` is needed for Svo visibility, `bvh` for Bvh visibility.
-  TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, VoxelScene* voxels, const EmbreeScene* bvh,
-                   const TemporalSettings& settings = {});
+  // `voxels` is needed for Svo visibility, `bvh` for Bvh visibility. The options are the VPL paths'
+  // (one TemporalOptions for the technique's CPU and render sides).
+  TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, VoxelScene* voxels, const EmbreeScene* bvh);
   ~TemporalIndirect() override;
 
   const char* name() const override { return "temporal_indirect"; }
@@ -59,7 +45,8 @@ class TemporalIndirect final : public render::RenderFeature {
   bool record(render::FrameContext& frame) override;
   void resize(render::VulkanContext& ctx, uint32_t width, uint32_t height) override;
 
-  TemporalSettings& settings() { return settings_; }
+  TemporalOptions& settings() { return settings_; }
+  VplPaths& paths() { return paths_; }
   uint32_t lastRenderedSet() const { return currentSet_; }
   uint32_t setsRendered() const;  // sets rendered at least once
   double lastBvhVisibilityMs() const { return bvhMs_; }
@@ -73,7 +60,7 @@ class TemporalIndirect final : public render::RenderFeature {
   VplPaths& paths_;
   VoxelScene* voxels_;
   const EmbreeScene* bvh_;
-  TemporalSettings settings_;
+  TemporalOptions settings_;  // a copy of the paths' options: tests switch accumulation modes on it
   uint32_t sets_ = 1, perSet_ = 1;
   uint32_t currentSet_ = 0;
   uint64_t frameCounter_ = 0;
@@ -87,7 +74,7 @@ class TemporalIndirect final : public render::RenderFeature {
   render::Pipeline reprojectPipeline_;
   glm::mat4 lastCamera_{0.0f};
   render::Image accumulated_;  // the gather's accumulated light, the filter's input
-  uint32_t interleave() const { return std::clamp(settings_.interleave, 1u, 8u); }  // K
+  uint32_t interleave() const { return std::clamp(settings_.vpl.interleave, 1u, 8u); }  // K
   std::vector<glm::mat4> setCameras_;   // CPU copy: which sets were stored from the current camera
   std::unique_ptr<class IndirectGatherPass> gatherPass_;
   std::unique_ptr<class IndirectFilterPass> filterPass_;

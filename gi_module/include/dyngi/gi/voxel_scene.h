@@ -16,6 +16,7 @@
 #include "dyngi/engine/render/pipeline.h"
 #include "dyngi/engine/render/render_feature.h"
 #include "dyngi/gi/bvh.h"
+#include "dyngi/gi/options.h"
 #include "dyngi/gi/voxel.h"
 
 namespace dyngi::gi {
@@ -30,6 +31,8 @@ struct VoxelSettings {
   // Per-voxel averaged albedo, normal and emission (the voxel debug view, radiance injection). Off, the
   // build makes only what visibility needs: no attribute pass, no attribute memory.
   bool leafAttributes = true;
+
+  static const OptionTable<VoxelSettings>& table();  // resolution only: the rest is the host's business
 };
 
 // One voxelization fragment as the voxelizer wrote it (decoded; for tests and tools).

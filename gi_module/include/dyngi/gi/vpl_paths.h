@@ -22,21 +22,9 @@
 
 #include "dyngi/engine/render/snapshot.h"
 #include "dyngi/gi/bvh.h"
+#include "dyngi/gi/temporal_options.h"
 
 namespace dyngi::gi {
-
-struct VplPathSettings {
-  uint32_t count = 512;         // VPLs in the pool (paths x bounces)
-  uint32_t bounces = 1;         // 1..3
-  uint32_t reshootBudget = 0;   // per frame; 0: count / temporalSets (one set's worth)
-  uint32_t temporalSets = 16;   // T
-  uint64_t seed = 1;
-  // A light counts as moved/turned once it is this far (fraction of the scene diagonal) or this many
-  // radians from where its VPLs were shot. 0 invalidates on any motion; the default keeps VPLs of a
-  // slowly moving light alive for a few frames, which bounds the bias and keeps the pool full.
-  float lightMoveTolerance = 0.02f;
-  float lightTurnTolerance = 0.03f;
-};
 
 struct PathVpl {
   glm::vec3 position{0.0f};
@@ -64,7 +52,9 @@ struct VplPathStats {
 
 class VplPaths {
  public:
-  explicit VplPaths(const VplPathSettings& settings = {});
+  // Uses the options' VPL count rounded to a multiple of the bounces, bounces clamped to 1..3 and T >= 1;
+  // settings() reports those values.
+  explicit VplPaths(const TemporalOptions& settings = {});
 
   // One frame: invalidate against `moved` (entities whose world transform or mesh changed) and the
   // snapshot's lights, then replace up to the budget.
@@ -81,10 +71,10 @@ class VplPaths {
   void replace(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets);
 
   const std::vector<PathVpl>& vpls() const { return vpls_; }
-  const VplPathSettings& settings() const { return settings_; }
+  const TemporalOptions& settings() const { return settings_; }
   const VplPathStats& stats() const { return stats_; }
   uint32_t paths() const { return paths_; }
-  uint32_t bounces() const { return settings_.bounces; }
+  uint32_t bounces() const { return settings_.vpl.bounces; }
   uint32_t setOf(uint32_t index) const { return index % settings_.temporalSets; }
   // Sets with a VPL invalidated or replaced since markSetRendered(set).
   bool setDirty(uint32_t set) const { return setDirty_[set] != 0; }
@@ -105,7 +95,8 @@ class VplPaths {
   void invalidateIndex(uint32_t index);
   bool shoot(uint32_t index, const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const class SceneSurfaces& surfaces);
 
-  VplPathSettings settings_;
+  TemporalOptions settings_;
+  uint32_t reshootBudget_ = 0;  // per frame, as used (settings_.reshootBudget, or one set's worth for 0)
   uint32_t paths_ = 0;
   std::vector<PathVpl> vpls_;
   std::vector<LightState> pathLight_;   // per path: the light state its bounce-0 VPL was shot from

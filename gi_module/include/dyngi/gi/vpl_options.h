@@ -1,0 +1,31 @@
+#pragma once
+// The settings both VPL techniques share (many lights from RSMs, temporal VPL paths): how many VPLs,
+// how they are gathered (the interleaved gather and the geometry-aware filter in gi_module/indirect/).
+// Each technique's options struct holds one VplOptions; the defaults here are the only ones.
+#include <algorithm>
+#include <cstdint>
+
+#include "dyngi/gi/options.h"
+
+namespace dyngi::gi {
+
+struct VplOptions {
+  uint32_t vplCount = 512;             // total over all bounces (per bounce: vplCount / bounces)
+  uint32_t bounces = 1;                // light bounces simulated by VPLs, 1..3
+  uint32_t interleave = 4;             // K: the G-buffer is split into K x K sub-images
+  float distanceClamp = 0.01f;         // B (world units^2): G = cos cos / max(B, d^2)
+  float luminanceThreshold = 0.01f;    // skip VPLs dimmer than this fraction of a first-bounce VPL
+  float liftVoxels = 1.5f;             // SVO visibility: segment ends leave their surface by this many voxels
+  float filterPlaneTolerance = 0.02f;  // filter: taps on the pixel's plane within this fraction of the view distance
+  uint32_t seed = 1;                   // random sequences of the VPLs
+
+  // The VPL count used: vplCount rounded down to a multiple of the bounces (each bounce level holds
+  // the same number). The one rounding rule of both techniques.
+  uint32_t effectiveVplCount() const {
+    const uint32_t b = std::clamp(bounces, 1u, 3u);
+    return std::max(1u, vplCount / b) * b;
+  }
+  static const OptionTable<VplOptions>& table();
+};
+
+}  // namespace dyngi::gi

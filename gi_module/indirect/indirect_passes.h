@@ -1,0 +1,53 @@
+#pragma once
+// The passes the VPL techniques share: the interleaved gather (shaders/gather.glsl) and the
+// geometry-aware merge filter (shaders/filter.comp). A technique that needs more from the gather (the
+// temporal technique accumulates inside it) brings its own gather shader built on gather.glsl and
+// declares its extra bindings here; no technique binds images it does not use.
+#include <functional>
+#include <span>
+
+#include "dyngi/engine/render/frame_context.h"
+#include "dyngi/engine/render/pipeline.h"
+#include "shaders/shared/gi_gpu_types.h"
+
+namespace dyngi::gi {
+
+class IndirectGatherPass {
+ public:
+  // The plain gather (gather.comp), or a technique's variant: a shader that includes gather.glsl, with
+  // `extraBindings` from DYNGI_GATHER_FIRST_TECHNIQUE_BINDING and `extraPushBytes` after GatherPush.
+  explicit IndirectGatherPass(render::VulkanContext& ctx);
+  IndirectGatherPass(render::VulkanContext& ctx, render::ShaderCode variant, std::span<const render::Binding> extraBindings,
+                     uint32_t extraPushBytes, const char* name);
+
+  struct Inputs {
+    VkBuffer vpls = VK_NULL_HANDLE;
+    VkBuffer nodes = VK_NULL_HANDLE;  // the SVO (visibility 0); any valid buffer otherwise
+    VkBuffer bits = VK_NULL_HANDLE;   // precomputed visibility (visibility 2); any valid buffer otherwise
+    gpu::GatherPush push{};
+    // A variant's own descriptors and push constants (after GatherPush).
+    std::function<void(render::DescriptorWrites&)> extraWrites;
+    const void* extraPush = nullptr;
+  };
+  // Gathers into `raw` (rgba32ui, filter_input.glsl's packing; "indirect" in stats).
+  void record(render::FrameContext& frame, render::Image& raw, const Inputs& in);
+
+ private:
+  render::VulkanContext& ctx_;
+  render::Pipeline pipeline_;
+  uint32_t extraPushBytes_ = 0;
+};
+
+class IndirectFilterPass {
+ public:
+  explicit IndirectFilterPass(render::VulkanContext& ctx);
+  // Filters `input` (interleaved K x K, K in 1..8; rgba32ui packed as in filter_input.glsl) into
+  // frame.targets.indirect ("filter" in stats).
+  void record(render::FrameContext& frame, render::Image& input, uint32_t K, float planeTolerance);
+
+ private:
+  render::VulkanContext& ctx_;
+  render::Pipeline pipelines_[8];  // per K, made on first use: K is a specialization constant
+};
+
+}  // namespace dyngi::gi

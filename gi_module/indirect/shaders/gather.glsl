@@ -1,0 +1,87 @@
+// Interleaved indirect gather, shared by the VPL techniques: pixel (x, y) belongs to sub-image
+// s = (x mod K) + K (y mod K) and gathers only VPLs s, s + K^2, ...; one workgroup covers pixels of one
+// sub-image, so its threads walk the same VPLs (coherent VPL and SVO reads). E = sum flux G V with
+// G = cos_x cos_y / max(B, d^2) and V from the SVO-restart march or precomputed bits; dim or back-facing
+// VPLs are skipped before marching. The light is K^2 E / pi^2, so the K x K filter's average is the full
+// sum's E / pi (what the lighting pass multiplies by albedo).
+//
+// A gather shader (gather.comp, or a technique's own such as the temporal technique's
+// temporal_gather.comp) includes this file, may declare bindings from DYNGI_GATHER_FIRST_TECHNIQUE_BINDING
+// on and push constants after GatherPush (define GATHER_EXTRA_PUSH before the include), and writes its
+// main() around gatherPixel().
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gpu_types.h"
+#include "shared/gi_gpu_types.h"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = DYNGI_GATHER_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = DYNGI_GATHER_BINDING_POSITION, rgba32f) uniform readonly image2D gPosition;
+layout(set = 0, binding = DYNGI_GATHER_BINDING_NORMAL, rgba16f) uniform readonly image2D gNormal;
+layout(set = 0, binding = DYNGI_GATHER_BINDING_VPLS) readonly buffer Vpls { GpuVpl vpls[]; };
+layout(set = 0, binding = DYNGI_GATHER_BINDING_SVO_NODES) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = DYNGI_GATHER_BINDING_OUTPUT, rgba32ui) uniform writeonly uimage2D outRaw;  // filter_input.glsl's packing
+layout(set = 0, binding = DYNGI_GATHER_BINDING_VISIBILITY_BITS) readonly buffer VisibilityBits { uint visibleBits[]; };  // visibility mode 2
+#ifndef GATHER_EXTRA_PUSH
+#define GATHER_EXTRA_PUSH
+#endif
+layout(push_constant) uniform Push { GatherPush pc; GATHER_EXTRA_PUSH };
+#include "svo_traverse.glsl"
+#include "filter_input.glsl"
+
+const float PI = 3.14159265358979;
+
+// Light from the set's VPL i (the m-th this pixel gathers) at surface point x with normal nx (xv: x in
+// voxel units, lifted): flux G V, or 0 for an absent, dim or back-facing VPL or one beyond the count.
+vec3 vplLight(uint i, uint m, vec3 x, vec3 nx, vec3 xv, float threshold, uint bitBase) {
+  if (i >= pc.info.x) return vec3(0.0);
+  GpuVpl v = vpls[pc.range.x + i];
+  if (v.position.w < 0.0 || v.flux.w <= threshold) return vec3(0.0);
+  vec3 d = v.position.xyz - x;
+  float d2 = dot(d, d);
+  if (d2 <= 0.0) return vec3(0.0);
+  vec3 w = d * inversesqrt(d2);
+  float cx = dot(nx, w), cy = -dot(v.normal.xyz, w);
+  if (cx <= 0.0 || cy <= 0.0) return vec3(0.0);
+  float g = cx * cy / max(pc.params.x, d2);
+  if (pc.info.z == 2u) {
+    uint bit = bitBase + m;
+    if ((visibleBits[bit >> 5] & (1u << (bit & 31u))) == 0u) return vec3(0.0);
+  } else if (pc.info.z == 0u) {
+    vec3 yv = (v.position.xyz - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + v.normal.xyz * pc.params.z;
+    uint steps;
+    if (svoOccluded(xv, yv, 1e-3, pc.info.w, pc.params.w, steps)) return vec3(0.0);
+  }
+  return v.flux.rgb * g;
+}
+
+// Gathers this invocation's pixel: false when it lies outside the image. `depth` is -1 where the
+// G-buffer is empty (the light is then 0).
+bool gatherPixel(out ivec2 px, out vec3 light, out float depth, out uvec2 packedNormal) {
+  uint K = pc.info.y;
+  uint s = gl_GlobalInvocationID.z;
+  px = ivec2(gl_GlobalInvocationID.xy) * int(K) + ivec2(s % K, s / K);
+  if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return false;
+  vec4 pos = imageLoad(gPosition, px);
+  vec3 e = vec3(0.0), nx = vec3(0.0, 0.0, 1.0);
+  depth = -1.0;
+  uint K2 = K * K;
+  if (pos.w != 0.0) {
+    vec3 x = pos.xyz;
+    depth = viewDepthOf(x);
+    nx = normalize(imageLoad(gNormal, px).xyz);
+    vec3 xv = (x - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + nx * pc.params.z;
+    // Importance sampling gives every first-bounce VPL the same luminance; the threshold is relative to it.
+    float threshold = pc.params.y * vpls[pc.range.x].flux.w;
+    uint bitBase = (uint(px.y) * frame.sizeAndCount.x + uint(px.x)) * pc.range.y;
+    // A do-while: lavapipe runs a for loop's body once more, masked, before it sees every lane has left;
+    // checking at the end saves that pass (a gather and an SVO march step per pixel).
+    uint i = s, m = 0u;
+    do {
+      e += vplLight(i, m, x, nx, xv, threshold, bitBase);
+      i += K2;
+      ++m;
+    } while (i < pc.info.x);
+  }
+  light = float(K2) * e / (PI * PI);
+  packedNormal = packFilterNormal(nx);
+  return true;
+}

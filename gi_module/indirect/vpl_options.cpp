@@ -1,0 +1,20 @@
+#include "dyngi/gi/vpl_options.h"
+
+namespace dyngi::gi {
+
+const OptionTable<VplOptions>& VplOptions::table() {
+  static const OptionTable<VplOptions> t =
+      OptionTable<VplOptions>()
+          .add({"vpls", "VPLs over all bounces (rounded down to a multiple of the bounces)", 16, 65536}, &VplOptions::vplCount)
+          .add({"bounces", "light bounces carried by VPLs", 1, 3}, &VplOptions::bounces)
+          .add({"interleave", "K: the gather splits the image into K x K sub-images", 1, 8}, &VplOptions::interleave)
+          .add({"clamp", "distance clamp B in world units^2: G = cos cos / max(B, d^2)", 0, 100}, &VplOptions::distanceClamp)
+          .add({"luminance-threshold", "skip VPLs dimmer than this fraction of a first-bounce VPL", 0, 1}, &VplOptions::luminanceThreshold)
+          .add({"lift-voxels", "SVO visibility: segment ends leave their surface by this many voxels", 0, 8}, &VplOptions::liftVoxels)
+          .add({"filter-plane-tolerance", "filter taps count within this fraction of the view distance off the pixel's plane", 0, 1},
+               &VplOptions::filterPlaneTolerance)
+          .add({"seed", "seed of the VPLs' random numbers", 0, 4294967295.0}, &VplOptions::seed);
+  return t;
+}
+
+}  // namespace dyngi::gi

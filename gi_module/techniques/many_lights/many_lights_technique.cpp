@@ -1,0 +1,55 @@
+// The many-lights technique in the GI system's contract: VPLs from RSMs every frame, SVO visibility.
+#include "dyngi/gi/gi_system.h"
+#include "dyngi/gi/many_lights.h"
+#include "techniques/registry_entries.h"
+
+namespace dyngi::gi {
+
+const OptionTable<ManyLightsOptions>& ManyLightsOptions::table() {
+  static const OptionTable<ManyLightsOptions> t =
+      OptionTable<ManyLightsOptions>()
+          .include(&ManyLightsOptions::vpl)
+          .add({"rsm-res", "reflective shadow map texels per side and light", 16, 2048, /*powerOfTwo=*/true},
+               &ManyLightsOptions::rsmResolution)
+          .add({"indirect-shadows", "SVO visibility of the VPLs (off: V = 1, for comparisons)", 0, 1}, &ManyLightsOptions::visibility);
+  return t;
+}
+
+namespace {
+
+class ManyLightsTechnique final : public Technique {
+ public:
+  ManyLightsTechnique(const TechniqueServices& services, const ManyLightsOptions& options)
+      : feature_(services.ctx, *services.voxels, options) {}
+  std::vector<render::RenderFeature*> features() override { return {&feature_}; }
+  std::vector<OptionRef> options() override { return bindOptions(feature_.settings()); }
+  bool setDebugView(std::string_view name) override {
+    ManyLightsView& v = feature_.settings().view;
+    if (name == "final") v = ManyLightsView::Final;
+    else if (name == "indirect") v = ManyLightsView::Indirect;
+    else if (name == "vpls") v = ManyLightsView::Vpls;
+    else if (name == "subimages") v = ManyLightsView::SubImages;
+    else return false;
+    return true;
+  }
+  std::vector<const char*> timedSections() const override { return {"rsm", "vpl_generate", "vpl_bounce", "indirect", "filter"}; }
+  ManyLights& feature() { return feature_; }
+
+ private:
+  ManyLights feature_;
+};
+
+}  // namespace
+
+TechniqueEntry manyLightsTechniqueEntry() {
+  return {"many_lights",
+          "VPLs importance-sampled from reflective shadow maps every frame, bounced and gathered with SVO visibility",
+          {"indirect", "vpls", "subimages"},
+          [](GiSettings& s) { return bindOptions(s.manyLights); },
+          [](const GiSettings&) { return true; },
+          [](const TechniqueServices& services, const GiSettings& s) -> std::unique_ptr<Technique> {
+            return std::make_unique<ManyLightsTechnique>(services, s.manyLights);
+          }};
+}
+
+}  // namespace dyngi::gi

@@ -1,0 +1,92 @@
+// The temporal technique in the GI system's contract: incremental VPL paths on the CPU (VplPaths),
+// temporal sets gathered one a frame and reprojected (TemporalIndirect), SVO or Embree visibility.
+#include "dyngi/gi/gi_system.h"
+#include "dyngi/gi/temporal_indirect.h"
+#include "dyngi/gi/vpl_paths.h"
+#include "shaders/shared/gi_gpu_types.h"
+#include "techniques/registry_entries.h"
+
+namespace dyngi::gi {
+
+const OptionTable<TemporalOptions>& TemporalOptions::table() {
+  static const OptionTable<TemporalOptions> t =
+      OptionTable<TemporalOptions>()
+          .include(&TemporalOptions::vpl)
+          .add({"temporal", "T temporal VPL sets, one gathered a frame (1: every VPL every frame)", 1, DYNGI_MAX_TEMPORAL_SETS},
+               &TemporalOptions::temporalSets)
+          .add({"reshoot", "VPLs reshot per frame (0: VPLs / T)", 0, 1000000}, &TemporalOptions::reshootBudget)
+          .add({"reprojection-cutoff", "a stored sample counts within this fraction of the view distance", 0, 1},
+               &TemporalOptions::reprojectionCutoff)
+          .add({"light-move-tolerance", "a light's VPLs live until it moved this fraction of the scene diagonal", 0, 1},
+               &TemporalOptions::lightMoveTolerance)
+          .add({"light-turn-tolerance", "... or turned this many radians", 0, 3.2}, &TemporalOptions::lightTurnTolerance)
+          .add({"incremental", "O(1) accumulation while the camera is still (off: full reprojection every frame)", 0, 1},
+               &TemporalOptions::incrementalAccumulation);
+  return t;
+}
+
+namespace {
+
+class TemporalTechnique final : public Technique {
+ public:
+  TemporalTechnique(const TechniqueServices& services, const TemporalOptions& options)
+      : bvh_(services.bvh), assets_(services.assets), paths_(options), feature_(services.ctx, paths_, services.voxels, &services.bvh) {}
+
+  // VPLs on a re-coloured surface keep their paths and take the new albedo (so does every later bounce);
+  // those on a surface that moved or deformed, with their later bounces, are invalidated; then up to the
+  // budget are reshot.
+  void update(const TechniqueFrame& frame) override {
+    const std::unordered_set<ecs::Entity> geometry = frame.changes.geometryChanged();
+    std::unordered_set<ecs::Entity> recoloured;
+    for (ecs::Entity e : frame.changes.materials)
+      if (!geometry.count(e)) recoloured.insert(e);
+    paths_.refreshMaterials(frame.snapshot, bvh_, assets_, recoloured);
+    paths_.update(frame.snapshot, bvh_, assets_, geometry);
+  }
+  std::vector<render::RenderFeature*> features() override { return {&feature_}; }
+  std::vector<OptionRef> options() override {
+    used_ = paths_.settings();
+    used_.vpl.interleave = feature_.settings().vpl.interleave;
+    return bindOptions(used_);
+  }
+  std::vector<const char*> timedSections() const override { return {"indirect", "reproject", "filter"}; }
+  std::map<std::string, double> cpuMs() const override {
+    const VplPathStats& s = paths_.stats();
+    std::map<std::string, double> ms = {{"gi_vpl_invalidate", s.invalidateMs}, {"gi_vpl_replace", s.replaceMs}};
+    if (paths_.settings().visibility == VisibilityBackend::Bvh) ms["gi_bvh_visibility"] = feature_.lastBvhVisibilityMs();
+    return ms;
+  }
+  std::map<std::string, std::map<std::string, double>> statsSections() const override {
+    const VplPathStats& s = paths_.stats();
+    return {{"vpl",
+             {{"count", s.count},
+              {"valid", s.valid},
+              {"invalidated_total", double(s.invalidatedTotal)},
+              {"replaced_total", double(s.replacedTotal)},
+              {"reshoot_budget", s.reshootBudget}}}};
+  }
+  VplPaths& paths() { return paths_; }
+  TemporalIndirect& feature() { return feature_; }
+
+ private:
+  EmbreeScene& bvh_;
+  const scene::AssetStore& assets_;
+  VplPaths paths_;
+  TemporalIndirect feature_;
+  TemporalOptions used_;  // what options() binds: the paths' options as used
+};
+
+}  // namespace
+
+TechniqueEntry temporalTechniqueEntry() {
+  return {"temporal",
+          "incremental VPL light paths, T temporal sets gathered one a frame and reprojected; SVO or Embree visibility",
+          {},
+          [](GiSettings& s) { return bindOptions(s.temporal); },
+          [](const GiSettings& s) { return s.temporal.visibility == VisibilityBackend::Svo; },
+          [](const TechniqueServices& services, const GiSettings& s) -> std::unique_ptr<Technique> {
+            return std::make_unique<TemporalTechnique>(services, s.temporal);
+          }};
+}
+
+}  // namespace dyngi::gi
