@@ -8,6 +8,19 @@
 
 namespace dyngi::gi {
 
+// The GI system's first render feature: hands the renderer's snapshot to the technique's CPU update
+// before any GI feature prepares.
+class GiFrameUpdate final : public render::RenderFeature {
+ public:
+  explicit GiFrameUpdate(GiSystem& gi) : gi_(gi) {}
+  const char* name() const override { return "gi_frame_update"; }
+  void prepare(render::VulkanContext&, const render::RenderSnapshot& snapshot) override { gi_.updateTechnique(snapshot); }
+  bool record(render::FrameContext&) override { return false; }
+
+ private:
+  GiSystem& gi_;
+};
+
 GiSystem::GiSystem(render::VulkanContext& ctx, const scene::AssetStore& assets, const GiSettings& s) : assets_(assets), settings_(s) {
   entry_ = findTechnique(s.technique);
   if (!entry_) throw std::invalid_argument("unknown GI technique '" + s.technique + "'");
@@ -20,11 +33,13 @@ GiSystem::GiSystem(render::VulkanContext& ctx, const scene::AssetStore& assets, 
     voxelSync_ = std::make_unique<VoxelSyncSystem>(*voxels_, assets);
   }
   technique_ = entry_->create(TechniqueServices{ctx, assets, *bvh_, voxels_.get()}, s);
+  frameUpdate_ = std::make_unique<GiFrameUpdate>(*this);
 }
 
 GiSystem::~GiSystem() = default;
 
 void GiSystem::attach(render::Renderer& renderer) {
+  renderer.addFeature(frameUpdate_.get());
   if (voxels_) renderer.addFeature(voxels_.get());
   for (render::RenderFeature* f : technique_->features()) renderer.addFeature(f);
 }
@@ -38,10 +53,16 @@ void GiSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {
   bvh_->sync(world, assets_, changes);
   // 3. Voxels: mark what must be re-voxelized (the GPU work is recorded by the VoxelScene feature).
   if (voxelSync_) voxelSync_->apply(changes);
-  // 4. The technique's CPU work (VPL refresh, invalidation, replacement).
-  const render::RenderSnapshot snapshot = render::extractSnapshot(world, assets_, ctx.time.frame);
-  technique_->update(TechniqueFrame{changes, snapshot});
+  // 4. The technique's CPU work waits for the renderer's snapshot (updateTechnique).
+  pending_.merge(changes);
   syncMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void GiSystem::updateTechnique(const render::RenderSnapshot& snapshot) {
+  auto t0 = std::chrono::steady_clock::now();
+  technique_->update(TechniqueFrame{pending_, snapshot});
+  pending_ = ChangeSet{};
+  syncMs_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 VplPaths* GiSystem::paths() {

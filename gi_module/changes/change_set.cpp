@@ -34,4 +34,17 @@ ChangeSet ChangeTracker::compute(const ecs::World& world, const scene::AssetStor
   return c;
 }
 
+void ChangeSet::merge(const ChangeSet& later) {
+  auto add = [](std::vector<ecs::Entity>& to, const std::vector<ecs::Entity>& from) {
+    std::unordered_set<ecs::Entity> have(to.begin(), to.end());
+    for (ecs::Entity e : from)
+      if (have.insert(e).second) to.push_back(e);
+  };
+  add(moved, later.moved);
+  add(deformed, later.deformed);
+  add(meshWritten, later.meshWritten);
+  add(removed, later.removed);
+  add(materials, later.materials);
+}
+
 }  // namespace dyngi::gi

@@ -25,6 +25,8 @@ struct ChangeSet {
 
   // Geometry (place or shape): what the BVH must update and what invalidates VPLs. Materials apart.
   std::unordered_set<ecs::Entity> geometryChanged() const;
+  // Adds a later set's changes (each entity once per list): what changed over two runs.
+  void merge(const ChangeSet& later);
 };
 
 // Computes change sets; remembers the deformed meshes' versions between calls (a skinned mesh changes

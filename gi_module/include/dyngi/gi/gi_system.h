@@ -5,10 +5,11 @@
 //   gi->attach(renderer);                                           // its render features
 //   scheduler.add(dyngi::ecs::Phase::PostUpdate, std::move(gi));    // after transforms and skinning
 //
-// Per frame (run): what changed since the last run (one ChangeSet) -> BVH update -> voxel/SVO update
-// (dirty entities) -> the technique's CPU work (VPL invalidation and replacement); the render features
-// then record the voxel update and the technique's passes. The technique is chosen by name from the
-// registry (technique.h); nothing in engine/ knows about any of this.
+// Per frame, in run() (ECS): what changed since the last run (one ChangeSet) -> BVH update -> voxel
+// dirty marks. Then, when the renderer prepares the frame, with the one snapshot it renders (no second
+// extraction): the technique's CPU work (VPL invalidation and replacement) with the change set, then
+// the render features record the voxel update and the technique's passes. The technique is chosen by
+// name from the registry (technique.h); nothing in engine/ knows about any of this.
 #include <memory>
 #include <string>
 
@@ -72,6 +73,10 @@ class GiSystem final : public ecs::System {
     return nullptr;
   }
 
+  friend class GiFrameUpdate;
+  // The technique's CPU work on the renderer's snapshot, with every change since the last such call.
+  void updateTechnique(const render::RenderSnapshot& snapshot);
+
   const scene::AssetStore& assets_;
   GiSettings settings_;
   const TechniqueEntry* entry_ = nullptr;
@@ -79,8 +84,10 @@ class GiSystem final : public ecs::System {
   std::unique_ptr<VoxelScene> voxels_;
   std::unique_ptr<VoxelSyncSystem> voxelSync_;
   std::unique_ptr<Technique> technique_;
+  std::unique_ptr<render::RenderFeature> frameUpdate_;  // attached first: calls updateTechnique
   ChangeTracker changes_;  // the one change set per frame
-  double syncMs_ = 0;
+  ChangeSet pending_;      // changes not yet handed to the technique (run() more often than render())
+  double syncMs_ = 0;      // run() plus the last updateTechnique()
 };
 
 }  // namespace dyngi::gi
