@@ -20,7 +20,7 @@ layout(set = 0, binding = 6) readonly buffer ShadowMatrices { mat4 shadowViewPro
 layout(set = 0, binding = 7, r32f) uniform readonly image2DArray shadowMaps;
 layout(set = 0, binding = 8, rgba32f) uniform readonly image2D indirect;
 layout(set = 0, binding = 9, rgba32f) uniform writeonly image2D outHdr;
-layout(push_constant) uniform Push { uint hasIndirect; };  // 0: no feature wrote indirect light
+layout(push_constant) uniform Push { DYNGI_LIGHTING_PUSH };
 
 const float PI = 3.14159265358979;
 

@@ -56,7 +56,7 @@ void IndirectGatherPass::record(render::FrameContext& frame, render::Image& raw,
   vkCmdPushConstants(cmd, pipeline_.layout(), kCS, 0, sizeof(in.push), &in.push);
   if (extraPushBytes_ > 0 && in.extraPush)
     vkCmdPushConstants(cmd, pipeline_.layout(), kCS, sizeof(in.push), extraPushBytes_, in.extraPush);
-  const uint32_t K = in.push.info.y;
+  const uint32_t K = in.push.interleave;
   vkCmdDispatch(cmd, dispatchGroups(dispatchGroups(t.width, K), 8), dispatchGroups(dispatchGroups(t.height, K), 8), K * K);
 }
 

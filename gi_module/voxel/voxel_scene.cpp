@@ -7,6 +7,7 @@
 #include <cstring>
 #include <glm/gtc/packing.hpp>
 
+#include "dyngi/engine/render/draw_pass.h"
 #include "dyngi/engine/render/gpu_timer.h"
 #include "dyngi/engine/scene/animation.h"
 #include "shaders/shared/gi_gpu_types.h"
@@ -14,7 +15,6 @@
 #include "spirv/svo_leaf_attributes.comp.spv.h"
 #include "spirv/svo_level.comp.spv.h"
 #include "spirv/svo_mark.comp.spv.h"
-#include "spirv/svo_march.comp.spv.h"
 #include "spirv/voxel_debug.comp.spv.h"
 #include "spirv/voxelize.frag.spv.h"
 #include "spirv/voxelize.geom.spv.h"
@@ -57,10 +57,6 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
                       MemoryUsage::GpuOnly, "svo occupancy pyramid");
   staticOccupancy_ = Buffer(ctx, occupancy_.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                             MemoryUsage::GpuOnly, "svo static occupancy pyramid");
-  const Binding marchB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
-  march_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_march_comp), marchB, sizeof(gpu::SvoMarchPush), "svo_march");
-  const uint32_t noMarch[] = {0u};
-  marchOff_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_march_comp), marchB, sizeof(gpu::SvoMarchPush), "svo_march_off", noMarch);
   const Binding debugB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS},
                             {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
   debug_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_voxel_debug_comp), debugB, sizeof(gpu::VoxelDebugPush), "voxel_debug");
@@ -98,12 +94,14 @@ void VoxelScene::setVolume(const VoxelVolume& v) {
 
 void VoxelScene::ensureCapacity(uint64_t slots) {
   if (fragments_.valid() && fragments_.size() >= slots * 16) return;
-  std::vector<VkBufferCopy> keep;
-  if (fragments_.valid() && highWater_ > 0) keep.push_back({0, 0, highWater_ * 16});
+  std::vector<SlotCopy> keep;
+  if (fragments_.valid() && ranges_.highWater() > 0) keep.push_back({0, 0, ranges_.highWater()});
   reallocateFragments(std::max<uint64_t>(slots + slots / 2, 1u << 16), keep);
 }
 
-void VoxelScene::reallocateFragments(uint64_t slots, const std::vector<VkBufferCopy>& keep) {
+void VoxelScene::reallocateFragments(uint64_t slots, const std::vector<SlotCopy>& keepSlots) {
+  std::vector<VkBufferCopy> keep;
+  for (const SlotCopy& c : keepSlots) keep.push_back({c.from * 16, c.to * 16, c.count * 16});
   vkDeviceWaitIdle(ctx_.device());
   Buffer fresh(ctx_, slots * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "voxel fragments");
   ctx_.immediate([&](VkCommandBuffer cmd) {
@@ -119,70 +117,10 @@ void VoxelScene::reallocateFragments(uint64_t slots, const std::vector<VkBufferC
   storageMoved_ = true;
 }
 
-uint64_t VoxelScene::movingCapacity(const Range& r) { return 2 * uint64_t(r.lastCount) + 64; }
-
-VoxelScene::RangeNeed VoxelScene::rangeNeed(uint64_t estimate, const Range* previous) {
-  if (!previous || previous->voxelizations == 0) return {estimate, estimate};
-  // It overflowed: more than it held, whatever the estimate says.
-  if (previous->lastCount > previous->capacity) {
-    uint64_t n = std::max<uint64_t>(estimate, uint64_t(previous->lastCount) * 5 / 4 + 64);
-    return {n, n};
-  }
-  // Known count: a moved or turned mesh rarely needs twice what it held (a thin sheet turning from an
-  // axis to a diagonal comes closest); the estimate overshoots small triangles several times over. The
-  // range is kept while it has a quarter of headroom, so a count that wobbles does not move it. A mesh
-  // that grew (scaled up, deformed larger) since that count needs it scaled by how much its estimate
-  // grew: sized from the old count alone it would overflow and lose voxels for a frame.
-  Range scaled = *previous;
-  if (previous->lastEstimate > 0 && estimate > previous->lastEstimate)
-    scaled.lastCount = uint32_t(std::min<double>(double(previous->lastCount) * double(estimate) / double(previous->lastEstimate), 4.0e9));
-  return {std::min<uint64_t>(estimate, uint64_t(scaled.lastCount) * 5 / 4 + 64), std::min(estimate, movingCapacity(scaled))};
-}
-
-void VoxelScene::compactRanges() {
-  // Ranges are sized by an estimate that overshoots small triangles several times over, and a moved
-  // entity leaves a hole where its old range was. Once the counts are known, entities voxelized once
-  // (static) keep exactly their fragments; moving ones keep their slack (their count changes as they
-  // turn). Valid fragments sit at the start of a range (the voxelizer appends), so a copy moves them.
-  std::vector<std::pair<ecs::Entity, Range*>> order;
-  for (auto& [e, r] : ranges_) order.push_back({e, &r});
-  std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.second->first < y.second->first; });
-  std::vector<VkBufferCopy> keep;
-  uint64_t next = 0;
-  for (auto& [e, r] : order) {
-    uint64_t used = std::min<uint64_t>(r->lastCount, r->capacity);
-    uint64_t capacity = r->voxelizations > 1 ? std::min(r->capacity, movingCapacity(*r)) : used;
-    if (used > 0) keep.push_back({r->first * 16, next * 16, used * 16});
-    r->first = next;
-    r->capacity = capacity;
-    next += capacity;
-  }
-  highWater_ = next;
-  reallocateFragments(std::max<uint64_t>(next + next / 4, 1u << 16), keep);
-}
-
-uint64_t VoxelScene::estimateFragments(const scene::MeshData& mesh, const glm::mat4& m) const {
-  // Per triangle: its area projected on the dominant plane plus its perimeter (the columns it can touch),
-  // times two for the depth spread inside a column, plus slack. Overshoots are caught after the frame.
-  double sum = 0;
-  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-    glm::vec3 a(m * glm::vec4(mesh.positions[mesh.indices[t]], 1)), b(m * glm::vec4(mesh.positions[mesh.indices[t + 1]], 1)),
-        c(m * glm::vec4(mesh.positions[mesh.indices[t + 2]], 1));
-    glm::vec3 n = glm::abs(glm::cross(b - a, c - a));
-    double area = 0.5 * std::max({n.x, n.y, n.z});
-    double perimeter = glm::length(b - a) + glm::length(c - b) + glm::length(a - c);
-    sum += 2.0 * (area + perimeter + 2.0);
-  }
-  return uint64_t(sum * 1.25) + 64;
-}
-
-void VoxelScene::relayout(const render::RenderSnapshot& snapshot) {
-  (void)snapshot;
-  ranges_.clear();
-  freeCounters_.clear();
-  counterCount_ = 0;
-  highWater_ = 0;
-  rangesToEmpty_.clear();
+void VoxelScene::compactFragments() {
+  const std::vector<SlotCopy> keep = ranges_.compact();
+  const uint64_t next = ranges_.highWater();
+  reallocateFragments(std::max<uint64_t>(next + next / 4, FragmentRanges::kMinCompactSlots), keep);
 }
 
 void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& snapshot) {
@@ -204,75 +142,49 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   // Entities that disappeared from the draw list count as removed.
   std::unordered_set<ecs::Entity> present;
   for (const auto& d : snapshot.draws) present.insert(d.entity);
-  for (const auto& [e, r] : ranges_)
+  for (const auto& [e, r] : ranges_.all())
     if (!present.count(e)) removed_.insert(e);
 
   // Compact when the ranges hold more than twice what they need (counts from the last frame): after
   // the first frame, and again as moved entities leave holes.
-  if (!allDirty_ && highWater_ > (1u << 16)) {
-    uint64_t used = 0;
-    for (const auto& [e, r] : ranges_)
-      used += r.voxelizations > 1 ? std::min(r.capacity, movingCapacity(r)) : std::min<uint64_t>(r.lastCount, r.capacity);
-    if (highWater_ > 2 * used) compactRanges();
-  }
+  if (!allDirty_ && ranges_.wantsCompaction()) compactFragments();
   if (allDirty_) {
     rebuildStaticOccupancy_ = true;
-    relayout(snapshot);
+    ranges_.clear();
+    rangesToEmpty_.clear();
     for (const auto& d : snapshot.draws) dirty_.insert(d.entity);
     allDirty_ = false;
     rebuildSvo_ = true;
   }
   std::vector<ecs::Entity> removedNow;
   for (ecs::Entity e : removed_) {
-    auto it = ranges_.find(e);
-    if (it == ranges_.end()) continue;
+    const std::optional<Range> r = ranges_.remove(e);
+    if (!r) continue;
     removedNow.push_back(e);
-    rangesToEmpty_.push_back(it->second);
-    freeCounters_.push_back(it->second.counter);
-    ranges_.erase(it);
+    rangesToEmpty_.push_back(*r);
     rebuildSvo_ = true;
   }
   removed_.clear();
   drawsToVoxelize_.clear();
-  uint64_t newHighWater = highWater_;
+  uint64_t newHighWater = ranges_.highWater();
   std::vector<std::pair<ecs::Entity, Range>> planned;
   for (size_t i = 0; i < snapshot.draws.size(); ++i) {
     const auto& d = snapshot.draws[i];
     if (!dirty_.count(d.entity)) continue;
-    const scene::MeshData& mesh = snapshot.assets->mesh(d.mesh);
-    auto it = ranges_.find(d.entity);
-    Range r = it != ranges_.end() ? it->second : Range{};
-    const uint64_t estimate = estimateFragments(mesh, toVoxel * d.model);
-    RangeNeed need = rangeNeed(estimate, it != ranges_.end() ? &r : nullptr);
-    if (it == ranges_.end() || r.capacity < need.minimum) {
-      if (it != ranges_.end()) rangesToEmpty_.push_back(r);  // the old place must not keep stale voxels
-      Range fresh;
-      fresh.first = newHighWater;
-      fresh.capacity = need.fresh;
-      fresh.voxelizations = r.voxelizations;
-      if (it != ranges_.end()) fresh.counter = r.counter;
-      else if (!freeCounters_.empty()) fresh.counter = freeCounters_.back(), freeCounters_.pop_back();
-      else fresh.counter = counterCount_++;
-      newHighWater += need.fresh;
-      r = fresh;
-    }
-    r.lastEstimate = estimate;
-    planned.push_back({d.entity, r});
+    const uint64_t estimate = FragmentRanges::estimateFragments(snapshot.assets->mesh(d.mesh), toVoxel * d.model);
+    planned.push_back({d.entity, ranges_.plan(d.entity, estimate, newHighWater, rangesToEmpty_)});
     drawsToVoxelize_.push_back(i);
   }
   ensureCapacity(newHighWater);  // grows by copying: nothing already voxelized is lost
   for (auto& [e, r] : planned) {
-    r.written = true;
-    r.lastVoxelizedFrame = frameIndex_;
-    ++r.voxelizations;
-    ranges_[e] = r;
+    ranges_.commit(e, r, frameIndex_);
     voxelizedThisFrame_.push_back(e);
   }
-  highWater_ = newHighWater;
+  ranges_.setHighWater(newHighWater);
   dirty_.clear();
   if (!drawsToVoxelize_.empty() || storageMoved_) rebuildSvo_ = true;
   storageMoved_ = false;
-  uint64_t countersBytes = uint64_t(std::max(counterCount_, 1u)) * 4;
+  uint64_t countersBytes = uint64_t(std::max(ranges_.counterCount(), 1u)) * 4;
   if (!counters_.valid() || counters_.size() < countersBytes) {
     vkDeviceWaitIdle(ctx_.device());
     Buffer grown(ctx_, std::max<uint64_t>(countersBytes * 2, 1024), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "voxel counters");
@@ -288,10 +200,10 @@ void VoxelScene::planOccupancy(const std::vector<ecs::Entity>& removed) {
   // removed; it is worth rebuilding when a moving entity has settled.
   for (ecs::Entity e : voxelizedThisFrame_) rebuildStaticOccupancy_ |= staticEntities_.count(e) > 0;
   for (ecs::Entity e : removed) rebuildStaticOccupancy_ |= staticEntities_.count(e) > 0;
-  for (const auto& [e, r] : ranges_) rebuildStaticOccupancy_ |= !isMoving(r) && !staticEntities_.count(e);
+  for (const auto& [e, r] : ranges_.all()) rebuildStaticOccupancy_ |= !isMoving(r) && !staticEntities_.count(e);
   if (rebuildStaticOccupancy_) {
     staticEntities_.clear();
-    for (const auto& [e, r] : ranges_)
+    for (const auto& [e, r] : ranges_.all())
       if (!isMoving(r)) staticEntities_.insert(e);
   }
   // One chunk per mark workgroup (64 invocations x DYNGI_SVO_ITEMS_PER_INVOCATION slots), cut from the
@@ -302,7 +214,7 @@ void VoxelScene::planOccupancy(const std::vector<ecs::Entity>& removed) {
   stats_.staticEntities = uint32_t(staticEntities_.size());
   auto cut = [&](bool wantStatic) {
     uint32_t n = 0;
-    for (const auto& [e, r] : ranges_) {
+    for (const auto& [e, r] : ranges_.all()) {
       if (staticEntities_.count(e) != size_t(wantStatic)) continue;
       stats_.slotsMarked += r.capacity;
       for (uint64_t a = r.first; a < r.first + r.capacity; a += chunkSlots, ++n)
@@ -365,27 +277,20 @@ bool VoxelScene::record(render::FrameContext& frame) {
     render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                           VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     if (!drawsToVoxelize_.empty()) {
-      VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-      ri.renderArea = {{0, 0}, {res, res}};
-      ri.layerCount = 1;
-      vkCmdBeginRendering(cmd, &ri);
-      render::setFullViewport(cmd, res, res);
-      const Pipeline* bound = nullptr;
+      // No attachments: the fragment shader appends to the entity's range.
+      render::RenderingScope rendering(cmd, res, res);
       const glm::mat4 toVoxel = volume_.worldToVoxelMatrix();
-      for (size_t i : drawsToVoxelize_) {
-        const render::DrawItem& d = frame.snapshot.draws[i];
-        const render::GpuMesh* mesh = frame.meshes[i];
-        if (!mesh || mesh->indexCount == 0) continue;
+      auto pipelineFor = [&](const render::DrawItem& d) -> const Pipeline& {
+        return voxelizePipelineFor(d.material.baseColorTexture != scene::kNoTexture, d.material.emissiveTexture != scene::kNoTexture);
+      };
+      render::drawEach(frame, drawsToVoxelize_, pipelineFor, [&](VkCommandBuffer c, const render::DrawItem& d, const Pipeline& pipeline) {
         const Range& r = ranges_.at(d.entity);
-        const Pipeline& pipeline =
-            voxelizePipelineFor(d.material.baseColorTexture != scene::kNoTexture, d.material.emissiveTexture != scene::kNoTexture);
-        if (&pipeline != bound) {
-          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.handle());
-          bound = &pipeline;
-        }
-        gpu::VoxelizePush pc;
+        gpu::VoxelizePush pc{};
         pc.modelToVoxel = toVoxel * d.model;
-        pc.range = glm::uvec4(uint32_t(r.first), uint32_t(r.capacity), r.counter, res);
+        pc.firstSlot = uint32_t(r.first);
+        pc.capacity = uint32_t(r.capacity);
+        pc.counterIndex = r.counter;
+        pc.resolution = res;
         pc.albedo = glm::vec4(glm::vec3(d.material.baseColor) * (1.0f - d.material.metallic), 0.0f);
         pc.emission = glm::vec4(d.material.emissive, 0.0f);
         DescriptorWrites()
@@ -393,12 +298,10 @@ bool VoxelScene::record(render::FrameContext& frame) {
             .storageBuffer(1, counters_.handle())
             .sampledImage(2, frame.textureView(d.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
             .sampledImage(3, frame.textureView(d.material.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-            .push(ctx_, cmd, pipeline);
-        vkCmdPushConstants(cmd, pipeline.layout(),
-                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
-        render::drawMesh(cmd, *mesh);
-      }
-      vkCmdEndRendering(cmd);
+            .push(ctx_, c, pipeline);
+        vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(pc), &pc);
+      });
     }
     render::computeWriteBarrier(cmd);
   }
@@ -422,7 +325,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
     render::computeWriteBarrier(cmd);
     recordMark(cmd, occupancy_, staticChunks_, movingChunks_);
     render::computeWriteBarrier(cmd);
-    const uint32_t slots = uint32_t(highWater_);
+    const uint32_t slots = uint32_t(ranges_.highWater());
     const uint32_t perGroup = 64 * DYNGI_SVO_ITEMS_PER_INVOCATION;
     // 2. Top down, level by level: the occupied nodes get their children, flagged from the pyramid.
     for (uint32_t l = 0; l <= depth; ++l) {
@@ -506,9 +409,7 @@ void VoxelScene::frameFinished(render::VulkanContext&) {
       dirty_.insert(e);  // next frame: a larger range
     }
   }
-  uint64_t total = 0;
-  for (auto& [e, r] : ranges_) total += std::min<uint64_t>(r.lastCount, r.capacity);
-  stats_.fragments = total;
+  stats_.fragments = ranges_.storedFragments();
   const auto* c = static_cast<const gpu::SvoCounters*>(svoCounters_.mapped());
   uint64_t groups = std::min<uint64_t>(c->groups.x, c->groups.y);
   stats_.nodes = groups * 8;
@@ -541,96 +442,6 @@ void VoxelScene::resizeNodePool(uint32_t groups, uint64_t keepGroups) {
   nodes_ = std::move(fresh);
   nodeCells_ = Buffer(ctx_, VkDeviceSize(groups) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo node cells");
   nodeGroupCapacity_ = groups;
-}
-
-std::vector<uint32_t> VoxelScene::readbackNodes() {
-  svoCounters_.invalidateForRead();
-  const auto* c = static_cast<const gpu::SvoCounters*>(svoCounters_.mapped());
-  uint64_t groups = std::min<uint64_t>(c->groups.x, c->groups.y);
-  VkDeviceSize bytes = groups * 8 * 4;
-  Buffer host(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "svo readback");
-  ctx_.immediate([&](VkCommandBuffer cmd) {
-    VkBufferCopy copy{0, 0, bytes};
-    vkCmdCopyBuffer(cmd, nodes_.handle(), host.handle(), 1, &copy);
-  });
-  host.invalidateForRead();
-  const uint32_t* p = static_cast<const uint32_t*>(host.mapped());
-  return std::vector<uint32_t>(p, p + groups * 8);
-}
-
-std::vector<VoxelFragment> VoxelScene::readbackFragments() {
-  std::vector<VoxelFragment> out;
-  if (highWater_ == 0) return out;
-  VkDeviceSize bytes = highWater_ * 16;
-  Buffer host(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "fragment readback");
-  ctx_.immediate([&](VkCommandBuffer cmd) {
-    VkBufferCopy copy{0, 0, bytes};
-    vkCmdCopyBuffer(cmd, fragments_.handle(), host.handle(), 1, &copy);
-  });
-  host.invalidateForRead();
-  const uint32_t* p = static_cast<const uint32_t*>(host.mapped());
-  for (uint64_t i = 0; i < highWater_; ++i) {
-    const uint32_t* f = p + i * 4;
-    if (f[0] == DYNGI_VOXEL_EMPTY) continue;
-    VoxelFragment v;
-    v.cell = glm::uvec3(f[0] & 1023u, (f[0] >> 10) & 1023u, (f[0] >> 20) & 1023u);
-    v.albedo = glm::unpackUnorm4x8(f[1]);
-    // voxelize.frag's packEmission: rgb / 2^k as unorm8, k + 8 in the fourth byte (0: no emission).
-    const glm::vec4 e = glm::unpackUnorm4x8(f[3]);
-    v.emission = f[3] == 0 ? glm::vec3(0.0f) : glm::vec3(e) * std::exp2(float(int(f[3] >> 24) - 8));
-    out.push_back(v);
-  }
-  return out;
-}
-
-DenseVoxelGrid VoxelScene::readbackFragmentGrid() {
-  DenseVoxelGrid grid(volume_.resolution);
-  for (const VoxelFragment& f : readbackFragments()) grid.set(f.cell.x, f.cell.y, f.cell.z);
-  return grid;
-}
-
-double VoxelScene::marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels) {
-  return dispatchMarch(march_, segments, out, epsVoxels);
-}
-
-double VoxelScene::marchSegmentsWithoutMarch(const std::vector<Segment>& segments, std::vector<uint8_t>& out) {
-  return dispatchMarch(marchOff_, segments, out, 1e-3f);
-}
-
-double VoxelScene::dispatchMarch(const render::Pipeline& pipeline, const std::vector<Segment>& segments, std::vector<uint8_t>& out,
-                                 float epsVoxels) {
-  out.assign(segments.size(), 0);
-  if (segments.empty()) return 0.0;
-  std::vector<glm::vec4> packed(segments.size() * 2);
-  for (size_t i = 0; i < segments.size(); ++i) {
-    packed[2 * i] = glm::vec4(segments[i].from, 1.0f);
-    packed[2 * i + 1] = glm::vec4(segments[i].to, 1.0f);
-  }
-  Buffer segBuf(ctx_, packed.size() * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "march segments");
-  segBuf.upload(packed.data(), packed.size() * 16);
-  Buffer results(ctx_, segments.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "march results");
-  render::GpuTimer timer(ctx_, 2);
-  auto t0 = std::chrono::steady_clock::now();
-  ctx_.immediate([&](VkCommandBuffer cmd) {
-    timer.beginFrame(cmd);
-    uint32_t s = timer.begin(cmd, "svo_march");
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
-    DescriptorWrites().storageBuffer(0, nodes_.handle()).storageBuffer(1, segBuf.handle()).storageBuffer(2, results.handle()).push(ctx_, cmd, pipeline);
-    const gpu::SvoMarchPush pc{glm::vec4(volume_.origin, 1.0f / volume_.voxelSize), uint32_t(segments.size()), volume_.depth(),
-                               float(volume_.resolution), epsVoxels};
-    vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(pc), &pc);
-    vkCmdDispatch(cmd, dispatchGroups(uint32_t(segments.size()), 64), 1, 1);
-    timer.end(cmd, s);
-    render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                          VK_ACCESS_2_HOST_READ_BIT);
-  });
-  double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  timer.resolve();
-  lastMarchWallMs_ = wallMs;
-  results.invalidateForRead();
-  const uint32_t* r = static_cast<const uint32_t*>(results.mapped());
-  for (size_t i = 0; i < segments.size(); ++i) out[i] = r[i] ? 1 : 0;
-  return timer.results().empty() ? 0.0 : timer.results()[0].second;
 }
 
 void VoxelSyncSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {

@@ -17,6 +17,7 @@
 #include "dyngi/gi/job_pool.h"
 #include "dyngi/gi/path_tracer.h"
 #include "dyngi/gi/voxel_scene.h"
+#include "testing/gi_probes.h"
 #include "dyngi/engine/render/renderer.h"
 #include "dyngi/engine/scene/scripted_motion.h"
 #include "scenes/builtin_scenes.h"
@@ -298,9 +299,10 @@ void BM_SvoVisibility(benchmark::State& state) {
   VisibilitySet& v = visibilitySet();
   std::vector<uint8_t> out;
   size_t blocked = 0;
+  gi::VoxelProbe probe(*v.voxels);
   for (auto _ : state) {
-    v.voxels->marchSegments(v.segments, out);
-    state.SetIterationTime(v.voxels->lastMarchWallMs() * 1e-3);
+    probe.marchSegments(v.segments, out);
+    state.SetIterationTime(probe.lastMarchWallMs() * 1e-3);
   }
   for (uint8_t b : out) blocked += b;
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(v.segments.size()));
@@ -313,9 +315,10 @@ BENCHMARK(BM_SvoVisibility)->UseManualTime()->Unit(benchmark::kMillisecond)->Ite
 void BM_SvoVisibility_DispatchOnly(benchmark::State& state) {
   VisibilitySet& v = visibilitySet();
   std::vector<uint8_t> out;
+  gi::VoxelProbe probe(*v.voxels);
   for (auto _ : state) {
-    v.voxels->marchSegmentsWithoutMarch(v.segments, out);
-    state.SetIterationTime(v.voxels->lastMarchWallMs() * 1e-3);
+    probe.marchSegmentsWithoutMarch(v.segments, out);
+    state.SetIterationTime(probe.lastMarchWallMs() * 1e-3);
   }
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(v.segments.size()));
 }
@@ -325,7 +328,7 @@ BENCHMARK(BM_SvoVisibility_DispatchOnly)->UseManualTime()->Unit(benchmark::kMill
 // the same algorithm as native CPU code, for comparison with Embree's BVH on the same cores.
 void BM_SvoVisibility_CpuTwin(benchmark::State& state) {
   VisibilitySet& v = visibilitySet();
-  static gi::SvoCpu svo(v.voxels->readbackNodes(), v.voxels->volume().resolution);
+  static gi::SvoCpu svo(gi::VoxelProbe(*v.voxels).readbackNodes(), v.voxels->volume().resolution);
   const gi::VoxelVolume& vol = v.voxels->volume();
   std::vector<uint8_t> out(v.segments.size());
   std::atomic<uint64_t> restarts{0};

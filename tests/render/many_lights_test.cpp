@@ -5,6 +5,7 @@
 
 #include "dyngi/engine/render/image_metrics.h"
 #include "dyngi/gi/many_lights.h"
+#include "testing/gi_probes.h"
 #include "dyngi/gi/path_tracer.h"
 #include "render/cornell_regions.h"
 #include "render/render_fixture.h"
@@ -139,7 +140,7 @@ TEST_F(ManyLightsTest, TexturedSurfaceGivesItsVplsTheTextureColour) {
     renderer.render(render::extractSnapshot(world, assets, 0));
     glm::dvec3 sum(0.0);
     int n = 0;
-    for (const gi::VplReadback& v : ml.readbackVpls())
+    for (const gi::VplReadback& v : gi::readbackVpls(ml))
       if (v.bounce == 0 && v.position.y < 1e-3f) sum += glm::dvec3(v.flux), ++n;  // VPLs on the floor
     EXPECT_GT(n, 10) << "the spot lights the floor";
     // Every first-bounce VPL carries the same luminance (importance sampling), so the mean flux of the

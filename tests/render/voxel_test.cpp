@@ -12,6 +12,7 @@
 #include "dyngi/engine/scene/transform_system.h"
 #include "dyngi/gi/bvh.h"
 #include "dyngi/gi/voxel_scene.h"
+#include "testing/gi_probes.h"
 #include "render/render_fixture.h"
 #include "scenes/builtin_scenes.h"
 #include "dyngi/engine/scene/animation.h"
@@ -82,7 +83,7 @@ class VoxelTest : public RenderTest {
   }
   // The SVO's leaves as they are now, and as a new voxel scene over the same snapshot and volume
   // builds them from scratch.
-  gi::DenseVoxelGrid leaves() { return gi::SvoCpu(voxels->readbackNodes(), voxels->volume().resolution).leaves(); }
+  gi::DenseVoxelGrid leaves() { return gi::SvoCpu(gi::VoxelProbe(*voxels).readbackNodes(), voxels->volume().resolution).leaves(); }
   gi::DenseVoxelGrid scratchLeaves() {
     gi::VoxelScene fresh(context(), gi::VoxelSettings{.resolution = voxels->volume().resolution});
     fresh.setVolume(voxels->volume());
@@ -90,7 +91,7 @@ class VoxelTest : public RenderTest {
     r2.addFeature(&fresh);
     r2.resize(16, 16);
     r2.render(snapshot);
-    return gi::SvoCpu(fresh.readbackNodes(), fresh.volume().resolution).leaves();
+    return gi::SvoCpu(gi::VoxelProbe(fresh).readbackNodes(), fresh.volume().resolution).leaves();
   }
   ecs::World world;
   scene::AssetStore assets;
@@ -109,7 +110,7 @@ TEST_F(VoxelTest, VoxelizationCoversExactOverlapAndSvoLeavesEqualIt) {
   EXPECT_EQ(st.entitiesVoxelized, 7u);
   EXPECT_EQ(st.overflowedEntities, 0u);
   EXPECT_FALSE(st.poolOverflow);
-  gi::DenseVoxelGrid gpu = voxels->readbackFragmentGrid();
+  gi::DenseVoxelGrid gpu = gi::VoxelProbe(*voxels).readbackFragmentGrid();
   gi::DenseVoxelGrid brute = gi::voxelizeBruteForce(voxelSpaceTriangles(snapshot, voxels->volume()), 128);
   GridDiff d = diff(gpu, brute);
   std::printf("voxelization 128^3: %zu voxels by exact overlap, GPU missed %zu, extra %zu\n", d.reference, d.missing, d.extra);
@@ -117,7 +118,7 @@ TEST_F(VoxelTest, VoxelizationCoversExactOverlapAndSvoLeavesEqualIt) {
   EXPECT_EQ(d.missing, 0u) << "no occupied voxel missed";
   EXPECT_LE(d.extra, d.reference / 100) << "extras (touching within 1e-4 voxel) stay rare";
 
-  gi::SvoCpu svo(voxels->readbackNodes(), 128);
+  gi::SvoCpu svo(gi::VoxelProbe(*voxels).readbackNodes(), 128);
   GridDiff l = diff(svo.leaves(), gpu);
   EXPECT_EQ(l.missing + l.extra, 0u) << "the SVO's leaves are exactly the voxelized set";
   EXPECT_EQ(st.leaves, gpu.count());
@@ -127,8 +128,8 @@ TEST_F(VoxelTest, VoxelizationCoversExactOverlapAndSvoLeavesEqualIt) {
 
 TEST_F(VoxelTest, SvoMarchEqualsDenseDdaAndGpuEqualsCppTwin) {
   run("cornell", 64, 1);
-  gi::DenseVoxelGrid grid = voxels->readbackFragmentGrid();
-  gi::SvoCpu svo(voxels->readbackNodes(), 64);
+  gi::DenseVoxelGrid grid = gi::VoxelProbe(*voxels).readbackFragmentGrid();
+  gi::SvoCpu svo(gi::VoxelProbe(*voxels).readbackNodes(), 64);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> U(-4.0, 68.0);  // some segments start or end outside the volume
   const int n = 100000;
@@ -149,11 +150,12 @@ TEST_F(VoxelTest, SvoMarchEqualsDenseDdaAndGpuEqualsCppTwin) {
   EXPECT_LT(occluded, n * 9 / 10);
 
   std::vector<uint8_t> gpu;
-  double ms = voxels->marchSegments(worldSegs, gpu);
+  gi::VoxelProbe probe(*voxels);
+  double ms = probe.marchSegments(worldSegs, gpu);
   int disagreeGpu = 0;
   for (int i = 0; i < n; ++i) disagreeGpu += gpu[size_t(i)] != cpu[size_t(i)];
   std::printf("GPU march: %d segments in %.2f ms (timestamps), %.2f ms (submit to fence), %d disagreements with the C++ twin\n", n, ms,
-              voxels->lastMarchWallMs(), disagreeGpu);
+              probe.lastMarchWallMs(), disagreeGpu);
   EXPECT_LE(disagreeGpu, n / 1000);
 
   // The twin built on the CPU from the dense grid means the same thing.
@@ -166,7 +168,7 @@ TEST_F(VoxelTest, SvoMarchEqualsDenseDdaAndGpuEqualsCppTwin) {
 
 TEST_F(VoxelTest, AgreesWithEmbreeAwayFromSurfaces) {
   run("cornell", 128, 1);
-  gi::DenseVoxelGrid grid = voxels->readbackFragmentGrid();
+  gi::DenseVoxelGrid grid = gi::VoxelProbe(*voxels).readbackFragmentGrid();
   gi::EmbreeScene bvh;
   bvh.sync(world, assets, 0);
   const gi::VoxelVolume& v = voxels->volume();
@@ -181,7 +183,7 @@ TEST_F(VoxelTest, AgreesWithEmbreeAwayFromSurfaces) {
     segs.push_back({a, b});
   }
   std::vector<uint8_t> svo;
-  voxels->marchSegments(segs, svo);
+  gi::VoxelProbe(*voxels).marchSegments(segs, svo);
   int agree = 0, svoOnly = 0, embreeOnly = 0;
   for (size_t i = 0; i < segs.size(); ++i) {
     bool e = bvh.occluded(segs[i]);
@@ -391,7 +393,7 @@ TEST_F(VoxelTest, ObjectLeavingTheVolumeIsClippedNotFatal) {
   for (glm::vec3 at : {glm::vec3(1.05f, 0.3f, 0.0f), glm::vec3(40.0f, 0.3f, 0.0f)}) {
     world.write<scene::Transform>(box).translation = at;
     step();
-    gi::DenseVoxelGrid gpu = voxels->readbackFragmentGrid();
+    gi::DenseVoxelGrid gpu = gi::VoxelProbe(*voxels).readbackFragmentGrid();
     gi::DenseVoxelGrid brute = gi::voxelizeBruteForce(voxelSpaceTriangles(snapshot, voxels->volume()), 64);
     GridDiff d = diff(gpu, brute);
     EXPECT_EQ(d.missing, 0u) << "inside the volume nothing is lost";
@@ -443,7 +445,7 @@ TEST_F(VoxelTest, TexturedAndUntexturedMaterialsReachGBufferAndVoxels) {
   const std::vector<glm::vec4> position = renderer->readback(render::TargetId::Position);
   const std::vector<glm::vec4> albedo = renderer->readback(render::TargetId::Albedo);
   const std::vector<glm::vec4> emissive = renderer->readback(render::TargetId::Emissive);
-  const std::vector<gi::VoxelFragment> fragments = voxels->readbackFragments();
+  const std::vector<gi::VoxelFragment> fragments = gi::VoxelProbe(*voxels).readbackFragments();
   for (const Case& c : cases) {
     SCOPED_TRACE("box at x = " + std::to_string(c.x));
     // G-buffer: every pixel whose surface lies on this box.
@@ -491,7 +493,7 @@ TEST_F(VoxelTest, SkinnedBarReVoxelizesAsItBendsAndMatchesExactOverlap) {
   for (int f = 1; f <= 5; ++f) {  // 0.2 s a step: the bar bends from 0 to 90 degrees
     step();
     EXPECT_EQ(voxels->stats().entitiesVoxelized, 1u) << "only the bar, frame " << f;
-    gi::DenseVoxelGrid gpu = voxels->readbackFragmentGrid();
+    gi::DenseVoxelGrid gpu = gi::VoxelProbe(*voxels).readbackFragmentGrid();
     GridDiff d = diff(gpu, gi::voxelizeBruteForce(voxelSpaceTriangles(snapshot, voxels->volume()), 64));
     EXPECT_EQ(d.missing, 0u) << "frame " << f;
     EXPECT_LE(d.extra, d.reference / 100) << "frame " << f;

@@ -1,3 +1,4 @@
+#include "dyngi/engine/render/draw_pass.h"
 #include "shared/gpu_types.h"
 #include "passes.h"
 #include "spirv/gbuffer.frag.spv.h"
@@ -33,59 +34,37 @@ void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
   VkCommandBuffer cmd = frame.cmd;
   RenderTargets& t = frame.targets;
   Image* colors[] = {&t.position, &t.normal, &t.albedo, &t.emissive};
-  VkRenderingAttachmentInfo att[4];
-  for (int i = 0; i < 4; ++i) {
-    colors[i]->transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                          VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-    att[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    att[i].imageView = colors[i]->view();
-    att[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    att[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    att[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    att[i].clearValue.color = {{0, 0, 0, 0}};
-  }
+  for (Image* c : colors)
+    c->transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                  VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
   t.depth.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  depth.imageView = t.depth.view();
-  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  depth.clearValue.depthStencil = {1.0f, 0};
-  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-  ri.renderArea = {{0, 0}, {t.width, t.height}};
-  ri.layerCount = 1;
-  ri.colorAttachmentCount = 4;
-  ri.pColorAttachments = att;
-  ri.pDepthAttachment = &depth;
-  vkCmdBeginRendering(cmd, &ri);
-  setFullViewport(cmd, t.width, t.height);
-  const Pipeline* bound = nullptr;
-  for (size_t i = 0; i < frame.snapshot.draws.size(); ++i) {
-    const DrawItem& d = frame.snapshot.draws[i];
-    const GpuMesh* mesh = frame.meshes[i];
-    if (!mesh || mesh->indexCount == 0) continue;
-    const scene::Material& m = d.material;
-    const Pipeline& pipeline = pipelineFor(m.baseColorTexture != scene::kNoTexture, m.emissiveTexture != scene::kNoTexture);
-    if (&pipeline != bound) {
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.handle());
-      bound = &pipeline;
-    }
-    gpu::GBufferPush pc;
-    pc.model = d.model;
-    pc.baseColor = m.baseColor;
-    pc.emissive = glm::vec4(m.emissive, 0.0f);
-    pc.params = glm::vec4(m.metallic, m.roughness, 0.0f, 0.0f);
-    DescriptorWrites()
-        .uniformBuffer(0, frame.frameUniforms.handle())
-        .sampledImage(1, textures(m.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-        .sampledImage(2, textures(m.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-        .push(ctx_, cmd, pipeline);
-    vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
-    drawMesh(cmd, *mesh);
+  {
+    RenderingScope rendering(cmd, t.width, t.height,
+                             {colorAttachment(t.position.view()), colorAttachment(t.normal.view()), colorAttachment(t.albedo.view()),
+                              colorAttachment(t.emissive.view())},
+                             depthAttachment(t.depth.view()));
+    drawEach(
+        frame, std::nullopt,
+        [&](const DrawItem& d) -> const Pipeline& {
+          return pipelineFor(d.material.baseColorTexture != scene::kNoTexture, d.material.emissiveTexture != scene::kNoTexture);
+        },
+        [&](VkCommandBuffer c, const DrawItem& d, const Pipeline& pipeline) {
+          const scene::Material& m = d.material;
+          gpu::GBufferPush pc;
+          pc.model = d.model;
+          pc.baseColor = m.baseColor;
+          pc.emissive = glm::vec4(m.emissive, 0.0f);
+          pc.params = glm::vec4(m.metallic, m.roughness, 0.0f, 0.0f);
+          DescriptorWrites()
+              .uniformBuffer(0, frame.frameUniforms.handle())
+              .sampledImage(1, textures(m.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+              .sampledImage(2, textures(m.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+              .push(ctx_, c, pipeline);
+          vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+        });
   }
-  vkCmdEndRendering(cmd);
   for (Image* c : colors)
     c->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);

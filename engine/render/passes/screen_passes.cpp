@@ -25,7 +25,7 @@ LightingPass::LightingPass(VulkanContext& ctx) : ctx_(ctx) {
                        {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
                        {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
                        {9, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
-  pipeline_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_lighting_comp), b, sizeof(uint32_t), "lighting");
+  pipeline_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_lighting_comp), b, sizeof(gpu::LightingPush), "lighting");
 }
 
 void LightingPass::execute(FrameContext& frame, ShadowPass& shadows, bool hasIndirect) {
@@ -47,8 +47,8 @@ void LightingPass::execute(FrameContext& frame, ShadowPass& shadows, bool hasInd
       .storageImage(8, t.indirect.view())
       .storageImage(9, t.hdr.view())
       .push(ctx_, cmd, pipeline_);
-  const uint32_t flag = hasIndirect ? 1u : 0u;
-  vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(flag), &flag);
+  const gpu::LightingPush pc{hasIndirect ? 1u : 0u};
+  vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
   vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "dyngi/engine/render/draw_pass.h"
 #include "shared/gpu_types.h"
 #include "dyngi/engine/render/light_views.h"
 #include "passes.h"
@@ -18,7 +19,7 @@ ShadowPass::ShadowPass(VulkanContext& ctx, const Settings& settings) : ctx_(ctx)
   setMeshVertexInput(d, /*normal=*/false, /*uv=*/false);
   d.colorFormats = {VK_FORMAT_R32_SFLOAT};
   d.depthFormat = VK_FORMAT_D32_SFLOAT;
-  d.pushConstantBytes = sizeof(glm::mat4);
+  d.pushConstantBytes = sizeof(gpu::ShadowPush);
   // The depth bias is applied in shadow.frag (to the depth test and the lookup alike), as floats' bits.
   d.fragmentSpecialization = {std::bit_cast<uint32_t>(settings.depthBiasConstant), std::bit_cast<uint32_t>(settings.depthBiasSlope)};
   d.name = "shadow";
@@ -91,33 +92,15 @@ void ShadowPass::prepare(const RenderSnapshot& snapshot) {
 void ShadowPass::drawCasters(VkCommandBuffer cmd, const Layers& target, uint32_t layer, const glm::mat4& viewProj, const FrameContext& frame,
                              const std::vector<size_t>& draws, bool clear) {
   const uint32_t size = settings_.mapSize;
-  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  depth.imageView = target.depth.layerView(layer);
-  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  depth.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  depth.clearValue.depthStencil = {1.0f, 0};
-  VkRenderingAttachmentInfo lookup{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  lookup.imageView = target.lookup.layerView(layer);
-  lookup.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  lookup.loadOp = depth.loadOp;
-  lookup.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  lookup.clearValue.color = {{1.0f, 0.0f, 0.0f, 0.0f}};
-  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-  ri.renderArea = {{0, 0}, {size, size}};
-  ri.layerCount = 1;
-  ri.colorAttachmentCount = 1;
-  ri.pColorAttachments = &lookup;
-  ri.pDepthAttachment = &depth;
-  vkCmdBeginRendering(cmd, &ri);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.handle());
-  setFullViewport(cmd, size, size);
-  for (size_t i : draws) {
-    glm::mat4 m = viewProj * frame.snapshot.draws[i].model;
-    vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(m), &m);
-    drawMesh(cmd, *frame.meshes[i]);
-  }
-  vkCmdEndRendering(cmd);
+  const VkAttachmentLoadOp load = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+  RenderingScope rendering(cmd, size, size, {colorAttachment(target.lookup.layerView(layer), {{1.0f, 0.0f, 0.0f, 0.0f}}, load)},
+                           depthAttachment(target.depth.layerView(layer), load));
+  drawEach(
+      frame, draws, [&](const DrawItem&) -> const Pipeline& { return pipeline_; },
+      [&](VkCommandBuffer c, const DrawItem& d, const Pipeline& p) {
+        const gpu::ShadowPush pc{viewProj * d.model};
+        vkCmdPushConstants(c, p.layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(pc), &pc);
+      });
 }
 
 std::optional<VkRect2D> ShadowPass::movingFootprint(const glm::mat4& viewProj, const FrameContext& frame,

@@ -11,6 +11,7 @@ using vec4 = glm::vec4;
 using uvec4 = glm::uvec4;
 using ivec4 = glm::ivec4;
 using mat4 = glm::mat4;
+using uint = uint32_t;
 #define DYNGI_GPU_STRUCT(name) struct alignas(16) name
 #else
 #define DYNGI_GPU_STRUCT(name) struct name
@@ -57,7 +58,16 @@ DYNGI_GPU_STRUCT(GBufferPush) {
   vec4 params;          // x metallic, y roughness (zw unused: textures are pipeline variants)
 };
 
+// Push constants of the shadow pass (one caster into one layer) and of the lighting pass, as member
+// lists: C++ gets a struct, the shader `layout(push_constant) uniform Push { DYNGI_SHADOW_PUSH };`.
+#define DYNGI_SHADOW_PUSH mat4 lightViewProjModel;
+#define DYNGI_LIGHTING_PUSH uint hasIndirect;  /* 0: no feature wrote indirect light */
+
 #ifdef __cplusplus
+struct ShadowPush { DYNGI_SHADOW_PUSH };
+struct LightingPush { DYNGI_LIGHTING_PUSH };
+static_assert(sizeof(ShadowPush) == 64);
+static_assert(sizeof(LightingPush) == 4);
 static_assert(sizeof(FrameUniforms) == 4 * 64 + 8 * 16);
 static_assert(sizeof(GpuLight) == 64);
 static_assert(sizeof(GBufferPush) == 112);

@@ -32,8 +32,8 @@ const float PI = 3.14159265358979;
 // Light from the set's VPL i (the m-th this pixel gathers) at surface point x with normal nx (xv: x in
 // voxel units, lifted): flux G V, or 0 for an absent, dim or back-facing VPL or one beyond the count.
 vec3 vplLight(uint i, uint m, vec3 x, vec3 nx, vec3 xv, float threshold, uint bitBase) {
-  if (i >= pc.info.x) return vec3(0.0);
-  GpuVpl v = vpls[pc.range.x + i];
+  if (i >= pc.vplCount) return vec3(0.0);
+  GpuVpl v = vpls[pc.firstVpl + i];
   if (v.position.w < 0.0 || v.flux.w <= threshold) return vec3(0.0);
   vec3 d = v.position.xyz - x;
   float d2 = dot(d, d);
@@ -41,14 +41,14 @@ vec3 vplLight(uint i, uint m, vec3 x, vec3 nx, vec3 xv, float threshold, uint bi
   vec3 w = d * inversesqrt(d2);
   float cx = dot(nx, w), cy = -dot(v.normal.xyz, w);
   if (cx <= 0.0 || cy <= 0.0) return vec3(0.0);
-  float g = cx * cy / max(pc.params.x, d2);
-  if (pc.info.z == 2u) {
+  float g = cx * cy / max(pc.distanceClamp, d2);
+  if (pc.visibility == DYNGI_VISIBILITY_BITS) {
     uint bit = bitBase + m;
     if ((visibleBits[bit >> 5] & (1u << (bit & 31u))) == 0u) return vec3(0.0);
-  } else if (pc.info.z == 0u) {
-    vec3 yv = (v.position.xyz - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + v.normal.xyz * pc.params.z;
+  } else if (pc.visibility == DYNGI_VISIBILITY_SVO) {
+    vec3 yv = (v.position.xyz - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + v.normal.xyz * pc.liftVoxels;
     uint steps;
-    if (svoOccluded(xv, yv, 1e-3, pc.info.w, pc.params.w, steps)) return vec3(0.0);
+    if (svoOccluded(xv, yv, 1e-3, pc.svoDepth, pc.voxelResolution, steps)) return vec3(0.0);
   }
   return v.flux.rgb * g;
 }
@@ -56,7 +56,7 @@ vec3 vplLight(uint i, uint m, vec3 x, vec3 nx, vec3 xv, float threshold, uint bi
 // Gathers this invocation's pixel: false when it lies outside the image. `depth` is -1 where the
 // G-buffer is empty (the light is then 0).
 bool gatherPixel(out ivec2 px, out vec3 light, out float depth, out uvec2 packedNormal) {
-  uint K = pc.info.y;
+  uint K = pc.interleave;
   uint s = gl_GlobalInvocationID.z;
   px = ivec2(gl_GlobalInvocationID.xy) * int(K) + ivec2(s % K, s / K);
   if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return false;
@@ -68,10 +68,10 @@ bool gatherPixel(out ivec2 px, out vec3 light, out float depth, out uvec2 packed
     vec3 x = pos.xyz;
     depth = viewDepthOf(x);
     nx = normalize(imageLoad(gNormal, px).xyz);
-    vec3 xv = (x - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + nx * pc.params.z;
+    vec3 xv = (x - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + nx * pc.liftVoxels;
     // Importance sampling gives every first-bounce VPL the same luminance; the threshold is relative to it.
-    float threshold = pc.params.y * vpls[pc.range.x].flux.w;
-    uint bitBase = (uint(px.y) * frame.sizeAndCount.x + uint(px.x)) * pc.range.y;
+    float threshold = pc.luminanceThreshold * vpls[pc.firstVpl].flux.w;
+    uint bitBase = (uint(px.y) * frame.sizeAndCount.x + uint(px.x)) * pc.bitsPerPixel;
     // A do-while: lavapipe runs a for loop's body once more, masked, before it sees every lane has left;
     // checking at the end saves that pass (a gather and an SVO march step per pixel).
     uint i = s, m = 0u;
@@ -79,7 +79,7 @@ bool gatherPixel(out ivec2 px, out vec3 light, out float depth, out uvec2 packed
       e += vplLight(i, m, x, nx, xv, threshold, bitBase);
       i += K2;
       ++m;
-    } while (i < pc.info.x);
+    } while (i < pc.vplCount);
   }
   light = float(K2) * e / (PI * PI);
   packedNormal = packFilterNormal(nx);

@@ -27,7 +27,10 @@ struct alignas(16) VoxelizePush {
 struct VoxelizePush {
 #endif
   mat4 modelToVoxel;    // object space -> voxel units ([0, resolution)^3)
-  uvec4 range;          // x first fragment slot, y capacity, z counter index, w resolution
+  uint firstSlot;       // the entity's fragment range: first slot,
+  uint capacity;        // its size,
+  uint counterIndex;    // and the counter its fragments are appended with
+  uint resolution;      // voxels per side
   vec4 albedo;          // rgb base colour factor (a unused: textures are pipeline variants)
   vec4 emission;        // rgb emitted radiance (a unused)
 };
@@ -81,7 +84,10 @@ struct RsmLayer {
 #endif
   mat4 viewProj;
   vec4 axis;            // xyz view forward, w texel footprint (perspective: per unit distance; ortho: world side)
-  uvec4 info;           // x light index, y orthographic (0/1), z RSM resolution
+  uint lightIndex;
+  uint orthographic;    // 0/1
+  uint resolution;      // RSM texels per side
+  uint pad0;
 };
 
 // Push constants of the RSM draw.
@@ -92,7 +98,8 @@ struct RsmPush {
 #endif
   mat4 model;
   vec4 baseColor;       // rgb linear base colour x (1 - metallic) (a unused: textures are pipeline variants)
-  uvec4 info;           // x layer
+  uint layer;           // the RsmLayer drawn
+  uint pad0, pad1, pad2;
 };
 
 // Bindings of the shared indirect gather (gather.glsl); a technique's gather variant adds its own after
@@ -110,6 +117,11 @@ struct RsmPush {
 #define DYNGI_TEMPORAL_GATHER_BINDING_QUEUE (DYNGI_GATHER_FIRST_TECHNIQUE_BINDING + 2)
 #define DYNGI_TEMPORAL_GATHER_BINDING_QUEUE_ARGS (DYNGI_GATHER_FIRST_TECHNIQUE_BINDING + 3)
 
+// GatherPush::visibility: how the gather decides whether a VPL sees a pixel.
+#define DYNGI_VISIBILITY_SVO 0u   // march the SVO (nodes buffer)
+#define DYNGI_VISIBILITY_NONE 1u  // V = 1
+#define DYNGI_VISIBILITY_BITS 2u  // precomputed bits (Embree on the CPU)
+
 // Settings of the indirect gather (push constants).
 #ifdef __cplusplus
 struct alignas(16) GatherPush {
@@ -117,9 +129,17 @@ struct alignas(16) GatherPush {
 struct GatherPush {
 #endif
   vec4 worldToVoxel;    // xyz origin, w 1 / voxel size
-  vec4 params;          // x distance clamp B (world units^2), y luminance threshold, z lift (world units), w voxel resolution
-  uvec4 info;           // x VPL count, y interleave K, z visibility (0 SVO, 1 none, 2 precomputed bits), w SVO depth
-  uvec4 range;          // x first VPL, y bits per pixel (visibility 2)
+  float distanceClamp;  // B (world units^2): G = cos cos / max(B, d^2)
+  float luminanceThreshold;  // relative to the first VPL's luminance
+  float liftVoxels;     // SVO visibility: segment ends leave their surface by this many voxels
+  float voxelResolution;
+  uint vplCount;        // VPLs gathered (this set's)
+  uint interleave;      // K
+  uint visibility;      // DYNGI_VISIBILITY_*
+  uint svoDepth;
+  uint firstVpl;        // offset into the VPL buffer
+  uint bitsPerPixel;    // DYNGI_VISIBILITY_BITS: visibility bits per pixel
+  uint pad0, pad1;
 };
 
 #define DYNGI_MAX_RSM_LAYERS 24
@@ -148,12 +168,17 @@ struct alignas(16) AccumulatePush {
 #else
 struct AccumulatePush {
 #endif
-  uvec4 sets;           // x set count, y the set gathered this frame, z sets stored at least once (bits),
-                        // w sets stored from the current camera (bits)
-  uvec4 mode;           // x 1: incremental (camera as last frame, set y last stored from it, sums current;
-                        // the gather queues the pixels the reprojection takes), 0: the reprojection takes
-                        // every pixel; y 1: set y held a sample before this frame; zw unused
-  vec4 params;          // x reprojection cut-off (relative to the view distance)
+  uint setCount;        // T
+  uint currentSet;      // the set gathered this frame
+  uint storedSets;      // bits: sets stored at least once
+  uint setsFromThisCamera;  // bits: sets stored from the current camera
+  // 1: incremental (camera as last frame, currentSet last stored from it, sums current; the gather
+  // queues the pixels the reprojection takes); 0: the reprojection takes every pixel.
+  uint incremental;
+  uint currentSetWasStored;  // 1: currentSet held a sample before this frame
+  uint pad0, pad1;
+  float reprojectionCutoff;  // relative to the view distance
+  float pad2, pad3, pad4;
 };
 
 // The pixels the gather queues for the full reprojection (storage buffer, reset every frame); its first

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "dyngi/engine/render/draw_pass.h"
 #include "dyngi/engine/render/light_views.h"
 #include "shaders/shared/gi_gpu_types.h"
 #include "indirect/indirect_passes.h"
@@ -92,10 +93,12 @@ void ManyLights::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     auto views = render::lightViews(item, snapshot.sceneBounds);
     if (layers.size() + views.size() > DYNGI_MAX_RSM_LAYERS) break;
     for (const auto& v : views) {
-      gpu::RsmLayer l;
+      gpu::RsmLayer l{};
       l.viewProj = v.viewProj;
       l.axis = glm::vec4(v.axis, v.extent);
-      l.info = glm::uvec4(uint32_t(lights.size()), v.orthographic ? 1u : 0u, settings_.rsmResolution, 0u);
+      l.lightIndex = uint32_t(lights.size());
+      l.orthographic = v.orthographic ? 1u : 0u;
+      l.resolution = settings_.rsmResolution;
       layers.push_back(l);
     }
     lights.push_back(render::toGpuLight(item));
@@ -146,55 +149,27 @@ bool ManyLights::record(render::FrameContext& frame) {
                          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
     for (uint32_t layer = 0; layer < rsmLayers_; ++layer) {
       // Unused layers are cleared too: their flux must read as zero.
-      VkRenderingAttachmentInfo att[3];
-      Image* colors[3] = {&rsmPosition_, &rsmNormal_, &rsmFlux_};
-      for (int i = 0; i < 3; ++i) {
-        att[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        att[i].imageView = colors[i]->layerView(layer);
-        att[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        att[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        att[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        att[i].clearValue.color = {{0, 0, 0, 0}};
-      }
-      VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-      depth.imageView = rsmDepth_.layerView(layer);
-      depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-      depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-      depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-      depth.clearValue.depthStencil = {1.0f, 0};
-      VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-      ri.renderArea = {{0, 0}, {res, res}};
-      ri.layerCount = 1;
-      ri.colorAttachmentCount = 3;
-      ri.pColorAttachments = att;
-      ri.pDepthAttachment = &depth;
-      vkCmdBeginRendering(cmd, &ri);
+      render::RenderingScope rendering(cmd, res, res,
+                                       {render::colorAttachment(rsmPosition_.layerView(layer)), render::colorAttachment(rsmNormal_.layerView(layer)),
+                                        render::colorAttachment(rsmFlux_.layerView(layer))},
+                                       render::depthAttachment(rsmDepth_.layerView(layer), VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_DONT_CARE));
       if (layer < rsmLayersUsed_) {
-        render::setFullViewport(cmd, res, res);
-        const Pipeline* bound = nullptr;
-        for (size_t i = 0; i < frame.snapshot.draws.size(); ++i) {
-          const render::DrawItem& dr = frame.snapshot.draws[i];
-          const render::GpuMesh* mesh = frame.meshes[i];
-          if (!mesh || mesh->indexCount == 0) continue;
-          const Pipeline& pipeline = rsmPipelineFor(dr.material.baseColorTexture != scene::kNoTexture);
-          if (&pipeline != bound) {
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.handle());
-            bound = &pipeline;
-          }
-          gpu::RsmPush pc;
+        auto pipelineFor = [&](const render::DrawItem& dr) -> const Pipeline& {
+          return rsmPipelineFor(dr.material.baseColorTexture != scene::kNoTexture);
+        };
+        render::drawEach(frame, std::nullopt, pipelineFor, [&](VkCommandBuffer c, const render::DrawItem& dr, const Pipeline& pipeline) {
+          gpu::RsmPush pc{};
           pc.model = dr.model;
           pc.baseColor = glm::vec4(glm::vec3(dr.material.baseColor) * (1.0f - dr.material.metallic), 0.0f);
-          pc.info = glm::uvec4(layer, 0, 0, 0);
+          pc.layer = layer;
           DescriptorWrites()
               .storageBuffer(0, layers_.handle())
               .storageBuffer(1, lights_.handle())
               .sampledImage(2, frame.textureView(dr.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-              .push(ctx_, cmd, pipeline);
-          vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
-          render::drawMesh(cmd, *mesh);
-        }
+              .push(ctx_, c, pipeline);
+          vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+        });
       }
-      vkCmdEndRendering(cmd);
     }
     for (Image* img : {&rsmPosition_, &rsmNormal_, &rsmFlux_})
       img->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
@@ -257,9 +232,14 @@ bool ManyLights::record(render::FrameContext& frame) {
     in.bits = vpls_.handle();  // unused: SVO visibility or none
     gpu::GatherPush& pc = in.push;
     pc.worldToVoxel = glm::vec4(vol.origin, 1.0f / vol.voxelSize);
-    pc.params = glm::vec4(settings_.vpl.distanceClamp, settings_.vpl.luminanceThreshold, settings_.vpl.liftVoxels, float(vol.resolution));
-    pc.info = glm::uvec4(vplTotal, K, settings_.visibility ? 0u : 1u, vol.depth());
-    pc.range = glm::uvec4(0u);
+    pc.distanceClamp = settings_.vpl.distanceClamp;
+    pc.luminanceThreshold = settings_.vpl.luminanceThreshold;
+    pc.liftVoxels = settings_.vpl.liftVoxels;
+    pc.voxelResolution = float(vol.resolution);
+    pc.vplCount = vplTotal;
+    pc.interleave = K;
+    pc.visibility = settings_.visibility ? DYNGI_VISIBILITY_SVO : DYNGI_VISIBILITY_NONE;
+    pc.svoDepth = vol.depth();
     gatherPass_->record(frame, raw_, in);
     filterPass_->record(frame, raw_, K, settings_.vpl.filterPlaneTolerance);
   }
@@ -289,22 +269,6 @@ void ManyLights::recordAfterLighting(render::FrameContext& frame) {
   vkCmdPushConstants(frame.cmd, debug_.layout(), kCS, 0, sizeof(pc), &pc);
   uint32_t n = mode == 1 ? vplTotal : t.width * t.height;
   vkCmdDispatch(frame.cmd, dispatchGroups(n, 64), 1, 1);
-}
-
-std::vector<VplReadback> ManyLights::readbackVpls() {
-  std::vector<VplReadback> out;
-  if (!vpls_.valid()) return out;
-  uint32_t n = perBounce_ * settings_.vpl.bounces;
-  Buffer host(ctx_, VkDeviceSize(n) * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "vpl readback");
-  ctx_.immediate([&](VkCommandBuffer cmd) {
-    VkBufferCopy c{0, 0, VkDeviceSize(n) * sizeof(gpu::GpuVpl)};
-    vkCmdCopyBuffer(cmd, vpls_.handle(), host.handle(), 1, &c);
-  });
-  host.invalidateForRead();
-  const auto* v = static_cast<const gpu::GpuVpl*>(host.mapped());
-  for (uint32_t i = 0; i < n; ++i)
-    out.push_back({glm::vec3(v[i].position), v[i].position.w < 0 ? -1 : int(v[i].position.w + 0.5f), glm::vec3(v[i].normal), glm::vec3(v[i].flux)});
-  return out;
 }
 
 }  // namespace dyngi::gi

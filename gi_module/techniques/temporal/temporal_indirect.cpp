@@ -175,24 +175,34 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     if (voxels_ && voxels_->hasVolume()) {
       const VoxelVolume& vol = voxels_->volume();
       pc.worldToVoxel = glm::vec4(vol.origin, 1.0f / vol.voxelSize);
-      pc.params = glm::vec4(settings_.vpl.distanceClamp, settings_.vpl.luminanceThreshold, settings_.vpl.liftVoxels, float(vol.resolution));
-      pc.info = glm::uvec4(perSet_, K, 0u, vol.depth());
+      pc.liftVoxels = settings_.vpl.liftVoxels;
+      pc.voxelResolution = float(vol.resolution);
+      pc.visibility = DYNGI_VISIBILITY_SVO;
+      pc.svoDepth = vol.depth();
     } else {
-      pc.params = glm::vec4(settings_.vpl.distanceClamp, settings_.vpl.luminanceThreshold, 0.0f, 1.0f);
-      pc.info = glm::uvec4(perSet_, K, 1u, 0u);
+      pc.voxelResolution = 1.0f;
+      pc.visibility = DYNGI_VISIBILITY_NONE;
     }
-    if (settings_.visibility == VisibilityBackend::Bvh) pc.info.z = 2u;
-    if (settings_.visibility == VisibilityBackend::None) pc.info.z = 1u;
-    pc.range = glm::uvec4(0u, perPixel, 0u, 0u);
+    pc.distanceClamp = settings_.vpl.distanceClamp;
+    pc.luminanceThreshold = settings_.vpl.luminanceThreshold;
+    pc.vplCount = perSet_;
+    pc.interleave = K;
+    if (settings_.visibility == VisibilityBackend::Bvh) pc.visibility = DYNGI_VISIBILITY_BITS;
+    if (settings_.visibility == VisibilityBackend::None) pc.visibility = DYNGI_VISIBILITY_NONE;
+    pc.bitsPerPixel = perPixel;
     for (render::Image* img : {&setSamples_, &sums_})
       img->transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     gpu::AccumulatePush acc{};
-    acc.sets = glm::uvec4(sets_, currentSet_, validMask, sameCamera);
+    acc.setCount = sets_;
+    acc.currentSet = currentSet_;
+    acc.storedSets = validMask;
+    acc.setsFromThisCamera = sameCamera;
     // With an unchanged camera the gather queues the few pixels whose surface changed; otherwise every
     // pixel needs the full reprojection and the pass runs over all of them.
-    acc.mode = glm::uvec4(incremental ? 1u : 0u, setWasStored ? 1u : 0u, 0u, 0u);
-    acc.params = glm::vec4(settings_.reprojectionCutoff, 0.0f, 0.0f, 0.0f);
+    acc.incremental = incremental ? 1u : 0u;
+    acc.currentSetWasStored = setWasStored ? 1u : 0u;
+    acc.reprojectionCutoff = settings_.reprojectionCutoff;
     if (incremental) {
       const gpu::TemporalQueue empty{glm::uvec4(0u, 1u, 1u, 0u)};
       vkCmdUpdateBuffer(frame.cmd, queueArgs_.handle(), 0, sizeof(empty), &empty);

@@ -39,7 +39,7 @@ uint packEmission(vec3 e) {
 }
 
 void main() {
-  int res = int(pc.range.w);
+  int res = int(pc.resolution);
   ivec2 px = ivec2(floor(gl_FragCoord.xy));
   vec3 n = cross(v1 - v0, v2 - v0);
   float nw = depthOf(n, axis);
@@ -80,9 +80,9 @@ void main() {
       if (kBaseColorTexture) albedo.rgb *= textureLod(baseColorTex, uv, 0.0).rgb;
       if (kEmissiveTexture) emission *= textureLod(emissiveTex, uv, 0.0).rgb;
     }
-    uint slot = atomicAdd(counters[pc.range.z], 1u);
-    if (slot >= pc.range.y) continue;  // over capacity: counted, so the host grows the range
+    uint slot = atomicAdd(counters[pc.counterIndex], 1u);
+    if (slot >= pc.capacity) continue;  // over capacity: counted, so the host grows the range
     uint coord = uint(v.x) | (uint(v.y) << 10) | (uint(v.z) << 20);
-    fragments[pc.range.x + slot] = uvec4(coord, packUnorm4x8(albedo), packSnorm4x8(vec4(nrm, 0.0)), packEmission(emission));
+    fragments[pc.firstSlot + slot] = uvec4(coord, packUnorm4x8(albedo), packSnorm4x8(vec4(nrm, 0.0)), packEmission(emission));
   }
 }

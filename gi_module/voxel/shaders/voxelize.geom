@@ -27,7 +27,7 @@ void main() {
   uint ax = (n.x >= n.y && n.x >= n.z) ? 0u : (n.y >= n.z ? 1u : 2u);
   vec2 pa = project(a, ax), pb = project(b, ax), pc2 = project(c, ax);
   vec2 lo = min(pa, min(pb, pc2)) - 1.0, hi = max(pa, max(pb, pc2)) + 1.0;
-  float res = float(pc.range.w);
+  float res = float(pc.resolution);
   vec2 corners[4] = vec2[](lo, vec2(hi.x, lo.y), vec2(lo.x, hi.y), hi);
   for (int i = 0; i < 4; ++i) {
     v0 = a; v1 = b; v2 = c;

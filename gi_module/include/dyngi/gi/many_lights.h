@@ -25,12 +25,7 @@ struct ManyLightsOptions {
   static const OptionTable<ManyLightsOptions>& table();
 };
 
-struct VplReadback {
-  glm::vec3 position;
-  int bounce;        // -1: invalid
-  glm::vec3 normal;
-  glm::vec3 flux;
-};
+struct VplReadback;  // gi_module/testing/gi_probes.h
 
 class ManyLights final : public render::RenderFeature {
  public:
@@ -46,10 +41,9 @@ class ManyLights final : public render::RenderFeature {
   ManyLightsOptions& settings() { return settings_; }
   // VPLs per frame as used: the requested count rounded down to a multiple of the bounces.
   uint32_t vplCount() const { return settings_.vpl.effectiveVplCount(); }
-  // The current VPLs (read back; tests and tools).
-  std::vector<VplReadback> readbackVpls();
 
  private:
+  friend std::vector<VplReadback> readbackVpls(ManyLights&);  // tests (gi_module/testing)
   void ensureRsm(uint32_t layers);
 
   render::VulkanContext& ctx_;

@@ -16,6 +16,7 @@
 #include "dyngi/engine/render/pipeline.h"
 #include "dyngi/engine/render/render_feature.h"
 #include "dyngi/gi/bvh.h"
+#include "dyngi/gi/fragment_ranges.h"
 #include "dyngi/gi/options.h"
 #include "dyngi/gi/voxel.h"
 
@@ -33,13 +34,6 @@ struct VoxelSettings {
   bool leafAttributes = true;
 
   static const OptionTable<VoxelSettings>& table();  // resolution only: the rest is the host's business
-};
-
-// One voxelization fragment as the voxelizer wrote it (decoded; for tests and tools).
-struct VoxelFragment {
-  glm::uvec3 cell{0};
-  glm::vec4 albedo{0.0f};    // linear base colour x (1 - metallic), a 1
-  glm::vec3 emission{0.0f};  // emitted radiance (8-bit mantissas, shared power-of-two scale)
 };
 
 struct VoxelStats {
@@ -89,52 +83,20 @@ class VoxelScene final : public render::RenderFeature {
   const render::Buffer& leafAttributes() const { return attributes_; }
   const render::Buffer& levels() const { return levels_; }
 
-  // Read-backs for tests and tools (synchronous).
-  std::vector<uint32_t> readbackNodes();
-  DenseVoxelGrid readbackFragmentGrid();  // every voxel some fragment marks
-  std::vector<VoxelFragment> readbackFragments();  // every fragment written (tests)
-  // Visibility of world-space segments through the SVO on the GPU; out[i] = 1 when occluded.
-  // Returns the GPU time of the march dispatch in ms.
-  double marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels = 1e-3f);
-  // The same dispatch with the march compiled out (every result 0): what reading a segment and writing
-  // a result costs on this device, the ceiling for any march's throughput (benchmarks only).
-  double marchSegmentsWithoutMarch(const std::vector<Segment>& segments, std::vector<uint8_t>& out);
-  // Wall time of the last marchSegments submit-to-fence (what a CPU caller waits).
-  double lastMarchWallMs() const { return lastMarchWallMs_; }
-
  private:
-  struct Range {
-    uint64_t first = 0, capacity = 0;
-    uint32_t counter = 0;        // index into the counters buffer
-    uint32_t lastCount = 0;      // fragments written (read back after the frame)
-    uint32_t voxelizations = 0;  // how often the entity was voxelized (more than once: it moves)
-    uint64_t lastEstimate = 0;   // estimateFragments() when it was last voxelized (lastCount's pose)
-    uint64_t lastVoxelizedFrame = 0;
-    bool written = false;
-  };
-  // Moving: voxelized again (after its first time) within the last kSettleFrames frames. The others'
-  // occupancy is kept in staticOccupancy_ instead of being marked again every build.
-  static constexpr uint64_t kSettleFrames = 60;
-  bool isMoving(const Range& r) const { return r.voxelizations > 1 && frameIndex_ - r.lastVoxelizedFrame < kSettleFrames; }
+  friend class VoxelProbe;  // tests' and tools' read-backs (gi_module/testing)
+  using Range = FragmentRange;
+  bool isMoving(const Range& r) const { return FragmentRanges::isMoving(r, frameIndex_); }
   // Decides which entities the static occupancy holds and which the build marks (prepare()).
   void planOccupancy(const std::vector<ecs::Entity>& removed);
   // Records the mark pass over `chunks` (slot ranges of up to one workgroup's work) into `target`.
   void recordMark(VkCommandBuffer cmd, const render::Buffer& target, uint32_t firstChunk, uint32_t chunkCount);
   // Fragment storage of `slots` slots at least; kept fragments are copied, nothing is re-voxelized.
   void ensureCapacity(uint64_t slots);
-  // Moves every range's fragments into a buffer sized by what they hold (see prepare()).
-  void compactRanges();
-  void reallocateFragments(uint64_t slots, const std::vector<VkBufferCopy>& keep);
+  // Moves every range's fragments into a buffer sized by what they hold (FragmentRanges::compact).
+  void compactFragments();
+  void reallocateFragments(uint64_t slots, const std::vector<SlotCopy>& keep);
   void resizeNodePool(uint32_t groups, uint64_t keepGroups);
-  // Slots for an entity about to be voxelized: the estimate the first time, then from its last count.
-  // Its range is kept while it holds `minimum`; a new one gets `fresh`.
-  struct RangeNeed {
-    uint64_t minimum, fresh;
-  };
-  static RangeNeed rangeNeed(uint64_t estimate, const Range* previous);
-  static uint64_t movingCapacity(const Range& r);
-  void relayout(const render::RenderSnapshot& snapshot);
-  uint64_t estimateFragments(const scene::MeshData& mesh, const glm::mat4& modelToVoxel) const;
 
   render::VulkanContext& ctx_;
   VoxelSettings settings_;
@@ -142,10 +104,7 @@ class VoxelScene final : public render::RenderFeature {
   bool haveVolume_ = false;
   bool allDirty_ = true;
   std::unordered_set<ecs::Entity> dirty_, removed_;
-  std::unordered_map<ecs::Entity, Range> ranges_;
-  std::vector<uint32_t> freeCounters_;
-  uint32_t counterCount_ = 0;
-  uint64_t highWater_ = 0;
+  FragmentRanges ranges_;  // where each entity's fragments live in fragments_
   uint32_t nodeGroupCapacity_ = 0;
 
   // What this frame records (decided in prepare).
@@ -171,11 +130,8 @@ class VoxelScene final : public render::RenderFeature {
   // lavapipe would run the texture lookups of a branch not taken.
   render::Pipeline voxelize_[4];
   render::Pipeline& voxelizePipelineFor(bool baseColorTexture, bool emissiveTexture);
-  render::Pipeline mark_, level_, expand_, leafAttributes_, march_, marchOff_, debug_;
-  double dispatchMarch(const render::Pipeline& pipeline, const std::vector<Segment>& segments, std::vector<uint8_t>& out,
-                       float epsVoxels);
+  render::Pipeline mark_, level_, expand_, leafAttributes_, debug_;
   VoxelStats stats_;
-  double lastMarchWallMs_ = 0.0;
 };
 
 // Marks moved, deformed, added and removed mesh entities dirty in a VoxelScene (change ticks only).

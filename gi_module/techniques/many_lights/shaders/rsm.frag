@@ -18,18 +18,18 @@ layout(location = 0) out vec4 outPosition;  // xyz world, w 1
 layout(location = 1) out vec4 outNormal;    // xyz facing the light
 layout(location = 2) out vec4 outFlux;      // rgb reflected flux (W), a luminance
 void main() {
-  RsmLayer layer = layers[pc.info.x];
-  GpuLight L = lights[layer.info.x];
+  RsmLayer layer = layers[pc.layer];
+  GpuLight L = lights[layer.lightIndex];
   vec3 albedo = pc.baseColor.rgb;
   if (kBaseColorTexture) albedo *= texture(baseColorTex, inUv).rgb;
   vec3 n = normalize(inNormal);
   vec3 radiant = L.radiance.rgb * L.radiance.w;
   vec3 flux;
-  if (layer.info.y == 1u) {
+  if (layer.orthographic == 1u) {
     vec3 dir = L.directionRange.xyz;
     if (dot(n, dir) > 0.0) n = -n;
     // Irradiance E on a plane facing the light times the texel's area across the beam.
-    float texelSide = layer.axis.w / float(layer.info.z);
+    float texelSide = layer.axis.w / float(layer.resolution);
     flux = albedo * radiant * texelSide * texelSide;
   } else {
     vec3 d = inWorld - L.positionType.xyz;
@@ -37,7 +37,7 @@ void main() {
     vec3 w = d / max(dist, 1e-6);
     if (dot(n, w) > 0.0) n = -n;
     float cosAxis = max(dot(w, layer.axis.xyz), 1e-4);
-    float texel = layer.axis.w / float(layer.info.z);
+    float texel = layer.axis.w / float(layer.resolution);
     float solidAngle = texel * texel * cosAxis * cosAxis * cosAxis;
     float atten = rangeWindow(dist, L.directionRange.w);
     if (int(L.positionType.w) == DYNGI_LIGHT_SPOT) atten *= spotFalloff(dot(w, L.directionRange.xyz), L.cone.x, L.cone.y);

@@ -14,5 +14,5 @@ void main() {
   outWorld = w.xyz;
   outNormal = transpose(inverse(mat3(pc.model))) * inNormal;
   outUv = inUv;
-  gl_Position = layers[pc.info.x].viewProj * w;
+  gl_Position = layers[pc.layer].viewProj * w;
 }

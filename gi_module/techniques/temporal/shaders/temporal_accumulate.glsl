@@ -60,14 +60,14 @@ vec4 setSample(ivec2 q, uint set) {
   return vec4(unpackRgb9e5(v.x), uintBitsToFloat(v.y));
 }
 
-vec3 temporalAverage(vec3 sum, uint count) { return count > 0u ? sum * float(acc.sets.x) / float(count) : vec3(0.0); }
+vec3 temporalAverage(vec3 sum, uint count) { return count > 0u ? sum * float(acc.setCount) / float(count) : vec3(0.0); }
 
-// The gather's part for pixel px: stores newValue, this frame's light for set acc.sets.y at a surface of
+// The gather's part for pixel px: stores newValue, this frame's light for set acc.currentSet at a surface of
 // view depth `depth` (<= 0: none). Returns true with the filter input (filter_input.glsl) in `result`
 // when the pixel is done (no surface, or the incremental update applied); false when it needs
 // temporalAccumulateFull.
 bool temporalAccumulateIncremental(ivec2 px, vec3 newValue, float depth, uvec2 packedNormal, out uvec4 result) {
-  const uint set = acc.sets.y;
+  const uint set = acc.currentSet;
   // Store this frame's set (old value kept for the incremental update).
   vec4 oldValue = setSample(px, set);
   uint packedValue = packRgb9e5(newValue);
@@ -75,11 +75,11 @@ bool temporalAccumulateIncremental(ivec2 px, vec3 newValue, float depth, uvec2 p
   newValue = unpackRgb9e5(packedValue);  // what is stored is what the sum holds: it comes out exactly
   const bool surface = depth > 0.0;
   vec4 s = imageLoad(sums, px);
-  const bool incremental = surface && acc.mode.x != 0u && temporalSumIsFor(s, depth);
+  const bool incremental = surface && acc.incremental != 0u && temporalSumIsFor(s, depth);
   // Only set `set` changed: take its old sample out (if the full pass had counted it) and put the new one
   // in. The test is the full pass's test for a set stored from this camera.
   uint count = temporalSumCount(s);
-  const bool replaces = acc.mode.y != 0u && oldValue.a > 0.0 && abs(oldValue.a - depth) <= acc.params.x * depth;
+  const bool replaces = acc.currentSetWasStored != 0u && oldValue.a > 0.0 && abs(oldValue.a - depth) <= acc.reprojectionCutoff * depth;
   s.rgb += newValue - (replaces ? oldValue.rgb : vec3(0.0));
   count += replaces ? 0u : 1u;
   // One store for both outcomes (lavapipe runs a store in a branch for every lane): the updated sum, or
@@ -133,10 +133,10 @@ void addReprojectedSample(uint j, vec3 p, float tolerance, ivec2 size, inout vec
 // filter input (filter_input.glsl).
 uvec4 temporalAccumulateFull(ivec2 px, uvec2 packedNormal) {
   ivec2 size = ivec2(frame.sizeAndCount.xy);
-  const uint set = acc.sets.y, validMask = acc.sets.z, sameCamera = acc.sets.w;
+  const uint set = acc.currentSet, validMask = acc.storedSets, sameCamera = acc.setsFromThisCamera;
   vec4 own = setSample(px, set);
   float depth = own.a;
-  float depthTolerance = acc.params.x * depth;
+  float depthTolerance = acc.reprojectionCutoff * depth;
   vec3 sum = own.rgb;
   uint count = 1u;
   vec3 ray = pixelRay(px);

@@ -21,7 +21,7 @@ void main() {
   uvec4 result = depth > 0.0 ? packFilterInput(depth, packedNormal, light) : uvec4(0u);
   uvec4 accumulated;
   if (temporalAccumulateIncremental(px, light, depth, packedNormal, accumulated)) result = accumulated;
-  else if (acc.mode.x != 0u) {
+  else if (acc.incremental != 0u) {
     // Queue the pixel for the full reprojection (temporal_reproject.comp); without a queue that pass
     // runs over every pixel.
     uint slot = atomicAdd(queue.dispatchAndCount.w, 1u);

@@ -24,7 +24,7 @@ layout(push_constant) uniform Push { AccumulatePush acc; };
 void main() {
   uint id = gl_GlobalInvocationID.x, width = frame.sizeAndCount.x;
   ivec2 px;
-  if (acc.mode.x != 0u) {
+  if (acc.incremental != 0u) {
     if (id >= queue.dispatchAndCount.w) return;
     uint packedPx = queuedPixels[id];
     px = ivec2(packedPx & 0xffffu, packedPx >> 16);
@@ -32,7 +32,7 @@ void main() {
     px = ivec2(id % width, id / width);
   }
   if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return;
-  if (setSample(px, acc.sets.y).a <= 0.0) return;  // no surface: the gather wrote it
+  if (setSample(px, acc.currentSet).a <= 0.0) return;  // no surface: the gather wrote it
   uvec4 stored = imageLoad(filterInput, px);
   imageStore(filterInput, px, temporalAccumulateFull(px, filterPackedNormal(stored)));
 }

@@ -1,0 +1,59 @@
+#pragma once
+// What every raster pass repeats, written once: dynamic rendering over a set of attachments with the
+// viewport covering the target, and the per-draw loop over the frame's snapshot (draws with no GPU
+// geometry skipped, a pipeline bound only when it changes, the mesh bound and drawn).
+#include <functional>
+#include <initializer_list>
+#include <optional>
+#include <span>
+
+#include "dyngi/engine/render/frame_context.h"
+
+namespace dyngi::render {
+
+struct Attachment {
+  VkImageView view = VK_NULL_HANDLE;
+  VkAttachmentLoadOp load = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  VkAttachmentStoreOp store = VK_ATTACHMENT_STORE_OP_STORE;
+  VkClearValue clear{};
+};
+// A colour attachment cleared to `clear` (or loaded).
+inline Attachment colorAttachment(VkImageView view, VkClearColorValue clear = {}, VkAttachmentLoadOp load = VK_ATTACHMENT_LOAD_OP_CLEAR) {
+  Attachment a{view, load, VK_ATTACHMENT_STORE_OP_STORE, {}};
+  a.clear.color = clear;
+  return a;
+}
+// A depth attachment cleared to 1 (or loaded).
+inline Attachment depthAttachment(VkImageView view, VkAttachmentLoadOp load = VK_ATTACHMENT_LOAD_OP_CLEAR,
+                                  VkAttachmentStoreOp store = VK_ATTACHMENT_STORE_OP_STORE) {
+  Attachment a{view, load, store, {}};
+  a.clear.depthStencil = {1.0f, 0};
+  return a;
+}
+
+// Dynamic rendering from construction to destruction: colour attachments in COLOR_ATTACHMENT_OPTIMAL,
+// the depth attachment in DEPTH_ATTACHMENT_OPTIMAL (the caller transitions them), render area and
+// viewport width x height. No attachments at all is allowed (a pass that only stores from fragments).
+class RenderingScope {
+ public:
+  static constexpr size_t kMaxColors = 8;
+  RenderingScope(VkCommandBuffer cmd, uint32_t width, uint32_t height, std::initializer_list<Attachment> colors = {},
+                 std::optional<Attachment> depth = std::nullopt);
+  ~RenderingScope();
+  RenderingScope(const RenderingScope&) = delete;
+  RenderingScope& operator=(const RenderingScope&) = delete;
+
+ private:
+  VkCommandBuffer cmd_;
+};
+
+// Picks a draw's pipeline (bound when it differs from the last draw's).
+using DrawPipelineFor = std::function<const Pipeline&(const DrawItem&)>;
+// Records a draw's descriptors and push constants; drawEach then binds its mesh and draws it.
+using DrawSetup = std::function<void(VkCommandBuffer, const DrawItem&, const Pipeline&)>;
+
+// The snapshot's draws `indices` (all of them when nullopt) that have GPU geometry, in order.
+void drawEach(const FrameContext& frame, std::optional<std::span<const size_t>> indices, const DrawPipelineFor& pipelineFor,
+              const DrawSetup& setup);
+
+}  // namespace dyngi::render

@@ -1,0 +1,145 @@
+#include "testing/gi_probes.h"
+
+#include <chrono>
+#include <cmath>
+
+#include <glm/gtc/packing.hpp>
+
+#include "dyngi/engine/render/gpu_timer.h"
+#include "shaders/shared/gi_gpu_types.h"
+#include "spirv/svo_march.comp.spv.h"
+
+#include "gpu_aliases.h"
+
+namespace dyngi::gi {
+
+VoxelProbe::VoxelProbe(VoxelScene& voxels) : voxels_(voxels) {}
+
+// The march pipelines are made on first use: a probe that only reads back compiles nothing.
+const render::Pipeline& VoxelProbe::marchPipeline(bool march) {
+  render::Pipeline& p = march ? march_ : marchOff_;
+  if (!p.handle()) {
+    const Binding marchB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
+    const uint32_t spec[] = {march ? 1u : 0u};
+    p = Pipeline::compute(voxels_.ctx_, DYNGI_SHADER(spv_svo_march_comp), marchB, sizeof(gpu::SvoMarchPush),
+                          march ? "svo_march" : "svo_march_off", spec);
+  }
+  return p;
+}
+
+std::vector<uint32_t> VoxelProbe::readbackNodes() {
+  render::VulkanContext& ctx_ = voxels_.ctx_;
+  voxels_.svoCounters_.invalidateForRead();
+  const auto* c = static_cast<const gpu::SvoCounters*>(voxels_.svoCounters_.mapped());
+  uint64_t groups = std::min<uint64_t>(c->groups.x, c->groups.y);
+  VkDeviceSize bytes = groups * 8 * 4;
+  Buffer host(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "svo readback");
+  ctx_.immediate([&](VkCommandBuffer cmd) {
+    VkBufferCopy copy{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, voxels_.nodes_.handle(), host.handle(), 1, &copy);
+  });
+  host.invalidateForRead();
+  const uint32_t* p = static_cast<const uint32_t*>(host.mapped());
+  return std::vector<uint32_t>(p, p + groups * 8);
+}
+
+std::vector<VoxelFragment> VoxelProbe::readbackFragments() {
+  render::VulkanContext& ctx_ = voxels_.ctx_;
+  const uint64_t highWater_ = voxels_.ranges_.highWater();
+  std::vector<VoxelFragment> out;
+  if (highWater_ == 0) return out;
+  VkDeviceSize bytes = highWater_ * 16;
+  Buffer host(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "fragment readback");
+  ctx_.immediate([&](VkCommandBuffer cmd) {
+    VkBufferCopy copy{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, voxels_.fragments_.handle(), host.handle(), 1, &copy);
+  });
+  host.invalidateForRead();
+  const uint32_t* p = static_cast<const uint32_t*>(host.mapped());
+  for (uint64_t i = 0; i < highWater_; ++i) {
+    const uint32_t* f = p + i * 4;
+    if (f[0] == DYNGI_VOXEL_EMPTY) continue;
+    VoxelFragment v;
+    v.cell = glm::uvec3(f[0] & 1023u, (f[0] >> 10) & 1023u, (f[0] >> 20) & 1023u);
+    v.albedo = glm::unpackUnorm4x8(f[1]);
+    // voxelize.frag's packEmission: rgb / 2^k as unorm8, k + 8 in the fourth byte (0: no emission).
+    const glm::vec4 e = glm::unpackUnorm4x8(f[3]);
+    v.emission = f[3] == 0 ? glm::vec3(0.0f) : glm::vec3(e) * std::exp2(float(int(f[3] >> 24) - 8));
+    out.push_back(v);
+  }
+  return out;
+}
+
+DenseVoxelGrid VoxelProbe::readbackFragmentGrid() {
+  DenseVoxelGrid grid(voxels_.volume().resolution);
+  for (const VoxelFragment& f : readbackFragments()) grid.set(f.cell.x, f.cell.y, f.cell.z);
+  return grid;
+}
+
+double VoxelProbe::marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels) {
+  return dispatchMarch(marchPipeline(true), segments, out, epsVoxels);
+}
+
+double VoxelProbe::marchSegmentsWithoutMarch(const std::vector<Segment>& segments, std::vector<uint8_t>& out) {
+  return dispatchMarch(marchPipeline(false), segments, out, 1e-3f);
+}
+
+double VoxelProbe::dispatchMarch(const render::Pipeline& pipeline, const std::vector<Segment>& segments, std::vector<uint8_t>& out,
+                                 float epsVoxels) {
+  render::VulkanContext& ctx_ = voxels_.ctx_;
+  const VoxelVolume& volume_ = voxels_.volume();
+  out.assign(segments.size(), 0);
+  if (segments.empty()) return 0.0;
+  std::vector<glm::vec4> packed(segments.size() * 2);
+  for (size_t i = 0; i < segments.size(); ++i) {
+    packed[2 * i] = glm::vec4(segments[i].from, 1.0f);
+    packed[2 * i + 1] = glm::vec4(segments[i].to, 1.0f);
+  }
+  Buffer segBuf(ctx_, packed.size() * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "march segments");
+  segBuf.upload(packed.data(), packed.size() * 16);
+  Buffer results(ctx_, segments.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "march results");
+  render::GpuTimer timer(ctx_, 2);
+  auto t0 = std::chrono::steady_clock::now();
+  ctx_.immediate([&](VkCommandBuffer cmd) {
+    timer.beginFrame(cmd);
+    uint32_t s = timer.begin(cmd, "svo_march");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+    DescriptorWrites().storageBuffer(0, voxels_.nodes_.handle()).storageBuffer(1, segBuf.handle()).storageBuffer(2, results.handle()).push(ctx_, cmd, pipeline);
+    const gpu::SvoMarchPush pc{glm::vec4(volume_.origin, 1.0f / volume_.voxelSize), uint32_t(segments.size()), volume_.depth(),
+                               float(volume_.resolution), epsVoxels};
+    vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(pc), &pc);
+    vkCmdDispatch(cmd, dispatchGroups(uint32_t(segments.size()), 64), 1, 1);
+    timer.end(cmd, s);
+    render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                          VK_ACCESS_2_HOST_READ_BIT);
+  });
+  double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  timer.resolve();
+  lastMarchWallMs_ = wallMs;
+  results.invalidateForRead();
+  const uint32_t* r = static_cast<const uint32_t*>(results.mapped());
+  for (size_t i = 0; i < segments.size(); ++i) out[i] = r[i] ? 1 : 0;
+  return timer.results().empty() ? 0.0 : timer.results()[0].second;
+}
+
+std::vector<VplReadback> readbackVpls(ManyLights& ml) {
+  render::VulkanContext& ctx_ = ml.ctx_;
+  const Buffer& vpls_ = ml.vpls_;
+  const uint32_t perBounce_ = ml.perBounce_;
+  const ManyLightsOptions& settings_ = ml.settings_;
+  std::vector<VplReadback> out;
+  if (!vpls_.valid()) return out;
+  uint32_t n = perBounce_ * settings_.vpl.bounces;
+  Buffer host(ctx_, VkDeviceSize(n) * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "vpl readback");
+  ctx_.immediate([&](VkCommandBuffer cmd) {
+    VkBufferCopy c{0, 0, VkDeviceSize(n) * sizeof(gpu::GpuVpl)};
+    vkCmdCopyBuffer(cmd, vpls_.handle(), host.handle(), 1, &c);
+  });
+  host.invalidateForRead();
+  const auto* v = static_cast<const gpu::GpuVpl*>(host.mapped());
+  for (uint32_t i = 0; i < n; ++i)
+    out.push_back({glm::vec3(v[i].position), v[i].position.w < 0 ? -1 : int(v[i].position.w + 0.5f), glm::vec3(v[i].normal), glm::vec3(v[i].flux)});
+  return out;
+}
+
+}  // namespace dyngi::gi

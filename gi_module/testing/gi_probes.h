@@ -1,0 +1,56 @@
+#pragma once
+// Read-backs and one-off dispatches for tests, benchmarks and tools: they look inside the GI's GPU
+// state synchronously (a submit and a fence each), which no frame should do. Not part of the public
+// API: the dyngi_gi_testing library, linked by tests/ only.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "dyngi/engine/render/pipeline.h"
+#include "dyngi/gi/many_lights.h"
+#include "dyngi/gi/voxel.h"
+#include "dyngi/gi/voxel_scene.h"
+
+namespace dyngi::gi {
+
+// One voxelization fragment as the voxelizer wrote it (decoded).
+struct VoxelFragment {
+  glm::uvec3 cell{0};
+  glm::vec4 albedo{0.0f};    // linear base colour x (1 - metallic), a 1
+  glm::vec3 emission{0.0f};  // emitted radiance (8-bit mantissas, shared power-of-two scale)
+};
+
+class VoxelProbe {
+ public:
+  explicit VoxelProbe(VoxelScene& voxels);
+  std::vector<uint32_t> readbackNodes();
+  std::vector<VoxelFragment> readbackFragments();  // every fragment written
+  DenseVoxelGrid readbackFragmentGrid();           // every voxel some fragment marks
+  // Visibility of world-space segments through the SVO on the GPU (svo_march.comp); out[i] = 1 when
+  // occluded. Returns the GPU time of the march dispatch in ms.
+  double marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels = 1e-3f);
+  // The same dispatch with the march compiled out (every result 0): what reading a segment and writing
+  // a result costs on this device, the ceiling for any march's throughput (benchmarks only).
+  double marchSegmentsWithoutMarch(const std::vector<Segment>& segments, std::vector<uint8_t>& out);
+  // Wall time of the last march's submit-to-fence (what a CPU caller waits).
+  double lastMarchWallMs() const { return lastMarchWallMs_; }
+
+ private:
+  const render::Pipeline& marchPipeline(bool march);
+  double dispatchMarch(const render::Pipeline& pipeline, const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels);
+  VoxelScene& voxels_;
+  render::Pipeline march_, marchOff_;
+  double lastMarchWallMs_ = 0.0;
+};
+
+struct VplReadback {
+  glm::vec3 position;
+  int bounce;  // -1: invalid
+  glm::vec3 normal;
+  glm::vec3 flux;
+};
+// The many-lights technique's current VPLs.
+std::vector<VplReadback> readbackVpls(ManyLights& manyLights);
+
+}  // namespace dyngi::gi
