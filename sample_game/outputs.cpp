@@ -1,0 +1,70 @@
+#include "outputs.h"
+
+#include <fstream>
+#include <unistd.h>
+
+#include "dyngi/engine/render/image_io.h"
+
+namespace dyngi::sample {
+
+namespace {
+// Resident set size of this process, from /proc (0 where there is none).
+uint64_t residentKiB() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (!f) return 0;
+  unsigned long long sizePages = 0, residentPages = 0;
+  int n = std::fscanf(f, "%llu %llu", &sizePages, &residentPages);
+  std::fclose(f);
+  return n == 2 ? residentPages * uint64_t(sysconf(_SC_PAGESIZE)) / 1024 : 0;
+}
+
+int report(const std::string& err, const std::string& path) {
+  if (!err.empty()) {
+    std::fprintf(stderr, "dyngi_sample: %s\n", err.c_str());
+    return 1;
+  }
+  std::printf("wrote %s\n", path.c_str());
+  return 0;
+}
+}  // namespace
+
+int writeImages(const Options& o, uint32_t width, uint32_t height, const std::function<std::vector<uint8_t>()>& ldr,
+                const std::function<render::ImageRgba()>& hdr) {
+  int status = 0;
+  if (!o.out.empty()) status |= report(render::writePng(o.out, width, height, ldr()), o.out);
+  if (!o.hdrOut.empty()) status |= report(render::writeExr(o.hdrOut, width, height, hdr()), o.hdrOut);
+  return status;
+}
+
+int writeStats(const Options& o, const RunStats& stats) {
+  int status = 0;
+  if (!o.stats.empty()) {
+    std::ofstream f(o.stats);
+    f << stats.toJson();
+    status |= report(f ? "" : o.stats + ": could not write stats", o.stats);
+  }
+  std::printf("%s", stats.table().c_str());
+  return status;
+}
+
+bool MemoryLog::open(const std::string& path) {
+  if (path.empty()) return true;
+  file_.reset(std::fopen(path.c_str(), "w"));
+  if (!file_) {
+    std::fprintf(stderr, "dyngi_sample: %s: could not open the memory log\n", path.c_str());
+    return false;
+  }
+  std::fprintf(file_.get(), "frame\trss_kib\tvk_allocations\tvk_device_bytes\n");
+  return true;
+}
+
+void MemoryLog::frameRendered(int rendered, const render::VulkanContext& ctx) {
+  if (!file_ || rendered % kEvery != 0) return;
+  uint64_t deviceBytes = 0;
+  for (uint32_t h = 0; h < VK_MAX_MEMORY_HEAPS; ++h) deviceBytes += ctx.heapBytesInUse(h);
+  std::fprintf(file_.get(), "%d\t%llu\t%llu\t%llu\n", rendered, (unsigned long long)residentKiB(), (unsigned long long)ctx.liveAllocations(),
+               (unsigned long long)deviceBytes);
+  std::fflush(file_.get());
+}
+
+}  // namespace dyngi::sample

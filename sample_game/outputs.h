@@ -1,0 +1,36 @@
+#pragma once
+// What a run leaves behind: the PNG, the EXR, the stats JSON and table, the memory log. Each writer
+// prints "wrote FILE" or one error line and returns the exit status it adds (0 or 1).
+#include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "dyngi/engine/render/context.h"
+#include "dyngi/engine/render/image_metrics.h"
+#include "options.h"
+#include "stats.h"
+
+namespace dyngi::sample {
+
+// --out (tone-mapped sRGB) and --hdr-out (linear radiance) of one frame; each image is made (read back)
+// only when its file was asked for.
+int writeImages(const Options& o, uint32_t width, uint32_t height, const std::function<std::vector<uint8_t>()>& ldr,
+                const std::function<render::ImageRgba()>& hdr);
+// --stats, then the table on stdout.
+int writeStats(const Options& o, const RunStats& stats);
+
+// --memory-log: every kEvery rendered frames, resident memory and live Vulkan allocations.
+class MemoryLog {
+ public:
+  static constexpr int kEvery = 100;
+  // False (with the error line printed) when the file cannot be opened; no log without --memory-log.
+  bool open(const std::string& path);
+  void frameRendered(int rendered, const render::VulkanContext& ctx);
+
+ private:
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_{nullptr, &std::fclose};
+};
+
+}  // namespace dyngi::sample

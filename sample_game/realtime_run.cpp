@@ -1,0 +1,208 @@
+// The renderer with the chosen GI, windowed or headless: device and window, the GI system and its
+// features, the systems, the frame loop, and what the stats report.
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include "dyngi/engine/ecs/scheduler.h"
+#include "dyngi/engine/platform/window.h"
+#include "dyngi/engine/render/renderer.h"
+#include "dyngi/engine/render/swapchain.h"
+#include "dyngi/engine/scene/animation.h"
+#include "dyngi/engine/scene/scripted_motion.h"
+#include "dyngi/engine/scene/transform_system.h"
+#include "dyngi/gi/gi_system.h"
+#include "dyngi/gi/voxel_scene.h"
+#include "fly_camera.h"
+#include "outputs.h"
+#include "runs.h"
+
+namespace dyngi::sample {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The GI of the run: the GI system with its technique, or for --view voxels|svo-steps without GI a
+// voxel scene of its own. Owned here until the scheduler takes the system.
+struct GiSetup {
+  std::unique_ptr<gi::GiSystem> systemOwned;
+  gi::GiSystem* system = nullptr;
+  std::unique_ptr<gi::VoxelScene> standaloneVoxels;
+  gi::VoxelScene* voxels = nullptr;  // the one the voxel views and stats read, if any
+};
+
+GiSetup setUpGi(const Options& o, render::VulkanContext& ctx, render::Renderer& renderer, const ecs::World& world,
+                const scene::AssetStore& assets) {
+  GiSetup g;
+  const bool voxelView = o.view == "voxels" || o.view == "svo-steps";
+  const gi::VoxelDebugView voxelDebug = o.view == "voxels" ? gi::VoxelDebugView::Voxels : gi::VoxelDebugView::SvoSteps;
+  if (o.usesGiSystem()) {
+    if (world.count<scene::Light>() == 0)
+      std::fprintf(stderr, "dyngi_sample: note: VPLs come from punctual lights only; this scene has none, so no indirect light\n");
+    g.systemOwned = std::make_unique<gi::GiSystem>(ctx, assets, o.giSettings);
+    g.system = g.systemOwned.get();
+    // A value the technique adjusted (a VPL count rounded to a multiple of the bounces) is reported as used.
+    gi::GiSettings asked = o.giSettings;
+    for (const std::string& line : gi::adjustedOptions(g.system->techniqueEntry().options(asked), g.system->technique().options()))
+      std::fprintf(stderr, "dyngi_sample: note: %s (the value the technique uses; --stats lists every value used)\n", line.c_str());
+    g.system->attach(renderer);
+    if (!voxelView) g.system->technique().setDebugView(o.view);  // parseOptions checked the name
+    g.voxels = g.system->voxels();
+  }
+  if (voxelView && g.voxels) g.voxels->setDebugView(voxelDebug);
+  if (voxelView && !g.voxels) {
+    gi::VoxelSettings vs = o.giSettings.voxels;
+    vs.debugView = voxelDebug;
+    g.standaloneVoxels = std::make_unique<gi::VoxelScene>(ctx, vs);
+    renderer.addFeature(g.standaloneVoxels.get());
+    g.voxels = g.standaloneVoxels.get();
+  }
+  return g;
+}
+
+// The GI's settings as used and its figures, once at the end of the run.
+void reportGi(const Options& o, const GiSetup& g, RunStats& stats) {
+  if (gi::GiSystem* gi = g.system) {
+    stats.scalars["vpls"] = gi->effectiveVplCount();  // as used (see the note above), not as asked
+    gi::GiSettings asked = o.giSettings;
+    for (const gi::OptionRef& r : gi->techniqueEntry().options(asked))
+      if (std::string_view(r.spec->name) == "vpls") stats.scalars["vpls_requested"] = r.get();
+    for (const gi::OptionRef& r : gi->technique().options()) {
+      const std::string_view name = r.spec->name;
+      if (name == "interleave" || name == "bounces") stats.scalars[std::string(name)] = r.get();
+      if (name == "temporal") stats.scalars["temporal_sets"] = r.get();
+      stats.sections["settings"][r.spec->name] = r.get();
+    }
+    for (auto& [section, values] : gi->technique().statsSections())
+      for (auto& [key, value] : values) stats.sections[section][key] = value;
+  }
+  if (const gi::VoxelScene* voxels = g.voxels) {
+    const gi::VoxelStats& v = voxels->stats();
+    stats.scalars["voxel_resolution"] = o.giSettings.voxels.resolution;
+    gi::VoxelSettings used = o.giSettings.voxels;
+    for (const gi::OptionRef& r : gi::bindOptions(used)) stats.sections["settings"][r.spec->name] = r.get();
+    stats.scalars["voxel_fragments"] = double(v.fragments);
+    stats.scalars["svo_nodes"] = double(v.nodes);
+    stats.scalars["svo_leaves"] = double(v.leaves);
+    stats.scalars["svo_bytes"] = double(v.svoBytes);
+    stats.scalars["voxel_total_bytes"] = double(v.totalBytes);
+  }
+}
+
+}  // namespace
+
+int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, RunStats& stats) {
+  std::unique_ptr<platform::Window> window;
+  if (!o.headless) {
+    std::string why;
+    window = platform::Window::create(o.width, o.height, "dyngi — " + o.scene, &why);
+    if (!window) std::fprintf(stderr, "dyngi_sample: no window (%s); running headless\n", why.c_str());
+  }
+  const bool headless = !window;
+  const int frames = o.frames > 0 ? o.frames : (headless ? kHeadlessDefaultFrames : -1);
+
+  render::ContextOptions co;
+#ifndef NDEBUG
+  co.validation = true;  // debug builds always validate
+#else
+  co.validation = o.validation;
+#endif
+  co.requireValidation = o.validation;  // asked for on the command line: a missing layer is an error
+  co.requireSwapchain = !headless;
+  if (!headless) co.instanceExtensions = platform::Window::requiredInstanceExtensions();
+  render::VulkanContext ctx(co);
+  render::RendererSettings rs;
+  rs.exposure = o.exposure;
+  render::Renderer renderer(ctx, rs);
+  std::unique_ptr<render::Swapchain> swapchain;
+  uint32_t width = o.width, height = o.height;
+  if (!headless) {
+    swapchain = std::make_unique<render::Swapchain>(ctx, window->createSurface(ctx.instance()));
+    window->framebufferSize(width, height);
+    if (width == 0 || height == 0) width = o.width, height = o.height;
+    swapchain->recreate(width, height);
+  }
+  renderer.resize(width, height);
+
+  GiSetup gi = setUpGi(o, ctx, renderer, world, assets);
+  ecs::Scheduler scheduler;
+  if (window) scheduler.add(ecs::Phase::Update, std::make_unique<FlyCameraSystem>(*window));
+  scheduler.add(ecs::Phase::Update, std::make_unique<scene::ScriptedMotionSystem>());
+  scheduler.add(ecs::Phase::Update, std::make_unique<scene::AnimationSystem>());
+  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
+  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::SkinningSystem>(assets));
+  if (gi.systemOwned) scheduler.add(ecs::Phase::PostUpdate, std::move(gi.systemOwned));
+  else if (gi.standaloneVoxels) scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(*gi.standaloneVoxels, assets));
+
+  stats.device = ctx.deviceName();
+  stats.warmupFrames = o.warmupFrames();  // Mesa compiles pipelines on first use: keep them out of the medians
+  MemoryLog memoryLog;
+  if (!memoryLog.open(o.memoryLog)) return 1;
+  ecs::FrameTime time;
+  auto start = Clock::now(), last = start;
+  int rendered = 0;
+  for (uint64_t frame = 0; frames < 0 || rendered < frames; ++frame) {
+    auto t0 = Clock::now();
+    if (window) {
+      window->pollEvents();
+      if (window->shouldClose()) break;
+      uint32_t fw, fh;
+      window->framebufferSize(fw, fh);
+      if (fw == 0 || fh == 0) {  // minimised: nothing to draw into
+        window->waitEvents();
+        last = Clock::now();
+        continue;
+      }
+      if (fw != swapchain->extent().width || fh != swapchain->extent().height || !swapchain->valid()) {
+        if (!swapchain->recreate(fw, fh)) continue;
+        renderer.resize(fw, fh);
+      }
+      time.dt = std::chrono::duration<double>(t0 - last).count();
+      time.time = std::chrono::duration<double>(t0 - start).count();
+    } else {
+      time.dt = 1.0 / 60.0;  // fixed step: frame N is the same on every machine
+      time.time = double(frame) * time.dt;
+    }
+    last = t0;
+    time.frame = frame;
+    scheduler.runFrame(world, time);
+    auto tExtract = Clock::now();
+    const render::RenderSnapshot snapshot = render::extractSnapshot(world, assets, frame);  // the frame's one snapshot
+    double extractMs = std::chrono::duration<double, std::milli>(Clock::now() - tExtract).count();
+    const render::FrameStats& fs = renderer.render(snapshot, swapchain.get());
+    if (swapchain && !fs.presented) swapchain->recreate(renderer.width(), renderer.height());
+    double frameMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    ++rendered;
+    memoryLog.frameRendered(rendered, ctx);
+    if (rendered > stats.warmupFrames) {
+      stats.frameMs.push(frameMs);
+      for (auto& [name, ms] : fs.gpuMs) stats.gpuStageMs[name].push(ms);
+      for (auto& t : scheduler.lastTimings()) stats.cpuStageMs[t.name].push(t.cpuMs);
+      stats.cpuStageMs["extract"].push(extractMs);
+      stats.cpuStageMs["render_record"].push(fs.cpuRecordMs);
+      stats.cpuStageMs["render_wait"].push(fs.cpuWaitMs);
+      if (gi.system) {
+        stats.cpuStageMs["gi_bvh_update"].push(gi.system->stats().bvh.updateMs);
+        for (const auto& [name, ms] : gi.system->technique().cpuMs()) stats.cpuStageMs[name].push(ms);
+      }
+    }
+  }
+  stats.frames = rendered;
+  stats.width = renderer.width();
+  stats.height = renderer.height();
+  stats.scalars["draws"] = double(render::extractSnapshot(world, assets, 0).draws.size());
+  stats.scalars["validation_errors"] = ctx.validationErrorCount();
+  reportGi(o, gi, stats);
+
+  int status = 0;
+  if (rendered > 0)
+    status |= writeImages(
+        o, renderer.width(), renderer.height(), [&] { return renderer.readbackLdr(); }, [&] { return renderer.readback(render::TargetId::Hdr); });
+  if (ctx.validationErrorCount() > 0) {
+    std::fprintf(stderr, "dyngi_sample: %u Vulkan validation error(s)\n", ctx.validationErrorCount());
+    status = 1;
+  }
+  return status;
+}
+
+}  // namespace dyngi::sample
