@@ -332,4 +332,15 @@ std::vector<uint8_t> readbackImageBytes(VulkanContext& ctx, Image& img) {
   return std::vector<uint8_t>(src, src + buf.size());
 }
 
+std::vector<uint8_t> readbackBufferBytes(VulkanContext& ctx, VkBuffer source, VkDeviceSize bytes) {
+  Buffer host(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "buffer readback");
+  ctx.immediate([&](VkCommandBuffer cmd) {
+    VkBufferCopy copy{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, source, host.handle(), 1, &copy);
+  });
+  host.invalidateForRead();
+  const uint8_t* p = static_cast<const uint8_t*>(host.mapped());
+  return std::vector<uint8_t>(p, p + bytes);
+}
+
 }  // namespace dyngi::render

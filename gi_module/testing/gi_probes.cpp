@@ -28,36 +28,18 @@ const render::Pipeline& VoxelProbe::marchPipeline(bool march) {
 }
 
 std::vector<uint32_t> VoxelProbe::readbackNodes() {
-  render::VulkanContext& ctx_ = voxels_.ctx_;
   voxels_.svoCounters_.invalidateForRead();
   const auto* c = static_cast<const gpu::SvoCounters*>(voxels_.svoCounters_.mapped());
   uint64_t groups = std::min<uint64_t>(c->groups.x, c->groups.y);
-  VkDeviceSize bytes = groups * 8 * 4;
-  Buffer host(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "svo readback");
-  ctx_.immediate([&](VkCommandBuffer cmd) {
-    VkBufferCopy copy{0, 0, bytes};
-    vkCmdCopyBuffer(cmd, voxels_.nodes_.handle(), host.handle(), 1, &copy);
-  });
-  host.invalidateForRead();
-  const uint32_t* p = static_cast<const uint32_t*>(host.mapped());
-  return std::vector<uint32_t>(p, p + groups * 8);
+  return render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.nodes_.handle(), size_t(groups * 8));
 }
 
 std::vector<VoxelFragment> VoxelProbe::readbackFragments() {
-  render::VulkanContext& ctx_ = voxels_.ctx_;
-  const uint64_t highWater_ = voxels_.ranges_.highWater();
+  const uint64_t slots = voxels_.ranges_.highWater();
   std::vector<VoxelFragment> out;
-  if (highWater_ == 0) return out;
-  VkDeviceSize bytes = highWater_ * 16;
-  Buffer host(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "fragment readback");
-  ctx_.immediate([&](VkCommandBuffer cmd) {
-    VkBufferCopy copy{0, 0, bytes};
-    vkCmdCopyBuffer(cmd, voxels_.fragments_.handle(), host.handle(), 1, &copy);
-  });
-  host.invalidateForRead();
-  const uint32_t* p = static_cast<const uint32_t*>(host.mapped());
-  for (uint64_t i = 0; i < highWater_; ++i) {
-    const uint32_t* f = p + i * 4;
+  if (slots == 0) return out;
+  const std::vector<glm::uvec4> stored = render::readbackBuffer<glm::uvec4>(voxels_.ctx_, voxels_.fragments_.handle(), size_t(slots));
+  for (const glm::uvec4& f : stored) {
     if (f[0] == DYNGI_VOXEL_EMPTY) continue;
     VoxelFragment v;
     v.cell = glm::uvec3(f[0] & 1023u, (f[0] >> 10) & 1023u, (f[0] >> 20) & 1023u);
@@ -123,22 +105,11 @@ double VoxelProbe::dispatchMarch(const render::Pipeline& pipeline, const std::ve
 }
 
 std::vector<VplReadback> readbackVpls(ManyLights& ml) {
-  render::VulkanContext& ctx_ = ml.ctx_;
-  const Buffer& vpls_ = ml.vpls_;
-  const uint32_t perBounce_ = ml.perBounce_;
-  const ManyLightsOptions& settings_ = ml.settings_;
   std::vector<VplReadback> out;
-  if (!vpls_.valid()) return out;
-  uint32_t n = perBounce_ * settings_.vpl.bounces;
-  Buffer host(ctx_, VkDeviceSize(n) * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "vpl readback");
-  ctx_.immediate([&](VkCommandBuffer cmd) {
-    VkBufferCopy c{0, 0, VkDeviceSize(n) * sizeof(gpu::GpuVpl)};
-    vkCmdCopyBuffer(cmd, vpls_.handle(), host.handle(), 1, &c);
-  });
-  host.invalidateForRead();
-  const auto* v = static_cast<const gpu::GpuVpl*>(host.mapped());
-  for (uint32_t i = 0; i < n; ++i)
-    out.push_back({glm::vec3(v[i].position), v[i].position.w < 0 ? -1 : int(v[i].position.w + 0.5f), glm::vec3(v[i].normal), glm::vec3(v[i].flux)});
+  if (!ml.vpls_.valid()) return out;
+  const uint32_t n = ml.perBounce_ * ml.settings_.vpl.bounces;
+  for (const gpu::GpuVpl& v : render::readbackBuffer<gpu::GpuVpl>(ml.ctx_, ml.vpls_.handle(), n))
+    out.push_back({glm::vec3(v.position), v.position.w < 0 ? -1 : int(v.position.w + 0.5f), glm::vec3(v.normal), glm::vec3(v.flux)});
   return out;
 }
 

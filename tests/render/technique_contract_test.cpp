@@ -3,45 +3,13 @@
 // views switch, and it reads the renderer's snapshot with every change since it last ran.
 #include <gtest/gtest.h>
 
-#include <set>
-
-#include "dyngi/engine/scene/transform_system.h"
-#include "dyngi/gi/gi_system.h"
+#include "render/gi_run.h"
 #include "render/render_fixture.h"
-#include "scenes/builtin_scenes.h"
 
 using namespace dyngi;
 using namespace dyngi::test;
 
 namespace {
-constexpr uint32_t kSize = 64;
-
-struct GiFrames {
-  ecs::World world;
-  scene::AssetStore assets;
-  ecs::Scheduler scheduler;
-  gi::GiSystem* gi = nullptr;
-  std::unique_ptr<render::Renderer> renderer;
-  uint64_t frame = 0;
-  std::set<std::string> gpuSections;
-
-  GiFrames(render::VulkanContext& ctx, const gi::GiSettings& s) {
-    sample::buildBuiltinScene("cornell", world, assets);
-    renderer = std::make_unique<render::Renderer>(ctx);
-    renderer->resize(kSize, kSize);
-    scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
-    auto g = std::make_unique<gi::GiSystem>(ctx, assets, s);
-    gi = g.get();
-    gi->attach(*renderer);
-    scheduler.add(ecs::Phase::PostUpdate, std::move(g));
-  }
-  void update() { scheduler.runFrame(world, ecs::FrameTime{1.0 / 60, double(frame) / 60, frame}), ++frame; }
-  void render() {
-    const render::FrameStats& fs = renderer->render(render::extractSnapshot(world, assets, frame));
-    for (auto& [name, ms] : fs.gpuMs) gpuSections.insert(name);
-  }
-};
-
 gi::GiSettings settingsFor(const gi::TechniqueEntry& e) {
   gi::GiSettings s;
   s.technique = e.name;
@@ -57,8 +25,8 @@ gi::GiSettings settingsFor(const gi::TechniqueEntry& e) {
 TEST_F(RenderTest, EveryTechniqueTimesTheSectionsItDeclaresAndReportsTheOptionsItUses) {
   for (const gi::TechniqueEntry& e : gi::techniqueRegistry()) {
     SCOPED_TRACE(e.name);
-    GiFrames run(context(), settingsFor(e));
-    for (int i = 0; i < 3; ++i) run.update(), run.render();
+    GiRun run(context(), settingsFor(e), "cornell", 64, 64);
+    run.step(3);
     for (const char* section : run.gi->technique().timedSections())
       EXPECT_TRUE(run.gpuSections.count(section)) << "declared but never timed: " << section;
     for (const gi::OptionRef& r : run.gi->technique().options()) {
@@ -85,12 +53,9 @@ TEST_F(RenderTest, ChangesFromFramesThatWereNotRenderedReachTheTechnique) {
   s.temporal.vpl.vplCount = 256;
   s.temporal.reshootBudget = 256;
   s.temporal.temporalSets = 1;
-  GiFrames run(context(), s);
+  GiRun run(context(), s, "cornell", 64, 64);
   run.update(), run.render();
-  ecs::Entity box{};
-  run.world.each<scene::Name>([&](ecs::Entity e, const scene::Name& n) {
-    if (n.value == "tall_box") box = e;
-  });
+  const ecs::Entity box = run.named("tall_box");
   ASSERT_FALSE(box.isNull());
   uint32_t onBox = 0;
   for (const gi::PathVpl& v : run.gi->paths()->vpls()) onBox += v.valid && v.surface == box;

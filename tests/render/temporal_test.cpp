@@ -9,6 +9,7 @@
 #include "dyngi/gi/gi_system.h"
 #include "dyngi/gi/path_tracer.h"
 #include "render/cornell_regions.h"
+#include "render/gi_run.h"
 #include "render/render_fixture.h"
 #include "scenes/builtin_scenes.h"
 
@@ -17,62 +18,6 @@ using namespace dyngi::test;
 
 namespace {
 constexpr uint32_t kSize = 128;
-
-struct GiRun {
-  ecs::World world;
-  scene::AssetStore assets;
-  ecs::Scheduler scheduler;
-  gi::GiSystem* gi = nullptr;
-  std::unique_ptr<render::Renderer> renderer;
-  uint64_t frame = 0;
-
-  GiRun(render::VulkanContext& ctx, const gi::GiSettings& s, const std::string& sceneName = "cornell", uint32_t width = kSize,
-        uint32_t height = kSize) {
-    sample::buildBuiltinScene(sceneName, world, assets);
-    renderer = std::make_unique<render::Renderer>(ctx);
-    renderer->resize(width, height);
-    scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
-    auto g = std::make_unique<gi::GiSystem>(ctx, assets, s);
-    gi = g.get();
-    gi->attach(*renderer);
-    scheduler.add(ecs::Phase::PostUpdate, std::move(g));
-  }
-  void step(int n = 1) {
-    for (int i = 0; i < n; ++i) {
-      scheduler.runFrame(world, ecs::FrameTime{1.0 / 60, double(frame) / 60, frame});
-      renderer->render(render::extractSnapshot(world, assets, frame));
-      ++frame;
-    }
-  }
-  render::ImageRgba hdr() { return renderer->readback(render::TargetId::Hdr); }
-  // The last frame with its G-buffer and snapshot, for per-region comparisons (cornellRegions).
-  Frame readFrame() {
-    Frame f;
-    f.width = renderer->width();
-    f.height = renderer->height();
-    f.hdr = hdr();
-    f.position = renderer->readback(render::TargetId::Position);
-    f.normal = renderer->readback(render::TargetId::Normal);
-    f.snapshot = render::extractSnapshot(world, assets, frame);
-    return f;
-  }
-  // The reference path tracer on the world as it is now, at the G-buffer's sample positions.
-  render::ImageRgba pathTraced(uint32_t spp, uint32_t bounces) {
-    gi::EmbreeScene bvh;
-    bvh.sync(world, assets, 0);
-    gi::PathTracerSettings pts;
-    pts.spp = spp;
-    pts.bounces = bounces;
-    pts.pixelJitter = false;
-    return gi::pathTrace(render::extractSnapshot(world, assets, frame), bvh, assets, renderer->width(), renderer->height(), pts);
-  }
-  render::ImageRgba indirect() { return renderer->readback(render::TargetId::Indirect); }
-  ecs::Entity named(const std::string& n) {
-    ecs::Entity found{};
-    world.each<scene::Name>([&](ecs::Entity e, const scene::Name& nm) { if (nm.value == n) found = e; });
-    return found;
-  }
-};
 
 gi::GiSettings settings(uint32_t T, gi::VisibilityBackend vis = gi::VisibilityBackend::Svo) {
   gi::GiSettings s;

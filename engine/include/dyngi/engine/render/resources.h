@@ -115,5 +115,18 @@ size_t formatBytesPerPixel(VkFormat format);
 // Synchronous; leaves the image in TRANSFER_SRC layout (the next transition moves it on).
 std::vector<glm::vec4> readbackImage(VulkanContext& ctx, Image& image);
 std::vector<uint8_t> readbackImageBytes(VulkanContext& ctx, Image& image);
+// Copies the first `count` elements of a device buffer to the CPU (synchronous: tests and tools).
+template <class T>
+std::vector<T> readbackBuffer(VulkanContext& ctx, VkBuffer source, size_t count);
+
+std::vector<uint8_t> readbackBufferBytes(VulkanContext& ctx, VkBuffer source, VkDeviceSize bytes);
+template <class T>
+std::vector<T> readbackBuffer(VulkanContext& ctx, VkBuffer source, size_t count) {
+  std::vector<T> out(count);
+  if (count == 0) return out;
+  const std::vector<uint8_t> bytes = readbackBufferBytes(ctx, source, VkDeviceSize(count) * sizeof(T));
+  std::memcpy(out.data(), bytes.data(), bytes.size());
+  return out;
+}
 
 }  // namespace dyngi::render
