@@ -246,6 +246,7 @@ struct IndirectFilterPush { DYNGI_INDIRECT_FILTER_PUSH };
 static_assert(sizeof(VoxelizePush) == 112);
 static_assert(sizeof(GpuVpl) == 48);
 static_assert(sizeof(RsmPush) == 96);
+static_assert(sizeof(RsmLayer) == 96);
 static_assert(sizeof(GatherPush) == 64);
 static_assert(sizeof(TemporalSetCamera) == 128);
 static_assert(sizeof(AccumulatePush) == 48);

@@ -1,5 +1,5 @@
 // The many-lights technique in the GI system's contract: VPLs from RSMs every frame, SVO visibility.
-#include "dyngi/gi/gi_system.h"
+#include "dyngi/gi/gi_settings.h"
 #include "dyngi/gi/many_lights.h"
 #include "techniques/registry_entries.h"
 

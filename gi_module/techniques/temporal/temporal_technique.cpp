@@ -1,6 +1,6 @@
 // The temporal technique in the GI system's contract: incremental VPL paths on the CPU (VplPaths),
 // temporal sets gathered one a frame and reprojected (TemporalIndirect), SVO or Embree visibility.
-#include "dyngi/gi/gi_system.h"
+#include "dyngi/gi/gi_settings.h"
 #include "dyngi/gi/temporal_indirect.h"
 #include "dyngi/gi/vpl_paths.h"
 #include "shaders/shared/gi_gpu_types.h"

@@ -17,6 +17,7 @@
 #include "dyngi/engine/render/renderer.h"
 #include "dyngi/gi/bvh.h"
 #include "dyngi/gi/change_set.h"
+#include "dyngi/gi/gi_settings.h"
 #include "dyngi/gi/many_lights.h"
 #include "dyngi/gi/technique.h"
 #include "dyngi/gi/temporal_indirect.h"
@@ -24,14 +25,6 @@
 #include "dyngi/gi/vpl_paths.h"
 
 namespace dyngi::gi {
-
-// Every technique's options, each struct the one home of its defaults; `technique` picks which is used.
-struct GiSettings {
-  std::string technique = "temporal";  // a name from techniqueRegistry()
-  VoxelSettings voxels;                // the voxel scene, for techniques that use one (resolution)
-  ManyLightsOptions manyLights;
-  TemporalOptions temporal;
-};
 
 struct GiStats {
   BvhStats bvh;

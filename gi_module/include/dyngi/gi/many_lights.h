@@ -9,21 +9,10 @@
 
 #include "dyngi/engine/render/pipeline.h"
 #include "dyngi/engine/render/render_feature.h"
-#include "dyngi/gi/vpl_options.h"
+#include "dyngi/gi/many_lights_options.h"
 #include "dyngi/gi/voxel_scene.h"
 
 namespace dyngi::gi {
-
-enum class ManyLightsView { Final, Indirect, Vpls, SubImages };
-
-struct ManyLightsOptions {
-  VplOptions vpl;
-  uint32_t rsmResolution = 256;     // RSM texels per side, per light layer
-  bool visibility = true;           // false: V = 1 (no indirect shadows), for comparisons
-  ManyLightsView view = ManyLightsView::Final;  // a debug view (Technique::setDebugView), not a table row
-
-  static const OptionTable<ManyLightsOptions>& table();
-};
 
 struct VplReadback;  // gi_module/testing/gi_probes.h
 
