@@ -2,9 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 
-layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D baseColorTex;
-layout(set = 0, binding = 2) uniform sampler2D emissiveTex;
+layout(set = 0, binding = DYNGI_GBUFFER_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = DYNGI_GBUFFER_BINDING_BASE_COLOR_TEX) uniform sampler2D baseColorTex;
+layout(set = 0, binding = DYNGI_GBUFFER_BINDING_EMISSIVE_TEX) uniform sampler2D emissiveTex;
 layout(push_constant) uniform Push { GBufferPush pc; };
 // Material variants (GBufferPass::pipelineFor): the texture lookups are compiled in only when used.
 layout(constant_id = 0) const bool kBaseColorTexture = true;

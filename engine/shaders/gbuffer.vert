@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 
-layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = DYNGI_GBUFFER_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(push_constant) uniform Push { GBufferPush pc; };
 
 layout(location = 0) in vec3 inPosition;

@@ -9,17 +9,17 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = 1, rgba32f) uniform readonly image2D gPosition;
-layout(set = 0, binding = 2, rgba16f) uniform readonly image2D gNormal;
-layout(set = 0, binding = 3, rgba8) uniform readonly image2D gAlbedo;
-layout(set = 0, binding = 4, rgba16f) uniform readonly image2D gEmissive;
-layout(set = 0, binding = 5) readonly buffer Lights { GpuLight lights[]; };
-layout(set = 0, binding = 6) readonly buffer ShadowMatrices { mat4 shadowViewProj[]; };
+layout(set = 0, binding = DYNGI_LIGHTING_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = DYNGI_LIGHTING_BINDING_G_POSITION, rgba32f) uniform readonly image2D gPosition;
+layout(set = 0, binding = DYNGI_LIGHTING_BINDING_G_NORMAL, rgba16f) uniform readonly image2D gNormal;
+layout(set = 0, binding = DYNGI_LIGHTING_BINDING_G_ALBEDO, rgba8) uniform readonly image2D gAlbedo;
+layout(set = 0, binding = DYNGI_LIGHTING_BINDING_G_EMISSIVE, rgba16f) uniform readonly image2D gEmissive;
+layout(set = 0, binding = DYNGI_LIGHTING_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
+layout(set = 0, binding = DYNGI_LIGHTING_BINDING_SHADOW_MATRICES) readonly buffer ShadowMatrices { mat4 shadowViewProj[]; };
 // Per texel the nearest caster's biased depth (ShadowPass::shadowMap()).
-layout(set = 0, binding = 7, r32f) uniform readonly image2DArray shadowMaps;
-layout(set = 0, binding = 8, rgba32f) uniform readonly image2D indirect;
-layout(set = 0, binding = 9, rgba32f) uniform writeonly image2D outHdr;
+layout(set = 0, binding = DYNGI_LIGHTING_BINDING_SHADOW_MAPS, r32f) uniform readonly image2DArray shadowMaps;
+layout(set = 0, binding = DYNGI_LIGHTING_BINDING_INDIRECT, rgba32f) uniform readonly image2D indirect;
+layout(set = 0, binding = DYNGI_LIGHTING_BINDING_OUT_HDR, rgba32f) uniform writeonly image2D outHdr;
 layout(push_constant) uniform Push { DYNGI_LIGHTING_PUSH };
 
 const float PI = 3.14159265358979;

@@ -3,9 +3,9 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = 1, rgba32f) uniform readonly image2D hdr;
-layout(set = 0, binding = 2, rgba8) uniform writeonly image2D ldr;
+layout(set = 0, binding = DYNGI_TONEMAP_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = DYNGI_TONEMAP_BINDING_HDR, rgba32f) uniform readonly image2D hdr;
+layout(set = 0, binding = DYNGI_TONEMAP_BINDING_LDR, rgba8) uniform writeonly image2D ldr;
 
 // Narkowicz's fit of the ACES filmic curve.
 vec3 acesFit(vec3 x) {

@@ -66,9 +66,9 @@ void IndirectFilterPass::record(render::FrameContext& frame, render::Image& inpu
   K = std::clamp(K, 1u, 8u);
   render::Pipeline& pipeline = pipelines_[K - 1];
   if (!pipeline.handle()) {
-    const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
-                         {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
-                         {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
+    const Binding b[] = {{DYNGI_FILTER_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
+                         {DYNGI_FILTER_BINDING_FILTER_INPUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
+                         {DYNGI_FILTER_BINDING_OUT_INDIRECT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
     const uint32_t spec[] = {K};
     pipeline = render::Pipeline::compute(ctx_, DYNGI_SHADER(spv_filter_comp), b, sizeof(gpu::IndirectFilterPush), "indirect_filter", spec);
   }
@@ -79,9 +79,9 @@ void IndirectFilterPass::record(render::FrameContext& frame, render::Image& inpu
   t.indirect.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
   DescriptorWrites()
-      .uniformBuffer(0, frame.frameUniforms.handle())
-      .storageImage(1, input.view())
-      .storageImage(2, t.indirect.view())
+      .uniformBuffer(DYNGI_FILTER_BINDING_FRAME, frame.frameUniforms.handle())
+      .storageImage(DYNGI_FILTER_BINDING_FILTER_INPUT, input.view())
+      .storageImage(DYNGI_FILTER_BINDING_OUT_INDIRECT, t.indirect.view())
       .push(ctx_, cmd, pipeline);
   const gpu::IndirectFilterPush pc{planeTolerance};
   vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(pc), &pc);

@@ -19,7 +19,9 @@ VoxelProbe::VoxelProbe(VoxelScene& voxels) : voxels_(voxels) {}
 const render::Pipeline& VoxelProbe::marchPipeline(bool march) {
   render::Pipeline& p = march ? march_ : marchOff_;
   if (!p.handle()) {
-    const Binding marchB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
+    const Binding marchB[] = {{DYNGI_SVO_MARCH_BINDING_NODES, kSSBO, kCS},
+                              {DYNGI_SVO_MARCH_BINDING_SEGMENTS, kSSBO, kCS},
+                              {DYNGI_SVO_MARCH_BINDING_RESULTS, kSSBO, kCS}};
     const uint32_t spec[] = {march ? 1u : 0u};
     p = Pipeline::compute(voxels_.ctx_, DYNGI_SHADER(spv_svo_march_comp), marchB, sizeof(gpu::SvoMarchPush),
                           march ? "svo_march" : "svo_march_off", spec);
@@ -86,7 +88,11 @@ double VoxelProbe::dispatchMarch(const render::Pipeline& pipeline, const std::ve
     timer.beginFrame(cmd);
     uint32_t s = timer.begin(cmd, "svo_march");
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
-    DescriptorWrites().storageBuffer(0, voxels_.nodes_.handle()).storageBuffer(1, segBuf.handle()).storageBuffer(2, results.handle()).push(ctx_, cmd, pipeline);
+    DescriptorWrites()
+        .storageBuffer(DYNGI_SVO_MARCH_BINDING_NODES, voxels_.nodes_.handle())
+        .storageBuffer(DYNGI_SVO_MARCH_BINDING_SEGMENTS, segBuf.handle())
+        .storageBuffer(DYNGI_SVO_MARCH_BINDING_RESULTS, results.handle())
+        .push(ctx_, cmd, pipeline);
     const gpu::SvoMarchPush pc{glm::vec4(volume_.origin, 1.0f / volume_.voxelSize), uint32_t(segments.size()), volume_.depth(),
                                float(volume_.resolution), epsVoxels};
     vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(pc), &pc);

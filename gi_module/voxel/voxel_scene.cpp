@@ -40,13 +40,26 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
   if (r < 8 || r > 1024 || (r & (r - 1)) != 0)
     throw std::invalid_argument("voxel resolution must be a power of two in 8..1024, got " + std::to_string(r));
 
-  const Binding markB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
+  const Binding markB[] = {{DYNGI_SVO_MARK_BINDING_FRAGMENTS, kSSBO, kCS},
+                           {DYNGI_SVO_MARK_BINDING_OCCUPANCY, kSSBO, kCS},
+                           {DYNGI_SVO_MARK_BINDING_CHUNKS, kSSBO, kCS}};
   mark_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_mark_comp), markB, sizeof(gpu::SvoMarkPush), "svo_mark");
-  const Binding levelB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS}};
+  const Binding levelB[] = {{DYNGI_SVO_LEVEL_BINDING_LEVELS, kSSBO, kCS},
+                            {DYNGI_SVO_LEVEL_BINDING_COUNTERS, kSSBO, kCS},
+                            {DYNGI_SVO_LEVEL_BINDING_NODES, kSSBO, kCS},
+                            {DYNGI_SVO_LEVEL_BINDING_NODE_CELLS, kSSBO, kCS},
+                            {DYNGI_SVO_LEVEL_BINDING_OCCUPANCY, kSSBO, kCS}};
   level_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_level_comp), levelB, sizeof(gpu::SvoLevelPush), "svo_level");
-  const Binding expandB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS}};
+  const Binding expandB[] = {{DYNGI_SVO_EXPAND_BINDING_NODES, kSSBO, kCS},
+                             {DYNGI_SVO_EXPAND_BINDING_NODE_CELLS, kSSBO, kCS},
+                             {DYNGI_SVO_EXPAND_BINDING_OCCUPANCY, kSSBO, kCS},
+                             {DYNGI_SVO_EXPAND_BINDING_LEVELS, kSSBO, kCS},
+                             {DYNGI_SVO_EXPAND_BINDING_COUNTERS, kSSBO, kCS}};
   expand_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_expand_comp), expandB, sizeof(gpu::SvoExpandPush), "svo_expand");
-  const Binding attrB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}};
+  const Binding attrB[] = {{DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS, kSSBO, kCS},
+                           {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES, kSSBO, kCS},
+                           {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS, kSSBO, kCS},
+                           {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES, kSSBO, kCS}};
   leafAttributes_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, sizeof(gpu::SvoLeafAttributesPush),
                                      "svo_leaf_attributes");
   // One bit per cell of every level 0..depth (DYNGI_SVO_LEVEL_BASE): level depth + 1 would start here.
@@ -57,8 +70,11 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
                       MemoryUsage::GpuOnly, "svo occupancy pyramid");
   staticOccupancy_ = Buffer(ctx, occupancy_.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                             MemoryUsage::GpuOnly, "svo static occupancy pyramid");
-  const Binding debugB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS},
-                            {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
+  const Binding debugB[] = {{DYNGI_VOXEL_DEBUG_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
+                            {DYNGI_VOXEL_DEBUG_BINDING_NODES, kSSBO, kCS},
+                            {DYNGI_VOXEL_DEBUG_BINDING_LEVELS, kSSBO, kCS},
+                            {DYNGI_VOXEL_DEBUG_BINDING_ATTRIBUTES, kSSBO, kCS},
+                            {DYNGI_VOXEL_DEBUG_BINDING_OUT_HDR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
   debug_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_voxel_debug_comp), debugB, sizeof(gpu::VoxelDebugPush), "voxel_debug");
 
   // The first build gets the whole pool; afterwards it follows what the SVO uses (resizeNodePool).
@@ -235,7 +251,11 @@ void VoxelScene::planOccupancy(const std::vector<ecs::Entity>& removed) {
 void VoxelScene::recordMark(VkCommandBuffer cmd, const render::Buffer& target, uint32_t firstChunk, uint32_t chunkCount) {
   if (chunkCount == 0) return;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mark_.handle());
-  DescriptorWrites().storageBuffer(0, fragments_.handle()).storageBuffer(1, target.handle()).storageBuffer(2, markChunks_.handle()).push(ctx_, cmd, mark_);
+  DescriptorWrites()
+      .storageBuffer(DYNGI_SVO_MARK_BINDING_FRAGMENTS, fragments_.handle())
+      .storageBuffer(DYNGI_SVO_MARK_BINDING_OCCUPANCY, target.handle())
+      .storageBuffer(DYNGI_SVO_MARK_BINDING_CHUNKS, markChunks_.handle())
+      .push(ctx_, cmd, mark_);
   const gpu::SvoMarkPush mp{firstChunk, volume_.depth()};
   vkCmdPushConstants(cmd, mark_.layout(), kCS, 0, sizeof(mp), &mp);
   vkCmdDispatch(cmd, chunkCount, 1, 1);
@@ -251,10 +271,10 @@ render::Pipeline& VoxelScene::voxelizePipelineFor(bool baseColorTexture, bool em
   render::setMeshVertexInput(d, /*normal=*/false, /*uv=*/true);
   d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   d.pushConstantBytes = sizeof(gpu::VoxelizePush);
-  d.bindings = {{0, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {1, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  d.bindings = {{DYNGI_VOXELIZE_BINDING_FRAGMENTS, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_VOXELIZE_BINDING_COUNTERS, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
   d.fragmentSpecialization = {baseColorTexture ? 1u : 0u, emissiveTexture ? 1u : 0u};
   d.name = "voxelize";
   pipeline = Pipeline::graphics(ctx_, d);
@@ -294,10 +314,10 @@ bool VoxelScene::record(render::FrameContext& frame) {
         pc.albedo = glm::vec4(glm::vec3(d.material.baseColor) * (1.0f - d.material.metallic), 0.0f);
         pc.emission = glm::vec4(d.material.emissive, 0.0f);
         DescriptorWrites()
-            .storageBuffer(0, fragments_.handle())
-            .storageBuffer(1, counters_.handle())
-            .sampledImage(2, frame.textureView(d.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-            .sampledImage(3, frame.textureView(d.material.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+            .storageBuffer(DYNGI_VOXELIZE_BINDING_FRAGMENTS, fragments_.handle())
+            .storageBuffer(DYNGI_VOXELIZE_BINDING_COUNTERS, counters_.handle())
+            .sampledImage(DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX, frame.textureView(d.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+            .sampledImage(DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, frame.textureView(d.material.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
             .push(ctx_, c, pipeline);
         vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(pc), &pc);
@@ -331,11 +351,11 @@ bool VoxelScene::record(render::FrameContext& frame) {
     for (uint32_t l = 0; l <= depth; ++l) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, level_.handle());
       DescriptorWrites()
-          .storageBuffer(0, levels_.handle())
-          .storageBuffer(1, svoCounters_.handle())
-          .storageBuffer(2, nodes_.handle())
-          .storageBuffer(3, nodeCells_.handle())
-          .storageBuffer(4, occupancy_.handle())
+          .storageBuffer(DYNGI_SVO_LEVEL_BINDING_LEVELS, levels_.handle())
+          .storageBuffer(DYNGI_SVO_LEVEL_BINDING_COUNTERS, svoCounters_.handle())
+          .storageBuffer(DYNGI_SVO_LEVEL_BINDING_NODES, nodes_.handle())
+          .storageBuffer(DYNGI_SVO_LEVEL_BINDING_NODE_CELLS, nodeCells_.handle())
+          .storageBuffer(DYNGI_SVO_LEVEL_BINDING_OCCUPANCY, occupancy_.handle())
           .push(ctx_, cmd, level_);
       const gpu::SvoLevelPush lp{l};
       vkCmdPushConstants(cmd, level_.layout(), kCS, 0, sizeof(lp), &lp);
@@ -344,11 +364,11 @@ bool VoxelScene::record(render::FrameContext& frame) {
       if (l == depth) break;  // leaves: their range is known, they are never subdivided
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, expand_.handle());
       DescriptorWrites()
-          .storageBuffer(0, nodes_.handle())
-          .storageBuffer(1, nodeCells_.handle())
-          .storageBuffer(2, occupancy_.handle())
-          .storageBuffer(3, levels_.handle())
-          .storageBuffer(4, svoCounters_.handle())
+          .storageBuffer(DYNGI_SVO_EXPAND_BINDING_NODES, nodes_.handle())
+          .storageBuffer(DYNGI_SVO_EXPAND_BINDING_NODE_CELLS, nodeCells_.handle())
+          .storageBuffer(DYNGI_SVO_EXPAND_BINDING_OCCUPANCY, occupancy_.handle())
+          .storageBuffer(DYNGI_SVO_EXPAND_BINDING_LEVELS, levels_.handle())
+          .storageBuffer(DYNGI_SVO_EXPAND_BINDING_COUNTERS, svoCounters_.handle())
           .push(ctx_, cmd, expand_);
       const gpu::SvoExpandPush ep{l, depth};
       vkCmdPushConstants(cmd, expand_.layout(), kCS, 0, sizeof(ep), &ep);
@@ -361,10 +381,10 @@ bool VoxelScene::record(render::FrameContext& frame) {
       render::computeWriteBarrier(cmd);
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, leafAttributes_.handle());
       DescriptorWrites()
-          .storageBuffer(0, fragments_.handle())
-          .storageBuffer(1, nodes_.handle())
-          .storageBuffer(2, levels_.handle())
-          .storageBuffer(3, attributes_.handle())
+          .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS, fragments_.handle())
+          .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES, nodes_.handle())
+          .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS, levels_.handle())
+          .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES, attributes_.handle())
           .push(ctx_, cmd, leafAttributes_);
       const gpu::SvoLeafAttributesPush ap{depth, uint32_t(stats_.fragmentCapacity), slots};
       vkCmdPushConstants(cmd, leafAttributes_.layout(), kCS, 0, sizeof(ap), &ap);
@@ -383,11 +403,11 @@ void VoxelScene::recordAfterLighting(render::FrameContext& frame) {
   t.hdr.transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, debug_.handle());
   DescriptorWrites()
-      .uniformBuffer(0, frame.frameUniforms.handle())
-      .storageBuffer(1, nodes_.handle())
-      .storageBuffer(2, levels_.handle())
-      .storageBuffer(3, attributes_.handle())
-      .storageImage(4, t.hdr.view())
+      .uniformBuffer(DYNGI_VOXEL_DEBUG_BINDING_FRAME, frame.frameUniforms.handle())
+      .storageBuffer(DYNGI_VOXEL_DEBUG_BINDING_NODES, nodes_.handle())
+      .storageBuffer(DYNGI_VOXEL_DEBUG_BINDING_LEVELS, levels_.handle())
+      .storageBuffer(DYNGI_VOXEL_DEBUG_BINDING_ATTRIBUTES, attributes_.handle())
+      .storageImage(DYNGI_VOXEL_DEBUG_BINDING_OUT_HDR, t.hdr.view())
       .push(ctx_, frame.cmd, debug_);
   const gpu::VoxelDebugPush pc{glm::vec4(volume_.origin, 1.0f / volume_.voxelSize), volume_.depth(), float(volume_.resolution),
                                settings_.debugView == VoxelDebugView::SvoSteps ? 1u : 0u};

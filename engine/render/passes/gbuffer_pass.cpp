@@ -20,9 +20,9 @@ Pipeline& GBufferPass::pipelineFor(bool baseColorTexture, bool emissiveTexture) 
   d.depthFormat = VK_FORMAT_D32_SFLOAT;
   d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   d.pushConstantBytes = sizeof(gpu::GBufferPush);
-  d.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
-                {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  d.bindings = {{DYNGI_GBUFFER_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_GBUFFER_BINDING_BASE_COLOR_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_GBUFFER_BINDING_EMISSIVE_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
   d.fragmentSpecialization = {baseColorTexture ? 1u : 0u, emissiveTexture ? 1u : 0u};
   d.name = "gbuffer";
   pipeline = Pipeline::graphics(ctx_, d);
@@ -58,9 +58,9 @@ void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
           pc.emissive = glm::vec4(m.emissive, 0.0f);
           pc.params = glm::vec4(m.metallic, m.roughness, 0.0f, 0.0f);
           DescriptorWrites()
-              .uniformBuffer(0, frame.frameUniforms.handle())
-              .sampledImage(1, textures(m.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-              .sampledImage(2, textures(m.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+              .uniformBuffer(DYNGI_GBUFFER_BINDING_FRAME, frame.frameUniforms.handle())
+              .sampledImage(DYNGI_GBUFFER_BINDING_BASE_COLOR_TEX, textures(m.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+              .sampledImage(DYNGI_GBUFFER_BINDING_EMISSIVE_TEX, textures(m.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
               .push(ctx_, c, pipeline);
           vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
         });

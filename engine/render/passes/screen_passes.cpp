@@ -15,16 +15,16 @@ void prepareInput(VkCommandBuffer cmd, Image& img) { img.transition(cmd, VK_IMAG
 }  // namespace
 
 LightingPass::LightingPass(VulkanContext& ctx) : ctx_(ctx) {
-  const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {9, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
+  const Binding b[] = {{DYNGI_LIGHTING_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {DYNGI_LIGHTING_BINDING_G_POSITION, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {DYNGI_LIGHTING_BINDING_G_NORMAL, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {DYNGI_LIGHTING_BINDING_G_ALBEDO, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {DYNGI_LIGHTING_BINDING_G_EMISSIVE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {DYNGI_LIGHTING_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {DYNGI_LIGHTING_BINDING_SHADOW_MATRICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {DYNGI_LIGHTING_BINDING_SHADOW_MAPS, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {DYNGI_LIGHTING_BINDING_INDIRECT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {DYNGI_LIGHTING_BINDING_OUT_HDR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
   pipeline_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_lighting_comp), b, sizeof(gpu::LightingPush), "lighting");
 }
 
@@ -36,16 +36,16 @@ void LightingPass::execute(FrameContext& frame, ShadowPass& shadows, bool hasInd
   prepareOutput(cmd, t.hdr);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
   DescriptorWrites()
-      .uniformBuffer(0, frame.frameUniforms.handle())
-      .storageImage(1, t.position.view())
-      .storageImage(2, t.normal.view())
-      .storageImage(3, t.albedo.view())
-      .storageImage(4, t.emissive.view())
-      .storageBuffer(5, shadows.lights().handle())
-      .storageBuffer(6, shadows.matrices().handle())
-      .storageImage(7, shadows.shadowMap().view())
-      .storageImage(8, t.indirect.view())
-      .storageImage(9, t.hdr.view())
+      .uniformBuffer(DYNGI_LIGHTING_BINDING_FRAME, frame.frameUniforms.handle())
+      .storageImage(DYNGI_LIGHTING_BINDING_G_POSITION, t.position.view())
+      .storageImage(DYNGI_LIGHTING_BINDING_G_NORMAL, t.normal.view())
+      .storageImage(DYNGI_LIGHTING_BINDING_G_ALBEDO, t.albedo.view())
+      .storageImage(DYNGI_LIGHTING_BINDING_G_EMISSIVE, t.emissive.view())
+      .storageBuffer(DYNGI_LIGHTING_BINDING_LIGHTS, shadows.lights().handle())
+      .storageBuffer(DYNGI_LIGHTING_BINDING_SHADOW_MATRICES, shadows.matrices().handle())
+      .storageImage(DYNGI_LIGHTING_BINDING_SHADOW_MAPS, shadows.shadowMap().view())
+      .storageImage(DYNGI_LIGHTING_BINDING_INDIRECT, t.indirect.view())
+      .storageImage(DYNGI_LIGHTING_BINDING_OUT_HDR, t.hdr.view())
       .push(ctx_, cmd, pipeline_);
   const gpu::LightingPush pc{hasIndirect ? 1u : 0u};
   vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
@@ -53,9 +53,9 @@ void LightingPass::execute(FrameContext& frame, ShadowPass& shadows, bool hasInd
 }
 
 TonemapPass::TonemapPass(VulkanContext& ctx) : ctx_(ctx) {
-  const Binding b[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
+  const Binding b[] = {{DYNGI_TONEMAP_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {DYNGI_TONEMAP_BINDING_HDR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {DYNGI_TONEMAP_BINDING_LDR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
   pipeline_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_tonemap_comp), b, 0, "tonemap");
 }
 
@@ -67,9 +67,9 @@ void TonemapPass::execute(FrameContext& frame) {
   prepareOutput(cmd, t.ldr);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
   DescriptorWrites()
-      .uniformBuffer(0, frame.frameUniforms.handle())
-      .storageImage(1, t.hdr.view())
-      .storageImage(2, t.ldr.view())
+      .uniformBuffer(DYNGI_TONEMAP_BINDING_FRAME, frame.frameUniforms.handle())
+      .storageImage(DYNGI_TONEMAP_BINDING_HDR, t.hdr.view())
+      .storageImage(DYNGI_TONEMAP_BINDING_LDR, t.ldr.view())
       .push(ctx_, cmd, pipeline_);
   vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
 }

@@ -58,6 +58,28 @@ DYNGI_GPU_STRUCT(GBufferPush) {
   vec4 params;          // x metallic, y roughness (zw unused: textures are pipeline variants)
 };
 
+// Descriptor bindings of the engine's passes (set 0, push descriptors): the shaders declare them and the
+// C++ binds them by these names.
+// gbuffer
+#define DYNGI_GBUFFER_BINDING_FRAME 0
+#define DYNGI_GBUFFER_BINDING_BASE_COLOR_TEX 1
+#define DYNGI_GBUFFER_BINDING_EMISSIVE_TEX 2
+// lighting
+#define DYNGI_LIGHTING_BINDING_FRAME 0
+#define DYNGI_LIGHTING_BINDING_G_POSITION 1
+#define DYNGI_LIGHTING_BINDING_G_NORMAL 2
+#define DYNGI_LIGHTING_BINDING_G_ALBEDO 3
+#define DYNGI_LIGHTING_BINDING_G_EMISSIVE 4
+#define DYNGI_LIGHTING_BINDING_LIGHTS 5
+#define DYNGI_LIGHTING_BINDING_SHADOW_MATRICES 6
+#define DYNGI_LIGHTING_BINDING_SHADOW_MAPS 7
+#define DYNGI_LIGHTING_BINDING_INDIRECT 8
+#define DYNGI_LIGHTING_BINDING_OUT_HDR 9
+// tonemap
+#define DYNGI_TONEMAP_BINDING_FRAME 0
+#define DYNGI_TONEMAP_BINDING_HDR 1
+#define DYNGI_TONEMAP_BINDING_LDR 2
+
 // Push constants of the shadow pass (one caster into one layer) and of the lighting pass, as member
 // lists: C++ gets a struct, the shader `layout(push_constant) uniform Push { DYNGI_SHADOW_PUSH };`.
 #define DYNGI_SHADOW_PUSH mat4 lightViewProjModel;

@@ -10,9 +10,9 @@
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const uint K = 4u;
-layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = 1, rgba32ui) uniform readonly uimage2D filterInput;
-layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D outIndirect;
+layout(set = 0, binding = DYNGI_FILTER_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = DYNGI_FILTER_BINDING_FILTER_INPUT, rgba32ui) uniform readonly uimage2D filterInput;
+layout(set = 0, binding = DYNGI_FILTER_BINDING_OUT_INDIRECT, rgba32f) uniform writeonly image2D outIndirect;
 layout(push_constant) uniform Push { DYNGI_INDIRECT_FILTER_PUSH };
 #include "filter_input.glsl"
 void main() {

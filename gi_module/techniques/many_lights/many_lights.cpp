@@ -26,18 +26,32 @@ ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const Man
   settings_.vpl.bounces = std::clamp(settings_.vpl.bounces, 1u, 3u);
   settings_.vpl.interleave = std::clamp(settings_.vpl.interleave, 1u, 8u);
   settings_.vpl.vplCount = settings_.vpl.effectiveVplCount();
-  const Binding rowsB[] = {{0, kSampled, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}};
+  const Binding rowsB[] = {{DYNGI_VPL_CDF_ROWS_BINDING_RSM_FLUX, kSampled, kCS},
+                           {DYNGI_VPL_CDF_ROWS_BINDING_ROW_PREFIX, kSSBO, kCS},
+                           {DYNGI_VPL_CDF_ROWS_BINDING_ROW_SUMS, kSSBO, kCS}};
   cdfRows_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_cdf_rows_comp), rowsB, sizeof(gpu::VplCdfRowsPush), "vpl_cdf_rows");
-  const Binding totalB[] = {{0, kSSBO, kCS}};
+  const Binding totalB[] = {{DYNGI_VPL_CDF_TOTAL_BINDING_ROW_SUMS, kSSBO, kCS}};
   cdfTotal_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_cdf_total_comp), totalB, sizeof(gpu::VplCdfTotalPush), "vpl_cdf_total");
-  const Binding sampleB[] = {{0, kSampled, kCS}, {1, kSampled, kCS}, {2, kSampled, kCS}, {3, kSSBO, kCS}, {4, kSSBO, kCS}, {5, kSSBO, kCS}};
+  const Binding sampleB[] = {{DYNGI_VPL_SAMPLE_BINDING_RSM_POSITION, kSampled, kCS},
+                             {DYNGI_VPL_SAMPLE_BINDING_RSM_NORMAL, kSampled, kCS},
+                             {DYNGI_VPL_SAMPLE_BINDING_RSM_FLUX, kSampled, kCS},
+                             {DYNGI_VPL_SAMPLE_BINDING_ROW_PREFIX, kSSBO, kCS},
+                             {DYNGI_VPL_SAMPLE_BINDING_ROW_CDF, kSSBO, kCS},
+                             {DYNGI_VPL_SAMPLE_BINDING_VPLS, kSSBO, kCS}};
   sample_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_sample_comp), sampleB, sizeof(gpu::VplSamplePush), "vpl_sample");
-  const Binding bounceB[] = {{0, kSSBO, kCS}, {1, kSSBO, kCS}, {2, kSSBO, kCS}, {3, kSSBO, kCS}};
+  const Binding bounceB[] = {{DYNGI_VPL_BOUNCE_BINDING_VPLS, kSSBO, kCS},
+                             {DYNGI_VPL_BOUNCE_BINDING_NODES, kSSBO, kCS},
+                             {DYNGI_VPL_BOUNCE_BINDING_LEVELS, kSSBO, kCS},
+                             {DYNGI_VPL_BOUNCE_BINDING_ATTRIBUTES, kSSBO, kCS}};
   bounce_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_bounce_comp), bounceB, sizeof(gpu::VplBouncePush), "vpl_bounce");
   gatherPass_ = std::make_unique<IndirectGatherPass>(ctx);
   filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
-  const Binding debugB[] = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS}, {1, kSampled, kCS}, {2, kStorageImage, kCS},
-                            {3, kStorageImage, kCS}, {4, kSSBO, kCS}, {5, kStorageImage, kCS}};
+  const Binding debugB[] = {{DYNGI_MANY_LIGHTS_DEBUG_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
+                            {DYNGI_MANY_LIGHTS_DEBUG_BINDING_G_ALBEDO, kSampled, kCS},
+                            {DYNGI_MANY_LIGHTS_DEBUG_BINDING_INDIRECT, kStorageImage, kCS},
+                            {DYNGI_MANY_LIGHTS_DEBUG_BINDING_RAW, kStorageImage, kCS},
+                            {DYNGI_MANY_LIGHTS_DEBUG_BINDING_VPLS, kSSBO, kCS},
+                            {DYNGI_MANY_LIGHTS_DEBUG_BINDING_HDR, kStorageImage, kCS}};
   debug_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_many_lights_debug_comp), debugB, sizeof(gpu::ManyLightsDebugPush), "many_lights_debug");
 
   lights_ = Buffer(ctx, sizeof(::dyngi::gpu::GpuLight) * DYNGI_MAX_LIGHTS, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "rsm lights");
@@ -123,9 +137,9 @@ render::Pipeline& ManyLights::rsmPipelineFor(bool baseColorTexture) {
   d.depthFormat = VK_FORMAT_D32_SFLOAT;
   d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   d.pushConstantBytes = sizeof(gpu::RsmPush);
-  d.bindings = {{0, kSSBO, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
-                {1, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {2, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  d.bindings = {{DYNGI_RSM_BINDING_LAYERS, kSSBO, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_RSM_BINDING_LIGHTS, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_RSM_BINDING_BASE_COLOR_TEX, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT}};
   d.fragmentSpecialization = {baseColorTexture ? 1u : 0u};
   d.name = "rsm";
   pipeline = Pipeline::graphics(ctx_, d);
@@ -163,9 +177,9 @@ bool ManyLights::record(render::FrameContext& frame) {
           pc.baseColor = glm::vec4(glm::vec3(dr.material.baseColor) * (1.0f - dr.material.metallic), 0.0f);
           pc.layer = layer;
           DescriptorWrites()
-              .storageBuffer(0, layers_.handle())
-              .storageBuffer(1, lights_.handle())
-              .sampledImage(2, frame.textureView(dr.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+              .storageBuffer(DYNGI_RSM_BINDING_LAYERS, layers_.handle())
+              .storageBuffer(DYNGI_RSM_BINDING_LIGHTS, lights_.handle())
+              .sampledImage(DYNGI_RSM_BINDING_BASE_COLOR_TEX, frame.textureView(dr.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
               .push(ctx_, c, pipeline);
           vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
         });
@@ -180,25 +194,29 @@ bool ManyLights::record(render::FrameContext& frame) {
     constexpr VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     uint32_t rows = res * rsmLayers_;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cdfRows_.handle());
-    DescriptorWrites().sampledImage(0, rsmFlux_.view(), frame.nearestSampler, ro).storageBuffer(1, rowPrefix_.handle()).storageBuffer(2, rowCdf_.handle()).push(ctx_, cmd, cdfRows_);
+    DescriptorWrites()
+        .sampledImage(DYNGI_VPL_CDF_ROWS_BINDING_RSM_FLUX, rsmFlux_.view(), frame.nearestSampler, ro)
+        .storageBuffer(DYNGI_VPL_CDF_ROWS_BINDING_ROW_PREFIX, rowPrefix_.handle())
+        .storageBuffer(DYNGI_VPL_CDF_ROWS_BINDING_ROW_SUMS, rowCdf_.handle())
+        .push(ctx_, cmd, cdfRows_);
     const gpu::VplCdfRowsPush rp{res, rsmLayers_};
     vkCmdPushConstants(cmd, cdfRows_.layout(), kCS, 0, sizeof(rp), &rp);
     vkCmdDispatch(cmd, dispatchGroups(rows, 64), 1, 1);
     render::computeWriteBarrier(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cdfTotal_.handle());
-    DescriptorWrites().storageBuffer(0, rowCdf_.handle()).push(ctx_, cmd, cdfTotal_);
+    DescriptorWrites().storageBuffer(DYNGI_VPL_CDF_TOTAL_BINDING_ROW_SUMS, rowCdf_.handle()).push(ctx_, cmd, cdfTotal_);
     const gpu::VplCdfTotalPush tp{rows};
     vkCmdPushConstants(cmd, cdfTotal_.layout(), kCS, 0, sizeof(tp), &tp);
     vkCmdDispatch(cmd, 1, 1, 1);
     render::computeWriteBarrier(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, sample_.handle());
     DescriptorWrites()
-        .sampledImage(0, rsmPosition_.view(), frame.nearestSampler, ro)
-        .sampledImage(1, rsmNormal_.view(), frame.nearestSampler, ro)
-        .sampledImage(2, rsmFlux_.view(), frame.nearestSampler, ro)
-        .storageBuffer(3, rowPrefix_.handle())
-        .storageBuffer(4, rowCdf_.handle())
-        .storageBuffer(5, vpls_.handle())
+        .sampledImage(DYNGI_VPL_SAMPLE_BINDING_RSM_POSITION, rsmPosition_.view(), frame.nearestSampler, ro)
+        .sampledImage(DYNGI_VPL_SAMPLE_BINDING_RSM_NORMAL, rsmNormal_.view(), frame.nearestSampler, ro)
+        .sampledImage(DYNGI_VPL_SAMPLE_BINDING_RSM_FLUX, rsmFlux_.view(), frame.nearestSampler, ro)
+        .storageBuffer(DYNGI_VPL_SAMPLE_BINDING_ROW_PREFIX, rowPrefix_.handle())
+        .storageBuffer(DYNGI_VPL_SAMPLE_BINDING_ROW_CDF, rowCdf_.handle())
+        .storageBuffer(DYNGI_VPL_SAMPLE_BINDING_VPLS, vpls_.handle())
         .push(ctx_, cmd, sample_);
     const gpu::VplSamplePush sp{res, rsmLayers_, perBounce_, settings_.vpl.seed * 7919u};
     vkCmdPushConstants(cmd, sample_.layout(), kCS, 0, sizeof(sp), &sp);
@@ -211,10 +229,10 @@ bool ManyLights::record(render::FrameContext& frame) {
     for (uint32_t b = 1; b < settings_.vpl.bounces; ++b) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bounce_.handle());
       DescriptorWrites()
-          .storageBuffer(0, vpls_.handle())
-          .storageBuffer(1, voxels_.nodes().handle())
-          .storageBuffer(2, voxels_.levels().handle())
-          .storageBuffer(3, voxels_.leafAttributes().handle())
+          .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_VPLS, vpls_.handle())
+          .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_NODES, voxels_.nodes().handle())
+          .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_LEVELS, voxels_.levels().handle())
+          .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_ATTRIBUTES, voxels_.leafAttributes().handle())
           .push(ctx_, cmd, bounce_);
       const gpu::VplBouncePush pc{glm::vec4(vol.origin, 1.0f / vol.voxelSize), (b - 1) * perBounce_, perBounce_, b, vol.depth(),
                                   float(vol.resolution), settings_.vpl.liftVoxels};
@@ -256,12 +274,12 @@ void ManyLights::recordAfterLighting(render::FrameContext& frame) {
   raw_.transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, debug_.handle());
   DescriptorWrites()
-      .uniformBuffer(0, frame.frameUniforms.handle())
-      .sampledImage(1, t.albedo.view(), frame.nearestSampler)
-      .storageImage(2, t.indirect.view())
-      .storageImage(3, raw_.view())
-      .storageBuffer(4, vpls_.handle())
-      .storageImage(5, t.hdr.view())
+      .uniformBuffer(DYNGI_MANY_LIGHTS_DEBUG_BINDING_FRAME, frame.frameUniforms.handle())
+      .sampledImage(DYNGI_MANY_LIGHTS_DEBUG_BINDING_G_ALBEDO, t.albedo.view(), frame.nearestSampler)
+      .storageImage(DYNGI_MANY_LIGHTS_DEBUG_BINDING_INDIRECT, t.indirect.view())
+      .storageImage(DYNGI_MANY_LIGHTS_DEBUG_BINDING_RAW, raw_.view())
+      .storageBuffer(DYNGI_MANY_LIGHTS_DEBUG_BINDING_VPLS, vpls_.handle())
+      .storageImage(DYNGI_MANY_LIGHTS_DEBUG_BINDING_HDR, t.hdr.view())
       .push(ctx_, frame.cmd, debug_);
   uint32_t mode = settings_.view == ManyLightsView::Indirect ? 0u : settings_.view == ManyLightsView::Vpls ? 1u : 2u;
   uint32_t vplTotal = perBounce_ * settings_.vpl.bounces;

@@ -37,8 +37,13 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
   queueArgs_ = Buffer(ctx, sizeof(gpu::TemporalQueue),
                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                       MemoryUsage::GpuOnly, "temporal reprojection queue args");
-  const Binding b[] = {{0, kUBO, kCS},          {1, kStorageImage, kCS}, {2, kUBO, kCS}, {3, kStorageImage, kCS},
-                       {4, kStorageImage, kCS}, {5, kSSBO, kCS}, {6, kSSBO, kCS}};
+  const Binding b[] = {{DYNGI_TEMPORAL_REPROJECT_BINDING_FRAME, kUBO, kCS},
+                       {DYNGI_TEMPORAL_REPROJECT_BINDING_SET_SAMPLES, kStorageImage, kCS},
+                       {DYNGI_TEMPORAL_REPROJECT_BINDING_CAMERAS, kUBO, kCS},
+                       {DYNGI_TEMPORAL_REPROJECT_BINDING_SUMS, kStorageImage, kCS},
+                       {DYNGI_TEMPORAL_REPROJECT_BINDING_FILTER_INPUT, kStorageImage, kCS},
+                       {DYNGI_TEMPORAL_REPROJECT_BINDING_QUEUE, kSSBO, kCS},
+                       {DYNGI_TEMPORAL_REPROJECT_BINDING_QUEUE_ARGS, kSSBO, kCS}};
   reprojectPipeline_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_temporal_reproject_comp), b, sizeof(gpu::AccumulatePush), "temporal_reproject");
 }
 
@@ -236,13 +241,13 @@ void TemporalIndirect::recordReprojection(render::FrameContext& frame, const gpu
                           VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, reprojectPipeline_.handle());
   DescriptorWrites()
-      .uniformBuffer(0, frame.frameUniforms.handle())
-      .storageImage(1, setSamples_.view())
-      .uniformBuffer(2, cameras_.handle())
-      .storageImage(3, sums_.view())
-      .storageImage(4, accumulated_.view())
-      .storageBuffer(5, queue_.handle())
-      .storageBuffer(6, queueArgs_.handle())
+      .uniformBuffer(DYNGI_TEMPORAL_REPROJECT_BINDING_FRAME, frame.frameUniforms.handle())
+      .storageImage(DYNGI_TEMPORAL_REPROJECT_BINDING_SET_SAMPLES, setSamples_.view())
+      .uniformBuffer(DYNGI_TEMPORAL_REPROJECT_BINDING_CAMERAS, cameras_.handle())
+      .storageImage(DYNGI_TEMPORAL_REPROJECT_BINDING_SUMS, sums_.view())
+      .storageImage(DYNGI_TEMPORAL_REPROJECT_BINDING_FILTER_INPUT, accumulated_.view())
+      .storageBuffer(DYNGI_TEMPORAL_REPROJECT_BINDING_QUEUE, queue_.handle())
+      .storageBuffer(DYNGI_TEMPORAL_REPROJECT_BINDING_QUEUE_ARGS, queueArgs_.handle())
       .push(ctx_, cmd, reprojectPipeline_);
   vkCmdPushConstants(cmd, reprojectPipeline_.layout(), kCS, 0, sizeof(push), &push);
   if (queued) {

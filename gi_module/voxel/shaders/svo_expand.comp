@@ -9,11 +9,11 @@
 #include "shared/gi_gpu_types.h"
 #include "subgroup_append.glsl"
 layout(local_size_x = 64) in;
-layout(set = 0, binding = 0) buffer Nodes { uint nodes[]; };
-layout(set = 0, binding = 1) buffer NodeCells { uint nodeCells[]; };
-layout(set = 0, binding = 2) readonly buffer Occupancy { uint occupancy[]; };
-layout(set = 0, binding = 3) readonly buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = 4) buffer Counters { SvoCounters counters; };
+layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_NODES) buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_NODE_CELLS) buffer NodeCells { uint nodeCells[]; };
+layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_OCCUPANCY) readonly buffer Occupancy { uint occupancy[]; };
+layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
+layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_COUNTERS) buffer Counters { SvoCounters counters; };
 layout(push_constant) uniform Push { DYNGI_SVO_EXPAND_PUSH };
 
 // The occupancy of the 8 children of the cell with Morton code m at level l (bit c: child c).

@@ -5,10 +5,10 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 64) in;
-layout(set = 0, binding = 0) readonly buffer Fragments { uvec4 fragments[]; };
-layout(set = 0, binding = 1) readonly buffer Nodes { uint nodes[]; };
-layout(set = 0, binding = 2) readonly buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = 3) buffer Attributes { int attributes[]; };  // 8 ints per leaf
+layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS) readonly buffer Fragments { uvec4 fragments[]; };
+layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
+layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES) buffer Attributes { int attributes[]; };  // 8 ints per leaf
 layout(push_constant) uniform Push { DYNGI_SVO_LEAF_ATTRIBUTES_PUSH };
 
 vec3 unpackEmission(uint e) {

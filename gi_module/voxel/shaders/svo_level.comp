@@ -5,11 +5,11 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 1) in;
-layout(set = 0, binding = 0) buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = 1) buffer Counters { SvoCounters counters; };
-layout(set = 0, binding = 2) buffer Nodes { uint nodes[]; };
-layout(set = 0, binding = 3) buffer NodeCells { uint nodeCells[]; };
-layout(set = 0, binding = 4) readonly buffer Occupancy { uint occupancy[]; };
+layout(set = 0, binding = DYNGI_SVO_LEVEL_BINDING_LEVELS) buffer Levels { SvoLevel levels[]; };
+layout(set = 0, binding = DYNGI_SVO_LEVEL_BINDING_COUNTERS) buffer Counters { SvoCounters counters; };
+layout(set = 0, binding = DYNGI_SVO_LEVEL_BINDING_NODES) buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = DYNGI_SVO_LEVEL_BINDING_NODE_CELLS) buffer NodeCells { uint nodeCells[]; };
+layout(set = 0, binding = DYNGI_SVO_LEVEL_BINDING_OCCUPANCY) readonly buffer Occupancy { uint occupancy[]; };
 layout(push_constant) uniform Push { DYNGI_SVO_LEVEL_PUSH };
 void main() {
   uint used = min(counters.groups.x, counters.groups.y);

@@ -5,9 +5,9 @@
 layout(local_size_x = 64) in;
 // 0: the march is compiled out (benchmark ceiling: the cost of reading a segment and writing a result).
 layout(constant_id = 0) const uint kMarch = 1u;
-layout(set = 0, binding = 0) readonly buffer Nodes { uint nodes[]; };
-layout(set = 0, binding = 1) readonly buffer Segments { vec4 segments[]; };  // pairs: from, to (world)
-layout(set = 0, binding = 2) buffer Results { uint results[]; };             // 1 = occluded
+layout(set = 0, binding = DYNGI_SVO_MARCH_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = DYNGI_SVO_MARCH_BINDING_SEGMENTS) readonly buffer Segments { vec4 segments[]; };  // pairs: from, to (world)
+layout(set = 0, binding = DYNGI_SVO_MARCH_BINDING_RESULTS) buffer Results { uint results[]; };             // 1 = occluded
 #include "svo_traverse.glsl"
 layout(push_constant) uniform Push { DYNGI_SVO_MARCH_PUSH };
 void main() {

@@ -9,9 +9,9 @@
 #include "shared/gi_gpu_types.h"
 #include "svo_morton.glsl"
 layout(local_size_x = 64) in;
-layout(set = 0, binding = 0) readonly buffer Fragments { uvec4 fragments[]; };
-layout(set = 0, binding = 1) buffer Occupancy { uint occupancy[]; };
-layout(set = 0, binding = 2) readonly buffer Chunks { uvec2 chunks[]; };  // x first slot, y end slot
+layout(set = 0, binding = DYNGI_SVO_MARK_BINDING_FRAGMENTS) readonly buffer Fragments { uvec4 fragments[]; };
+layout(set = 0, binding = DYNGI_SVO_MARK_BINDING_OCCUPANCY) buffer Occupancy { uint occupancy[]; };
+layout(set = 0, binding = DYNGI_SVO_MARK_BINDING_CHUNKS) readonly buffer Chunks { uvec2 chunks[]; };  // x first slot, y end slot
 layout(push_constant) uniform Push { DYNGI_SVO_MARK_PUSH };
 void markFragment(uint i) {
   uint c = fragments[i].x;

@@ -6,11 +6,11 @@
 #include "shared/gpu_types.h"
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = 1) readonly buffer Nodes { uint nodes[]; };
-layout(set = 0, binding = 2) readonly buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = 3) readonly buffer Attributes { int attributes[]; };
-layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D outHdr;
+layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
+layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_ATTRIBUTES) readonly buffer Attributes { int attributes[]; };
+layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_OUT_HDR, rgba32f) uniform writeonly image2D outHdr;
 #include "svo_traverse.glsl"
 layout(push_constant) uniform Push { DYNGI_VOXEL_DEBUG_PUSH };
 void main() {

@@ -10,10 +10,10 @@ layout(push_constant) uniform Push { VoxelizePush pc; };
 // Material variants (VoxelScene::voxelizePipelineFor): texture lookups compiled in only when used.
 layout(constant_id = 0) const bool kBaseColorTexture = true;
 layout(constant_id = 1) const bool kEmissiveTexture = true;
-layout(set = 0, binding = 0) buffer Fragments { uvec4 fragments[]; };
-layout(set = 0, binding = 1) buffer Counters { uint counters[]; };
-layout(set = 0, binding = 2) uniform sampler2D baseColorTex;
-layout(set = 0, binding = 3) uniform sampler2D emissiveTex;
+layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_FRAGMENTS) buffer Fragments { uvec4 fragments[]; };
+layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_COUNTERS) buffer Counters { uint counters[]; };
+layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX) uniform sampler2D baseColorTex;
+layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX) uniform sampler2D emissiveTex;
 
 layout(location = 0) flat in vec3 v0;
 layout(location = 1) flat in vec3 v1;

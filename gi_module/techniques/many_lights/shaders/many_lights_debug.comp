@@ -7,12 +7,12 @@
 #include "shared/gpu_types.h"
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 64) in;
-layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = 1) uniform sampler2D gAlbedo;
-layout(set = 0, binding = 2, rgba32f) uniform readonly image2D indirect;
-layout(set = 0, binding = 3, rgba32ui) uniform readonly uimage2D raw;  // filter_input.glsl's packing
-layout(set = 0, binding = 4) readonly buffer Vpls { GpuVpl vpls[]; };
-layout(set = 0, binding = 5, rgba32f) uniform image2D hdr;
+layout(set = 0, binding = DYNGI_MANY_LIGHTS_DEBUG_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = DYNGI_MANY_LIGHTS_DEBUG_BINDING_G_ALBEDO) uniform sampler2D gAlbedo;
+layout(set = 0, binding = DYNGI_MANY_LIGHTS_DEBUG_BINDING_INDIRECT, rgba32f) uniform readonly image2D indirect;
+layout(set = 0, binding = DYNGI_MANY_LIGHTS_DEBUG_BINDING_RAW, rgba32ui) uniform readonly uimage2D raw;  // filter_input.glsl's packing
+layout(set = 0, binding = DYNGI_MANY_LIGHTS_DEBUG_BINDING_VPLS) readonly buffer Vpls { GpuVpl vpls[]; };
+layout(set = 0, binding = DYNGI_MANY_LIGHTS_DEBUG_BINDING_HDR, rgba32f) uniform image2D hdr;
 layout(push_constant) uniform Push { DYNGI_MANY_LIGHTS_DEBUG_PUSH };
 #include "filter_input.glsl"
 void main() {

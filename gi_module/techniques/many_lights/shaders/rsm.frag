@@ -5,9 +5,9 @@
 #include "shared/gpu_types.h"
 #include "shared/gi_gpu_types.h"
 #include "shared/lighting.glsl"
-layout(set = 0, binding = 0) readonly buffer Layers { RsmLayer layers[]; };
-layout(set = 0, binding = 1) readonly buffer Lights { GpuLight lights[]; };
-layout(set = 0, binding = 2) uniform sampler2D baseColorTex;
+layout(set = 0, binding = DYNGI_RSM_BINDING_LAYERS) readonly buffer Layers { RsmLayer layers[]; };
+layout(set = 0, binding = DYNGI_RSM_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
+layout(set = 0, binding = DYNGI_RSM_BINDING_BASE_COLOR_TEX) uniform sampler2D baseColorTex;
 layout(push_constant) uniform Push { RsmPush pc; };
 // Material variant (ManyLights::rsmPipelineFor): the lookup is compiled in only when a texture is bound.
 layout(constant_id = 0) const bool kBaseColorTexture = true;

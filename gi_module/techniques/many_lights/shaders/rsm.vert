@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
-layout(set = 0, binding = 0) readonly buffer Layers { RsmLayer layers[]; };
+layout(set = 0, binding = DYNGI_RSM_BINDING_LAYERS) readonly buffer Layers { RsmLayer layers[]; };
 layout(push_constant) uniform Push { RsmPush pc; };
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;

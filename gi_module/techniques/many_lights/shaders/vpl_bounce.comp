@@ -4,10 +4,10 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 64) in;
-layout(set = 0, binding = 0) buffer Vpls { GpuVpl vpls[]; };
-layout(set = 0, binding = 1) readonly buffer Nodes { uint nodes[]; };
-layout(set = 0, binding = 2) readonly buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = 3) readonly buffer Attributes { int attributes[]; };
+layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_VPLS) buffer Vpls { GpuVpl vpls[]; };
+layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
+layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_ATTRIBUTES) readonly buffer Attributes { int attributes[]; };
 #include "svo_traverse.glsl"
 layout(push_constant) uniform Push { DYNGI_VPL_BOUNCE_PUSH };
 

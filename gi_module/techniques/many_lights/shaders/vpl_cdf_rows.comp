@@ -3,9 +3,9 @@
 #include "shared/gi_gpu_types.h"
 // VPL sampling, step 1: per RSM row, the running sum of texel luminance (flux) along the row.
 layout(local_size_x = 64) in;
-layout(set = 0, binding = 0) uniform sampler2DArray rsmFlux;
-layout(set = 0, binding = 1) writeonly buffer RowPrefix { float rowPrefix[]; };  // per texel, inclusive
-layout(set = 0, binding = 2) writeonly buffer RowSums { float rowSums[]; };      // per row
+layout(set = 0, binding = DYNGI_VPL_CDF_ROWS_BINDING_RSM_FLUX) uniform sampler2DArray rsmFlux;
+layout(set = 0, binding = DYNGI_VPL_CDF_ROWS_BINDING_ROW_PREFIX) writeonly buffer RowPrefix { float rowPrefix[]; };  // per texel, inclusive
+layout(set = 0, binding = DYNGI_VPL_CDF_ROWS_BINDING_ROW_SUMS) writeonly buffer RowSums { float rowSums[]; };      // per row
 layout(push_constant) uniform Push { DYNGI_VPL_CDF_ROWS_PUSH };
 void main() {
   uint row = gl_GlobalInvocationID.x;

@@ -3,7 +3,7 @@
 #include "shared/gi_gpu_types.h"
 // VPL sampling, step 2 (one thread): running sum over rows; the last entry is the total.
 layout(local_size_x = 1) in;
-layout(set = 0, binding = 0) buffer RowSums { float rowSums[]; };  // in: per row; out: inclusive prefix
+layout(set = 0, binding = DYNGI_VPL_CDF_TOTAL_BINDING_ROW_SUMS) buffer RowSums { float rowSums[]; };  // in: per row; out: inclusive prefix
 layout(push_constant) uniform Push { DYNGI_VPL_CDF_TOTAL_PUSH };
 void main() {
   float sum = 0.0;

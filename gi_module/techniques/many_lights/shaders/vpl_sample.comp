@@ -4,12 +4,12 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 64) in;
-layout(set = 0, binding = 0) uniform sampler2DArray rsmPosition;
-layout(set = 0, binding = 1) uniform sampler2DArray rsmNormal;
-layout(set = 0, binding = 2) uniform sampler2DArray rsmFlux;
-layout(set = 0, binding = 3) readonly buffer RowPrefix { float rowPrefix[]; };
-layout(set = 0, binding = 4) readonly buffer RowCdf { float rowCdf[]; };
-layout(set = 0, binding = 5) writeonly buffer Vpls { GpuVpl vpls[]; };
+layout(set = 0, binding = DYNGI_VPL_SAMPLE_BINDING_RSM_POSITION) uniform sampler2DArray rsmPosition;
+layout(set = 0, binding = DYNGI_VPL_SAMPLE_BINDING_RSM_NORMAL) uniform sampler2DArray rsmNormal;
+layout(set = 0, binding = DYNGI_VPL_SAMPLE_BINDING_RSM_FLUX) uniform sampler2DArray rsmFlux;
+layout(set = 0, binding = DYNGI_VPL_SAMPLE_BINDING_ROW_PREFIX) readonly buffer RowPrefix { float rowPrefix[]; };
+layout(set = 0, binding = DYNGI_VPL_SAMPLE_BINDING_ROW_CDF) readonly buffer RowCdf { float rowCdf[]; };
+layout(set = 0, binding = DYNGI_VPL_SAMPLE_BINDING_VPLS) writeonly buffer Vpls { GpuVpl vpls[]; };
 layout(push_constant) uniform Push { DYNGI_VPL_SAMPLE_PUSH };
 
 float hash(uint x) {

@@ -7,15 +7,15 @@
 #include "shared/gpu_types.h"
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 64) in;
-layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = 1, rg32ui) uniform uimage2DArray setSamples;
+layout(set = 0, binding = DYNGI_TEMPORAL_REPROJECT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = DYNGI_TEMPORAL_REPROJECT_BINDING_SET_SAMPLES, rg32ui) uniform uimage2DArray setSamples;
 // A uniform buffer: every lane reads the same set's camera, which lavapipe then loads once per lane
 // group instead of lane by lane (as a storage buffer).
-layout(set = 0, binding = 2) uniform Cameras { TemporalSetCamera cameras[DYNGI_MAX_TEMPORAL_SETS]; };
-layout(set = 0, binding = 3, rgba32f) uniform image2D sums;
-layout(set = 0, binding = 4, rgba32ui) uniform uimage2D filterInput;  // filter_input.glsl's packing
-layout(set = 0, binding = 5) readonly buffer Queue { uint queuedPixels[]; };  // x | y << 16
-layout(set = 0, binding = 6) readonly buffer QueueArgs { TemporalQueue queue; };
+layout(set = 0, binding = DYNGI_TEMPORAL_REPROJECT_BINDING_CAMERAS) uniform Cameras { TemporalSetCamera cameras[DYNGI_MAX_TEMPORAL_SETS]; };
+layout(set = 0, binding = DYNGI_TEMPORAL_REPROJECT_BINDING_SUMS, rgba32f) uniform image2D sums;
+layout(set = 0, binding = DYNGI_TEMPORAL_REPROJECT_BINDING_FILTER_INPUT, rgba32ui) uniform uimage2D filterInput;  // filter_input.glsl's packing
+layout(set = 0, binding = DYNGI_TEMPORAL_REPROJECT_BINDING_QUEUE) readonly buffer Queue { uint queuedPixels[]; };  // x | y << 16
+layout(set = 0, binding = DYNGI_TEMPORAL_REPROJECT_BINDING_QUEUE_ARGS) readonly buffer QueueArgs { TemporalQueue queue; };
 layout(push_constant) uniform Push { AccumulatePush acc; };
 #define DYNGI_TEMPORAL_REPROJECT
 #include "filter_input.glsl"
