@@ -7,6 +7,7 @@
 
 #include "dyngi/engine/render/gpu_timer.h"
 #include "shaders/shared/gi_gpu_types.h"
+#include "voxel/svo_builder.h"
 #include "spirv/svo_march.comp.spv.h"
 
 #include "gpu_aliases.h"
@@ -30,10 +31,11 @@ const render::Pipeline& VoxelProbe::marchPipeline(bool march) {
 }
 
 std::vector<uint32_t> VoxelProbe::readbackNodes() {
-  voxels_.svoCounters_.invalidateForRead();
-  const auto* c = static_cast<const gpu::SvoCounters*>(voxels_.svoCounters_.mapped());
+  render::Buffer& counters = voxels_.svo_->counters();
+  counters.invalidateForRead();
+  const auto* c = static_cast<const gpu::SvoCounters*>(counters.mapped());
   uint64_t groups = std::min<uint64_t>(c->groups.x, c->groups.y);
-  return render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.nodes_.handle(), size_t(groups * 8));
+  return render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.nodes().handle(), size_t(groups * 8));
 }
 
 std::vector<VoxelFragment> VoxelProbe::readbackFragments() {
@@ -89,7 +91,7 @@ double VoxelProbe::dispatchMarch(const render::Pipeline& pipeline, const std::ve
     uint32_t s = timer.begin(cmd, "svo_march");
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
     DescriptorWrites()
-        .storageBuffer(DYNGI_SVO_MARCH_BINDING_NODES, voxels_.nodes_.handle())
+        .storageBuffer(DYNGI_SVO_MARCH_BINDING_NODES, voxels_.nodes().handle())
         .storageBuffer(DYNGI_SVO_MARCH_BINDING_SEGMENTS, segBuf.handle())
         .storageBuffer(DYNGI_SVO_MARCH_BINDING_RESULTS, results.handle())
         .push(ctx_, cmd, pipeline);

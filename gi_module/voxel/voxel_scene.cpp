@@ -11,11 +11,8 @@
 #include "dyngi/engine/render/gpu_timer.h"
 #include "dyngi/engine/scene/animation.h"
 #include "shaders/shared/gi_gpu_types.h"
-#include "spirv/svo_expand.comp.spv.h"
-#include "spirv/svo_leaf_attributes.comp.spv.h"
-#include "spirv/svo_level.comp.spv.h"
-#include "spirv/svo_mark.comp.spv.h"
-#include "spirv/voxel_debug.comp.spv.h"
+#include "voxel/svo_builder.h"
+#include "voxel/voxel_debug_pass.h"
 #include "spirv/voxelize.frag.spv.h"
 #include "spirv/voxelize.geom.spv.h"
 #include "spirv/voxelize.vert.spv.h"
@@ -32,7 +29,6 @@ const OptionTable<VoxelSettings>& VoxelSettings::table() {
 
 namespace {
 constexpr uint32_t kAttributeInts = 8;  // ints per leaf in the attribute buffer
-constexpr uint32_t kMinNodeGroups = 1u << 12;  // the node pool never shrinks below this (128 KB)
 }  // namespace
 
 VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings) : ctx_(ctx), settings_(settings) {
@@ -40,55 +36,15 @@ VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings
   if (r < 8 || r > 1024 || (r & (r - 1)) != 0)
     throw std::invalid_argument("voxel resolution must be a power of two in 8..1024, got " + std::to_string(r));
 
-  const Binding markB[] = {{DYNGI_SVO_MARK_BINDING_FRAGMENTS, kSSBO, kCS},
-                           {DYNGI_SVO_MARK_BINDING_OCCUPANCY, kSSBO, kCS},
-                           {DYNGI_SVO_MARK_BINDING_CHUNKS, kSSBO, kCS}};
-  mark_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_mark_comp), markB, sizeof(gpu::SvoMarkPush), "svo_mark");
-  const Binding levelB[] = {{DYNGI_SVO_LEVEL_BINDING_LEVELS, kSSBO, kCS},
-                            {DYNGI_SVO_LEVEL_BINDING_COUNTERS, kSSBO, kCS},
-                            {DYNGI_SVO_LEVEL_BINDING_NODES, kSSBO, kCS},
-                            {DYNGI_SVO_LEVEL_BINDING_NODE_CELLS, kSSBO, kCS},
-                            {DYNGI_SVO_LEVEL_BINDING_OCCUPANCY, kSSBO, kCS}};
-  level_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_level_comp), levelB, sizeof(gpu::SvoLevelPush), "svo_level");
-  const Binding expandB[] = {{DYNGI_SVO_EXPAND_BINDING_NODES, kSSBO, kCS},
-                             {DYNGI_SVO_EXPAND_BINDING_NODE_CELLS, kSSBO, kCS},
-                             {DYNGI_SVO_EXPAND_BINDING_OCCUPANCY, kSSBO, kCS},
-                             {DYNGI_SVO_EXPAND_BINDING_LEVELS, kSSBO, kCS},
-                             {DYNGI_SVO_EXPAND_BINDING_COUNTERS, kSSBO, kCS}};
-  expand_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_expand_comp), expandB, sizeof(gpu::SvoExpandPush), "svo_expand");
-  const Binding attrB[] = {{DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS, kSSBO, kCS},
-                           {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES, kSSBO, kCS},
-                           {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS, kSSBO, kCS},
-                           {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES, kSSBO, kCS}};
-  leafAttributes_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, sizeof(gpu::SvoLeafAttributesPush),
-                                     "svo_leaf_attributes");
-  // One bit per cell of every level 0..depth (DYNGI_SVO_LEVEL_BASE): level depth + 1 would start here.
-  uint32_t depth = 0;
-  while ((1u << depth) < settings_.resolution) ++depth;
-  const uint64_t pyramidBits = 8 + 8 * (((uint64_t(1) << (3 * depth)) - 1) / 7);
-  occupancy_ = Buffer(ctx, (pyramidBits + 31) / 32 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                      MemoryUsage::GpuOnly, "svo occupancy pyramid");
-  staticOccupancy_ = Buffer(ctx, occupancy_.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                            MemoryUsage::GpuOnly, "svo static occupancy pyramid");
-  const Binding debugB[] = {{DYNGI_VOXEL_DEBUG_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
-                            {DYNGI_VOXEL_DEBUG_BINDING_NODES, kSSBO, kCS},
-                            {DYNGI_VOXEL_DEBUG_BINDING_LEVELS, kSSBO, kCS},
-                            {DYNGI_VOXEL_DEBUG_BINDING_ATTRIBUTES, kSSBO, kCS},
-                            {DYNGI_VOXEL_DEBUG_BINDING_OUT_HDR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
-  debug_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_voxel_debug_comp), debugB, sizeof(gpu::VoxelDebugPush), "voxel_debug");
-
-  // The first build gets the whole pool; afterwards it follows what the SVO uses (resizeNodePool).
-  nodeGroupCapacity_ = std::max(settings.maxNodeGroups, 2u);
-  nodes_ = Buffer(ctx, VkDeviceSize(nodeGroupCapacity_) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo nodes");
-  nodeCells_ = Buffer(ctx, VkDeviceSize(nodeGroupCapacity_) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo node cells");
-  levels_ = Buffer(ctx, sizeof(gpu::SvoLevel) * DYNGI_SVO_MAX_LEVELS, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
-                   MemoryUsage::Readback, "svo levels");
-  svoCounters_ = Buffer(ctx, sizeof(gpu::SvoCounters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
-                        MemoryUsage::Readback, "svo counters");
+  debugPass_ = std::make_unique<VoxelDebugPass>(ctx);
+  svo_ = std::make_unique<SvoBuilder>(ctx, settings_.resolution, settings_.maxNodeGroups);
   reallocateFragments(1u << 16, {});
 }
 
 VoxelScene::~VoxelScene() = default;
+
+const render::Buffer& VoxelScene::nodes() const { return svo_->nodes(); }
+const render::Buffer& VoxelScene::levels() const { return svo_->levels(); }
 
 void VoxelScene::setDebugView(VoxelDebugView v) {
   settings_.debugView = v;
@@ -165,7 +121,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   // the first frame, and again as moved entities leave holes.
   if (!allDirty_ && ranges_.wantsCompaction()) compactFragments();
   if (allDirty_) {
-    rebuildStaticOccupancy_ = true;
+    svo_->invalidateStaticOccupancy();
     ranges_.clear();
     rangesToEmpty_.clear();
     for (const auto& d : snapshot.draws) dirty_.insert(d.entity);
@@ -208,57 +164,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     counters_ = std::move(grown);
   }
   stats_.entitiesVoxelized = uint32_t(drawsToVoxelize_.size());
-  if (rebuildSvo_) planOccupancy(removedNow);
-}
-
-void VoxelScene::planOccupancy(const std::vector<ecs::Entity>& removed) {
-  // The static pyramid is stale when one of its entities was voxelized again (moved, deformed) or
-  // removed; it is worth rebuilding when a moving entity has settled.
-  for (ecs::Entity e : voxelizedThisFrame_) rebuildStaticOccupancy_ |= staticEntities_.count(e) > 0;
-  for (ecs::Entity e : removed) rebuildStaticOccupancy_ |= staticEntities_.count(e) > 0;
-  for (const auto& [e, r] : ranges_.all()) rebuildStaticOccupancy_ |= !isMoving(r) && !staticEntities_.count(e);
-  if (rebuildStaticOccupancy_) {
-    staticEntities_.clear();
-    for (const auto& [e, r] : ranges_.all())
-      if (!isMoving(r)) staticEntities_.insert(e);
-  }
-  // One chunk per mark workgroup (64 invocations x DYNGI_SVO_ITEMS_PER_INVOCATION slots), cut from the
-  // ranges: the static entities' first (only when the static pyramid is rebuilt), then the moving ones'.
-  const uint64_t chunkSlots = 64 * DYNGI_SVO_ITEMS_PER_INVOCATION;
-  std::vector<glm::uvec2> chunks;
-  stats_.slotsMarked = 0;
-  stats_.staticEntities = uint32_t(staticEntities_.size());
-  auto cut = [&](bool wantStatic) {
-    uint32_t n = 0;
-    for (const auto& [e, r] : ranges_.all()) {
-      if (staticEntities_.count(e) != size_t(wantStatic)) continue;
-      stats_.slotsMarked += r.capacity;
-      for (uint64_t a = r.first; a < r.first + r.capacity; a += chunkSlots, ++n)
-        chunks.push_back(glm::uvec2(uint32_t(a), uint32_t(std::min(a + chunkSlots, r.first + r.capacity))));
-    }
-    return n;
-  };
-  staticChunks_ = rebuildStaticOccupancy_ ? cut(true) : 0;
-  movingChunks_ = cut(false);
-  const VkDeviceSize bytes = std::max<VkDeviceSize>(chunks.size() * sizeof(glm::uvec2), 16);
-  if (!markChunks_.valid() || markChunks_.size() < bytes) {
-    vkDeviceWaitIdle(ctx_.device());  // the last frame may still read the old list
-    markChunks_ = Buffer(ctx_, bytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "svo mark chunks");
-  }
-  if (!chunks.empty()) markChunks_.upload(chunks.data(), chunks.size() * sizeof(glm::uvec2));
-}
-
-void VoxelScene::recordMark(VkCommandBuffer cmd, const render::Buffer& target, uint32_t firstChunk, uint32_t chunkCount) {
-  if (chunkCount == 0) return;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mark_.handle());
-  DescriptorWrites()
-      .storageBuffer(DYNGI_SVO_MARK_BINDING_FRAGMENTS, fragments_.handle())
-      .storageBuffer(DYNGI_SVO_MARK_BINDING_OCCUPANCY, target.handle())
-      .storageBuffer(DYNGI_SVO_MARK_BINDING_CHUNKS, markChunks_.handle())
-      .push(ctx_, cmd, mark_);
-  const gpu::SvoMarkPush mp{firstChunk, volume_.depth()};
-  vkCmdPushConstants(cmd, mark_.layout(), kCS, 0, sizeof(mp), &mp);
-  vkCmdDispatch(cmd, chunkCount, 1, 1);
+  if (rebuildSvo_) svo_->plan(ranges_, frameIndex_, voxelizedThisFrame_, removedNow, stats_);
 }
 
 render::Pipeline& VoxelScene::voxelizePipelineFor(bool baseColorTexture, bool emissiveTexture) {
@@ -326,71 +232,8 @@ bool VoxelScene::record(render::FrameContext& frame) {
     render::computeWriteBarrier(cmd);
   }
   {
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "svo_build");
-    gpu::SvoCounters init{};
-    init.groups = glm::uvec4(1, nodeGroupCapacity_, 0, 0);
-    vkCmdUpdateBuffer(cmd, svoCounters_.handle(), 0, sizeof(init), &init);
-    // 1. Every fragment marks its cells in the occupancy pyramid: the static entities' once into the
-    // static pyramid, which each build copies, then the moving entities' on top.
-    if (rebuildStaticOccupancy_) {
-      vkCmdFillBuffer(cmd, staticOccupancy_.handle(), 0, VK_WHOLE_SIZE, 0);
-      render::computeWriteBarrier(cmd);
-      recordMark(cmd, staticOccupancy_, 0, staticChunks_);
-      render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                            VK_ACCESS_2_TRANSFER_READ_BIT);
-      rebuildStaticOccupancy_ = false;
-    }
-    const VkBufferCopy whole{0, 0, occupancy_.size()};
-    vkCmdCopyBuffer(cmd, staticOccupancy_.handle(), occupancy_.handle(), 1, &whole);
-    render::computeWriteBarrier(cmd);
-    recordMark(cmd, occupancy_, staticChunks_, movingChunks_);
-    render::computeWriteBarrier(cmd);
-    const uint32_t slots = uint32_t(ranges_.highWater());
-    const uint32_t perGroup = 64 * DYNGI_SVO_ITEMS_PER_INVOCATION;
-    // 2. Top down, level by level: the occupied nodes get their children, flagged from the pyramid.
-    for (uint32_t l = 0; l <= depth; ++l) {
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, level_.handle());
-      DescriptorWrites()
-          .storageBuffer(DYNGI_SVO_LEVEL_BINDING_LEVELS, levels_.handle())
-          .storageBuffer(DYNGI_SVO_LEVEL_BINDING_COUNTERS, svoCounters_.handle())
-          .storageBuffer(DYNGI_SVO_LEVEL_BINDING_NODES, nodes_.handle())
-          .storageBuffer(DYNGI_SVO_LEVEL_BINDING_NODE_CELLS, nodeCells_.handle())
-          .storageBuffer(DYNGI_SVO_LEVEL_BINDING_OCCUPANCY, occupancy_.handle())
-          .push(ctx_, cmd, level_);
-      const gpu::SvoLevelPush lp{l};
-      vkCmdPushConstants(cmd, level_.layout(), kCS, 0, sizeof(lp), &lp);
-      vkCmdDispatch(cmd, 1, 1, 1);
-      render::computeWriteBarrier(cmd);
-      if (l == depth) break;  // leaves: their range is known, they are never subdivided
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, expand_.handle());
-      DescriptorWrites()
-          .storageBuffer(DYNGI_SVO_EXPAND_BINDING_NODES, nodes_.handle())
-          .storageBuffer(DYNGI_SVO_EXPAND_BINDING_NODE_CELLS, nodeCells_.handle())
-          .storageBuffer(DYNGI_SVO_EXPAND_BINDING_OCCUPANCY, occupancy_.handle())
-          .storageBuffer(DYNGI_SVO_EXPAND_BINDING_LEVELS, levels_.handle())
-          .storageBuffer(DYNGI_SVO_EXPAND_BINDING_COUNTERS, svoCounters_.handle())
-          .push(ctx_, cmd, expand_);
-      const gpu::SvoExpandPush ep{l, depth};
-      vkCmdPushConstants(cmd, expand_.layout(), kCS, 0, sizeof(ep), &ep);
-      vkCmdDispatchIndirect(cmd, levels_.handle(), VkDeviceSize(l) * sizeof(gpu::SvoLevel) + offsetof(gpu::SvoLevel, dispatch));
-      render::computeWriteBarrier(cmd);
-    }
-    if (settings_.leafAttributes) {
-      // Leaf attributes, kept apart from the nodes.
-      vkCmdFillBuffer(cmd, attributes_.handle(), 0, VK_WHOLE_SIZE, 0);
-      render::computeWriteBarrier(cmd);
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, leafAttributes_.handle());
-      DescriptorWrites()
-          .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS, fragments_.handle())
-          .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES, nodes_.handle())
-          .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS, levels_.handle())
-          .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES, attributes_.handle())
-          .push(ctx_, cmd, leafAttributes_);
-      const gpu::SvoLeafAttributesPush ap{depth, uint32_t(stats_.fragmentCapacity), slots};
-      vkCmdPushConstants(cmd, leafAttributes_.layout(), kCS, 0, sizeof(ap), &ap);
-      vkCmdDispatch(cmd, std::max(dispatchGroups(slots, perGroup), 1u), 1, 1);
-      render::computeWriteBarrier(cmd);
-    }
+    const render::Buffer* attributes = settings_.leafAttributes ? &attributes_ : nullptr;
+    svo_->record(frame, fragments_, uint32_t(ranges_.highWater()), depth, attributes, stats_.fragmentCapacity);
   }
   stats_.rebuilt = true;
   return false;  // the voxel scene feeds other stages; it does not write indirect light
@@ -398,27 +241,12 @@ bool VoxelScene::record(render::FrameContext& frame) {
 
 void VoxelScene::recordAfterLighting(render::FrameContext& frame) {
   if (settings_.debugView == VoxelDebugView::None || !haveVolume_) return;
-  render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "voxel_debug_view");
-  render::RenderTargets& t = frame.targets;
-  t.hdr.transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, debug_.handle());
-  DescriptorWrites()
-      .uniformBuffer(DYNGI_VOXEL_DEBUG_BINDING_FRAME, frame.frameUniforms.handle())
-      .storageBuffer(DYNGI_VOXEL_DEBUG_BINDING_NODES, nodes_.handle())
-      .storageBuffer(DYNGI_VOXEL_DEBUG_BINDING_LEVELS, levels_.handle())
-      .storageBuffer(DYNGI_VOXEL_DEBUG_BINDING_ATTRIBUTES, attributes_.handle())
-      .storageImage(DYNGI_VOXEL_DEBUG_BINDING_OUT_HDR, t.hdr.view())
-      .push(ctx_, frame.cmd, debug_);
-  const gpu::VoxelDebugPush pc{glm::vec4(volume_.origin, 1.0f / volume_.voxelSize), volume_.depth(), float(volume_.resolution),
-                               settings_.debugView == VoxelDebugView::SvoSteps ? 1u : 0u};
-  vkCmdPushConstants(frame.cmd, debug_.layout(), kCS, 0, sizeof(pc), &pc);
-  vkCmdDispatch(frame.cmd, (t.width + 7) / 8, (t.height + 7) / 8, 1);
+  debugPass_->record(frame, volume_, svo_->nodes(), svo_->levels(), attributes_, settings_.debugView);
 }
 
 void VoxelScene::frameFinished(render::VulkanContext&) {
   if (!stats_.rebuilt) return;
   counters_.invalidateForRead();
-  svoCounters_.invalidateForRead();
   const uint32_t* counts = static_cast<const uint32_t*>(counters_.mapped());
   stats_.overflowedEntities = 0;
   for (ecs::Entity e : voxelizedThisFrame_) {
@@ -430,38 +258,8 @@ void VoxelScene::frameFinished(render::VulkanContext&) {
     }
   }
   stats_.fragments = ranges_.storedFragments();
-  const auto* c = static_cast<const gpu::SvoCounters*>(svoCounters_.mapped());
-  uint64_t groups = std::min<uint64_t>(c->groups.x, c->groups.y);
-  stats_.nodes = groups * 8;
-  stats_.leaves = c->groups.w;
-  stats_.poolOverflow = c->groups.z != 0;
-  stats_.svoBytes = stats_.nodes * 4;
-  if (stats_.poolOverflow && nodeGroupCapacity_ >= settings_.maxNodeGroups)
-    std::fprintf(stderr, "dyngi: warning: SVO node pool overflow (%u groups); raise maxNodeGroups\n", settings_.maxNodeGroups);
-  // Keep the pool between 4/3 and 8 times what the SVO uses: grow before it fills (an overflowing build
-  // is conservative: childless nodes count as occupied, so it is rebuilt next frame), shrink after the
-  // first build, which had the whole pool.
-  uint64_t want = nodeGroupCapacity_;
-  if (stats_.poolOverflow || groups * 4 > uint64_t(nodeGroupCapacity_) * 3) want = std::max<uint64_t>(2ull * nodeGroupCapacity_, 2 * groups);
-  else if (groups * 8 < nodeGroupCapacity_) want = 2 * groups;
-  want = std::clamp<uint64_t>(want, std::min<uint32_t>(kMinNodeGroups, settings_.maxNodeGroups), settings_.maxNodeGroups);
-  if (want != nodeGroupCapacity_) resizeNodePool(uint32_t(want), groups);
-  if (stats_.poolOverflow && want > groups) storageMoved_ = true;  // the conservative SVO stands until the next build
-  stats_.totalBytes = fragments_.size() + nodes_.size() + nodeCells_.size() + occupancy_.size() + attributes_.size();
-}
-
-void VoxelScene::resizeNodePool(uint32_t groups, uint64_t keepGroups) {
-  vkDeviceWaitIdle(ctx_.device());
-  Buffer fresh(ctx_, VkDeviceSize(groups) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo nodes");
-  keepGroups = std::min<uint64_t>(keepGroups, groups);
-  if (keepGroups > 0)  // the current SVO stays readable until the next build
-    ctx_.immediate([&](VkCommandBuffer cmd) {
-      VkBufferCopy copy{0, 0, keepGroups * 8 * 4};
-      vkCmdCopyBuffer(cmd, nodes_.handle(), fresh.handle(), 1, &copy);
-    });
-  nodes_ = std::move(fresh);
-  nodeCells_ = Buffer(ctx_, VkDeviceSize(groups) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo node cells");
-  nodeGroupCapacity_ = groups;
+  if (svo_->frameFinished(stats_)) storageMoved_ = true;  // the conservative SVO stands until the next build
+  stats_.totalBytes = fragments_.size() + svo_->bytes() + attributes_.size();
 }
 
 void VoxelSyncSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {

@@ -79,24 +79,18 @@ class VoxelScene final : public render::RenderFeature {
   const VoxelSettings& settings() const { return settings_; }
 
   // GPU buffers for other stages (visibility march, debug view, cone tracing later).
-  const render::Buffer& nodes() const { return nodes_; }
+  const render::Buffer& nodes() const;
   const render::Buffer& leafAttributes() const { return attributes_; }
-  const render::Buffer& levels() const { return levels_; }
+  const render::Buffer& levels() const;
 
  private:
   friend class VoxelProbe;  // tests' and tools' read-backs (gi_module/testing)
   using Range = FragmentRange;
-  bool isMoving(const Range& r) const { return FragmentRanges::isMoving(r, frameIndex_); }
-  // Decides which entities the static occupancy holds and which the build marks (prepare()).
-  void planOccupancy(const std::vector<ecs::Entity>& removed);
-  // Records the mark pass over `chunks` (slot ranges of up to one workgroup's work) into `target`.
-  void recordMark(VkCommandBuffer cmd, const render::Buffer& target, uint32_t firstChunk, uint32_t chunkCount);
   // Fragment storage of `slots` slots at least; kept fragments are copied, nothing is re-voxelized.
   void ensureCapacity(uint64_t slots);
   // Moves every range's fragments into a buffer sized by what they hold (FragmentRanges::compact).
   void compactFragments();
   void reallocateFragments(uint64_t slots, const std::vector<SlotCopy>& keep);
-  void resizeNodePool(uint32_t groups, uint64_t keepGroups);
 
   render::VulkanContext& ctx_;
   VoxelSettings settings_;
@@ -105,7 +99,7 @@ class VoxelScene final : public render::RenderFeature {
   bool allDirty_ = true;
   std::unordered_set<ecs::Entity> dirty_, removed_;
   FragmentRanges ranges_;  // where each entity's fragments live in fragments_
-  uint32_t nodeGroupCapacity_ = 0;
+  std::unique_ptr<class SvoBuilder> svo_;  // the SVO over fragments_ (voxel/svo_builder.h)
 
   // What this frame records (decided in prepare).
   std::vector<size_t> drawsToVoxelize_;   // indices into snapshot.draws
@@ -114,23 +108,13 @@ class VoxelScene final : public render::RenderFeature {
   bool storageMoved_ = false;  // fragments were moved or the derived buffers reallocated: rebuild the SVO
   std::vector<ecs::Entity> voxelizedThisFrame_;
 
-  render::Buffer fragments_, counters_, nodes_, levels_, svoCounters_, attributes_;
-  render::Buffer nodeCells_;  // per node that may be subdivided: its cell's Morton code (svo_expand.comp), sized like nodes_
-  render::Buffer occupancy_;  // occupancy pyramid of every level (svo_mark.comp)
-  // The pyramid of the entities in staticEntities_ alone: a build starts from a copy of it and marks the
-  // moving entities' fragments only. Rebuilt when one of them moves or is removed, or when a moving
-  // entity has settled and can join.
-  render::Buffer staticOccupancy_;
-  std::unordered_set<ecs::Entity> staticEntities_;
-  bool rebuildStaticOccupancy_ = true;
-  render::Buffer markChunks_;               // uvec2 (first slot, end slot) per mark workgroup
-  uint32_t staticChunks_ = 0, movingChunks_ = 0;  // this frame's: the static ones first
+  render::Buffer fragments_, counters_, attributes_;
   uint64_t frameIndex_ = 0;
   // One voxelize pipeline per material kind (base-colour / emissive texture or not), made on first use:
   // lavapipe would run the texture lookups of a branch not taken.
   render::Pipeline voxelize_[4];
   render::Pipeline& voxelizePipelineFor(bool baseColorTexture, bool emissiveTexture);
-  render::Pipeline mark_, level_, expand_, leafAttributes_, debug_;
+  std::unique_ptr<class VoxelDebugPass> debugPass_;  // voxel/voxel_debug_pass.h
   VoxelStats stats_;
 };
 

@@ -1,0 +1,63 @@
+#pragma once
+// The sparse voxel octree over the voxel scene's fragments, rebuilt on the GPU when they change
+// ("svo_build" in stats): every fragment marks its cells in an occupancy pyramid (the static
+// entities' kept in a pyramid of their own that each build copies, so only moving entities are marked
+// every time), then top-down level passes give the occupied nodes their children, then, when asked,
+// the leaves get averaged attributes. The node pool follows what the SVO uses. VoxelScene owns one.
+#include <cstdint>
+#include <unordered_set>
+#include <vector>
+
+#include "dyngi/engine/render/frame_context.h"
+#include "dyngi/engine/render/pipeline.h"
+#include "dyngi/engine/render/resources.h"
+#include "dyngi/gi/fragment_ranges.h"
+#include "dyngi/gi/voxel_scene.h"
+
+namespace dyngi::gi {
+
+class SvoBuilder {
+ public:
+  SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t maxNodeGroups);
+  // Before a build (prepare): which entities the static pyramid holds and the mark work, cut into
+  // workgroup-sized chunks of the ranges. `voxelized` and `removed`: this frame's.
+  void plan(const FragmentRanges& ranges, uint64_t frame, const std::vector<ecs::Entity>& voxelized, const std::vector<ecs::Entity>& removed,
+            VoxelStats& stats);
+  // Everything is voxelized again: the static pyramid is rebuilt at the next build.
+  void invalidateStaticOccupancy() { rebuildStaticOccupancy_ = true; }
+  // Records the build over `fragments` (`slots` slots); with `attributes`, the leaf attributes too.
+  void record(render::FrameContext& frame, const render::Buffer& fragments, uint32_t slots, uint32_t depth, const render::Buffer* attributes,
+              uint64_t fragmentCapacity);
+  // After the build's frame: node and leaf counts into `stats`, the pool resized to follow use. True
+  // when the pool overflowed and grew: build again next frame.
+  bool frameFinished(VoxelStats& stats);
+
+  const render::Buffer& nodes() const { return nodes_; }
+  const render::Buffer& levels() const { return levels_; }
+  render::Buffer& counters() { return svoCounters_; }
+  uint64_t bytes() const;  // nodes, node cells and the occupancy pyramid
+
+ private:
+  // Records the mark pass over chunks [firstChunk, firstChunk + chunkCount) into `target`.
+  void recordMark(VkCommandBuffer cmd, const render::Buffer& fragments, const render::Buffer& target, uint32_t depth, uint32_t firstChunk,
+                  uint32_t chunkCount);
+  void resizeNodePool(uint32_t groups, uint64_t keepGroups);
+
+  render::VulkanContext& ctx_;
+  uint32_t maxNodeGroups_;
+  uint32_t nodeGroupCapacity_ = 0;
+  render::Buffer nodes_, levels_, svoCounters_;
+  render::Buffer nodeCells_;  // per node that may be subdivided: its cell's Morton code (svo_expand.comp), sized like nodes_
+  render::Buffer occupancy_;  // occupancy pyramid of every level (svo_mark.comp)
+  // The pyramid of the entities in staticEntities_ alone: a build starts from a copy of it and marks the
+  // moving entities' fragments only. Rebuilt when one of them moves or is removed, or when a moving
+  // entity has settled and can join.
+  render::Buffer staticOccupancy_;
+  std::unordered_set<ecs::Entity> staticEntities_;
+  bool rebuildStaticOccupancy_ = true;
+  render::Buffer markChunks_;                     // uvec2 (first slot, end slot) per mark workgroup
+  uint32_t staticChunks_ = 0, movingChunks_ = 0;  // this frame's: the static ones first
+  render::Pipeline mark_, level_, expand_, leafAttributes_;
+};
+
+}  // namespace dyngi::gi

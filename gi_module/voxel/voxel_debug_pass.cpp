@@ -1,0 +1,39 @@
+#include "voxel/voxel_debug_pass.h"
+
+#include "dyngi/engine/render/gpu_timer.h"
+#include "shaders/shared/gi_gpu_types.h"
+#include "spirv/voxel_debug.comp.spv.h"
+
+#include "gpu_aliases.h"
+
+namespace dyngi::gi {
+
+VoxelDebugPass::VoxelDebugPass(render::VulkanContext& ctx) : ctx_(ctx) {
+  const Binding debugB[] = {{DYNGI_VOXEL_DEBUG_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
+                            {DYNGI_VOXEL_DEBUG_BINDING_NODES, kSSBO, kCS},
+                            {DYNGI_VOXEL_DEBUG_BINDING_LEVELS, kSSBO, kCS},
+                            {DYNGI_VOXEL_DEBUG_BINDING_ATTRIBUTES, kSSBO, kCS},
+                            {DYNGI_VOXEL_DEBUG_BINDING_OUT_HDR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
+  pipeline_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_voxel_debug_comp), debugB, sizeof(gpu::VoxelDebugPush), "voxel_debug");
+}
+
+void VoxelDebugPass::record(render::FrameContext& frame, const VoxelVolume& volume, const render::Buffer& nodes, const render::Buffer& levels,
+                            const render::Buffer& attributes, VoxelDebugView view) {
+  render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "voxel_debug_view");
+  render::RenderTargets& t = frame.targets;
+  t.hdr.transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
+  DescriptorWrites()
+      .uniformBuffer(DYNGI_VOXEL_DEBUG_BINDING_FRAME, frame.frameUniforms.handle())
+      .storageBuffer(DYNGI_VOXEL_DEBUG_BINDING_NODES, nodes.handle())
+      .storageBuffer(DYNGI_VOXEL_DEBUG_BINDING_LEVELS, levels.handle())
+      .storageBuffer(DYNGI_VOXEL_DEBUG_BINDING_ATTRIBUTES, attributes.handle())
+      .storageImage(DYNGI_VOXEL_DEBUG_BINDING_OUT_HDR, t.hdr.view())
+      .push(ctx_, frame.cmd, pipeline_);
+  const gpu::VoxelDebugPush pc{glm::vec4(volume.origin, 1.0f / volume.voxelSize), volume.depth(), float(volume.resolution),
+                               view == VoxelDebugView::SvoSteps ? 1u : 0u};
+  vkCmdPushConstants(frame.cmd, pipeline_.layout(), kCS, 0, sizeof(pc), &pc);
+  vkCmdDispatch(frame.cmd, (t.width + 7) / 8, (t.height + 7) / 8, 1);
+}
+
+}  // namespace dyngi::gi
