@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "dyngi/gi/options.h"
 #include "options.h"
 
@@ -194,4 +196,31 @@ TEST(OptionTable, ParsesChecksAndReportsAdjustedValues) {
   const auto lines = dyngi::gi::adjustedOptions(dyngi::gi::bindOptions(k), dyngi::gi::bindOptions(used));
   ASSERT_EQ(lines.size(), 1u);
   EXPECT_EQ(lines[0], "--count 42 is used as 40");
+}
+
+// Every option table keeps the rules the command line, --help and a settings panel rely on: names are
+// unique within a technique and valid flags, each has help, and each default lies in its own range.
+TEST(OptionTable, EveryTableIsWellFormedAndItsDefaultsLieInTheirRanges) {
+  auto check = [](const std::vector<dyngi::gi::OptionRef>& refs, const std::string& owner) {
+    std::set<std::string> names;
+    for (const dyngi::gi::OptionRef& r : refs) {
+      const std::string name = r.spec->name;
+      EXPECT_TRUE(names.insert(name).second) << owner << ": --" << name << " twice";
+      EXPECT_FALSE(name.empty()) << owner;
+      EXPECT_EQ(name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-"), std::string::npos) << owner << ": --" << name;
+      EXPECT_GT(std::string(r.spec->help).size(), 5u) << owner << ": --" << name << " has no help";
+      EXPECT_LE(r.spec->min, r.spec->max) << owner << ": --" << name;
+      EXPECT_GE(r.get(), r.spec->min) << owner << ": --" << name << " default below its range";
+      EXPECT_LE(r.get(), r.spec->max) << owner << ": --" << name << " default above its range";
+      // The default survives a round trip through its own text, as the command line would give it.
+      const double before = r.get();
+      EXPECT_EQ(dyngi::gi::parseOptionValue(r, r.text()), "") << owner << ": --" << name;
+      EXPECT_EQ(r.get(), before) << owner << ": --" << name;
+    }
+  };
+  dyngi::gi::GiSettings settings;
+  for (const dyngi::gi::TechniqueEntry& e : dyngi::gi::techniqueRegistry()) check(e.options(settings), e.name);
+  dyngi::gi::PathTracerSettings pt;
+  check(dyngi::gi::bindOptions(pt), "path tracer");
+  check(dyngi::gi::bindOptions(settings.voxels), "voxels");
 }
