@@ -38,6 +38,35 @@ double relativeMse(const ImageRgba& a, const ImageRgba& ref, const std::vector<u
   return n ? sum / double(n) : 0.0;
 }
 
+double relativeL1(const ImageRgba& a, const ImageRgba& ref, const std::vector<uint8_t>* mask) {
+  double diff = 0, level = 0;
+  for (size_t i = 0; i < std::min(a.size(), ref.size()); ++i) {
+    if (!counted(mask, i)) continue;
+    for (int c = 0; c < 3; ++c) {
+      diff += std::abs(double(a[i][c]) - ref[i][c]);
+      level += std::abs(double(ref[i][c]));
+    }
+  }
+  if (level == 0.0) return diff == 0.0 ? 0.0 : 1.0;
+  return diff / level;
+}
+
+double flicker(const std::vector<ImageRgba>& frames) {
+  if (frames.size() < 2) return 0.0;
+  double sum = 0;
+  for (size_t i = 1; i < frames.size(); ++i) sum += relativeL1(frames[i], frames[i - 1]);
+  return sum / double(frames.size() - 1);
+}
+
+size_t settleFrames(const std::vector<ImageRgba>& frames, const ImageRgba& converged, double tolerance) {
+  size_t settled = frames.size();
+  for (size_t i = frames.size(); i-- > 0;) {
+    if (relativeL1(frames[i], converged) > tolerance) break;
+    settled = i;
+  }
+  return settled;
+}
+
 double psnr(const ImageRgba& a, const ImageRgba& ref, double peak) {
   if (peak <= 0)
     for (auto& p : ref) peak = std::max({peak, double(p.r), double(p.g), double(p.b)});

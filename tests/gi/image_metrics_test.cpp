@@ -52,3 +52,25 @@ TEST(ImageMetrics, CpuTonemapEncodesSrgb) {
   EXPECT_EQ(ldr[8], uint8_t(std::lround((1.055 * std::pow(0.5, 1 / 2.4) - 0.055) * 255)));
   EXPECT_EQ(ldr[10], 255);
 }
+
+// The quality metrics on sequences whose answers are known by construction.
+TEST(ImageMetrics, FlickerAndSettleOnKnownSequences) {
+  auto flat = [](float v) { return ImageRgba(16, glm::vec4(v, v, v, 1.0f)); };
+  EXPECT_DOUBLE_EQ(relativeL1(flat(1.1f), flat(1.0f)), double(1.1f - 1.0f) / 1.0);
+  EXPECT_EQ(relativeL1(flat(0.0f), flat(0.0f)), 0.0);
+  EXPECT_EQ(relativeL1(flat(0.5f), flat(0.0f)), 1.0);
+  // Alternating 1.0 / 1.02: every step changes by 0.02 relative to the previous frame's level.
+  std::vector<ImageRgba> alternating;
+  for (int i = 0; i < 10; ++i) alternating.push_back(flat(i % 2 ? 1.02f : 1.0f));
+  EXPECT_NEAR(flicker(alternating), (0.02 / 1.0 + 0.02 / 1.02) / 2.0, 1e-3);
+  EXPECT_EQ(flicker({flat(1.0f), flat(1.0f), flat(1.0f)}), 0.0);
+  // Approaching 1 as 1 - 0.5^k: within 5 percent from k = 5 on (0.5^5 = 0.031), not at k = 4 (0.0625).
+  std::vector<ImageRgba> approach;
+  for (int k = 1; k <= 12; ++k) approach.push_back(flat(1.0f - std::pow(0.5f, float(k))));
+  EXPECT_EQ(settleFrames(approach, flat(1.0f), 0.05), 4u);  // index of k = 5
+  // A late excursion counts: it has not settled until after the last frame out of tolerance.
+  approach[9] = flat(0.5f);
+  EXPECT_EQ(settleFrames(approach, flat(1.0f), 0.05), 10u);
+  approach.back() = flat(0.5f);
+  EXPECT_EQ(settleFrames(approach, flat(1.0f), 0.05), approach.size()) << "never settles";
+}

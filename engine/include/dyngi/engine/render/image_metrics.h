@@ -18,6 +18,15 @@ double psnr(const ImageRgba& a, const ImageRgba& reference, double peak = 0.0);
 // Mean SSIM over 8x8 windows (stride 4) of luminance, constants for a dynamic range L (the reference's
 // maximum luminance when 0).
 double ssim(const ImageRgba& a, const ImageRgba& reference, uint32_t width, uint32_t height, double range = 0.0);
+// Sum over pixels of |a - ref| (RGB) over the sum of ref (RGB): the error relative to the image's own
+// level, not dominated by dim pixels. 0 when both are black; 1 for an image against black.
+double relativeL1(const ImageRgba& a, const ImageRgba& reference, const std::vector<uint8_t>* mask = nullptr);
+// Flicker of a sequence of frames of a static scene: the mean absolute frame-to-frame change, relative
+// to the frames' mean level (the mean over consecutive pairs of relativeL1(frame i, frame i-1)).
+double flicker(const std::vector<ImageRgba>& frames);
+// After a change: the number of frames until every later frame is within `tolerance` (relativeL1) of
+// `converged`: 0 when the first frame already is; frames.size() when the sequence never settles.
+size_t settleFrames(const std::vector<ImageRgba>& frames, const ImageRgba& converged, double tolerance);
 // Mean RGB over the masked pixels.
 glm::dvec3 meanOver(const ImageRgba& a, const std::vector<uint8_t>* mask = nullptr);
 
