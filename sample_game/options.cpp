@@ -71,7 +71,8 @@ std::vector<gi::OptionRef> Options::giOptions() {
 std::string usage() {
   std::string u =
       "usage: dyngi_sample [options]\n"
-      "  --scene PATH|cornell|cornell-dynamic   scene to render (default cornell-dynamic)\n"
+      "  --scene PATH|NAME                      a .gltf/.glb file or a built-in scene: cornell, cornell-dynamic (default),\n"
+      "                                         two-rooms, two-rooms-door (a thin wall between two rooms: the leak test)\n"
       "  --headless                             render offscreen, no window\n"
       "  --size WxH                             render size (default 768x768)\n"
       "  --frames N                             frames to render (default: 60 headless, until closed windowed)\n"

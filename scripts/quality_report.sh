@@ -1,13 +1,20 @@
 #!/usr/bin/env bash
-# Prints the GI quality table (flicker, settle time after a change), technique by metric, as the render
-# test QualityFlickerAndSettleTimePerTechnique measures it (tests/render/quality_test.cpp; deterministic:
-# fixed time step and seeds). docs/QUALITY.md keeps the last table. Needs a build with tests:
+# Prints the GI quality tables, technique by metric, as the render tests measure them
+# (tests/render/quality_test.cpp; deterministic: fixed time step and seeds): flicker and settle time
+# after a change, and light leaking through a thin wall. docs/QUALITY.md keeps the last table. Needs a build with tests:
 #   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDYNGI_BUILD_TESTS=ON && cmake --build build -j"$(nproc)"
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${BIN:-build/bin/dyngi_render_tests}
 [ -x "$BIN" ] || { echo "quality_report.sh: $BIN not built (see the comment at the top)" >&2; exit 2; }
-cmd="$BIN --gtest_filter=RenderTest.QualityFlickerAndSettleTimePerTechnique"
+cmd="$BIN --gtest_filter=RenderTest.Quality*"
 echo "command: $cmd"
 out=$($cmd 2>&1) || { echo "$out" >&2; exit 1; }
-echo "$out" | sed -n 's/^quality| //p' | awk 'NR == 1 { print "| " $0 " |"; n = split($0, f, "|"); s = "|"; for (i = 0; i < n; ++i) s = s " --- |"; print s; next } { print "| " $0 " |" }'
+table() {  # the lines the tests print with prefix $1, as a Markdown table
+  echo "$out" | sed -n "s/^$1| //p" |
+    awk 'NR == 1 { print "| " $0 " |"; n = split($0, f, "|"); s = "|"; for (i = 0; i < n; ++i) s = s " --- |"; print s; next } { print "| " $0 " |" }'
+}
+echo
+table quality
+echo
+table quality-leak

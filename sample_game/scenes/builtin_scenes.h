@@ -18,9 +18,18 @@ struct CornellLayout {
   static constexpr float kWhite = 0.75f;
 };
 
+// Two rooms, x in [-2, 0] and [0, 2], y in [0, 2], z in [-1, 1], with a shared wall at x = 0 thinner
+// than two voxels at the default resolution; the spot in room A, the camera in room B facing the wall.
+// "two-rooms" is closed, "two-rooms-door" has a doorway: the leak test (docs/QUALITY.md).
+struct TwoRoomsLayout {
+  static constexpr float kWallThickness = 0.05f;  // m; a voxel is 4.4 m / 128 = 0.034 m at 128^3
+};
+
 bool isBuiltinScene(const std::string& name);
-// Builds `name` ("cornell" or "cornell-dynamic") into the world; adds a camera.
+// Builds `name` ("cornell", "cornell-dynamic", "two-rooms", "two-rooms-door") into the world; adds a camera.
 void buildBuiltinScene(const std::string& name, ecs::World& world, scene::AssetStore& assets);
+
+void buildTwoRooms(bool doorway, ecs::World& world, scene::AssetStore& assets);
 
 // Scripted benchmark scenes (--animate): the Cornell box with
 //  static           nothing moving;

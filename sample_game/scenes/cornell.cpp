@@ -10,7 +10,9 @@ namespace dyngi::sample {
 
 using namespace scene;
 
-bool isBuiltinScene(const std::string& name) { return name == "cornell" || name == "cornell-dynamic"; }
+bool isBuiltinScene(const std::string& name) {
+  return name == "cornell" || name == "cornell-dynamic" || name == "two-rooms" || name == "two-rooms-door";
+}
 
 namespace {
 Entity addMesh(ecs::World& w, AssetStore& assets, MeshData mesh, const glm::vec3& albedo, const Transform& t, bool dynamic,
@@ -31,6 +33,7 @@ Entity addMesh(ecs::World& w, AssetStore& assets, MeshData mesh, const glm::vec3
 }  // namespace
 
 void buildBuiltinScene(const std::string& name, ecs::World& w, AssetStore& assets) {
+  if (name == "two-rooms" || name == "two-rooms-door") return buildTwoRooms(name == "two-rooms-door", w, assets);
   const bool dynamic = name == "cornell-dynamic";
   const glm::vec3 white(CornellLayout::kWhite), red(0.63f, 0.065f, 0.05f), green(0.14f, 0.45f, 0.091f);
   // Walls: quads whose normal (U x V) faces into the room.

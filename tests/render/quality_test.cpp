@@ -8,6 +8,7 @@
 // it. Flicker is measured on both.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "render/gi_run.h"
@@ -65,6 +66,43 @@ SettleFigures settleAfter(render::VulkanContext& ctx, const gi::GiSettings& s, C
   return {render::settleFrames(after, converged, kSettleTolerance), render::relativeL1(after.front(), converged)};
 }
 }  // namespace
+
+// Room B's mean luminance (final image, indirect light) over the pixels that show room B's own surfaces
+// (not room A seen through the doorway): the G-buffer position beyond the shared wall.
+struct RoomLight {
+  double final = 0, indirect = 0;
+  size_t pixels = 0;  // how many pixels show room B
+};
+RoomLight roomB(render::VulkanContext& ctx, const gi::GiSettings& s, const std::string& scene) {
+  GiRun run(ctx, s, scene, kSize, kSize);
+  run.step(kConverge);
+  const Frame f = run.readFrame();
+  const render::ImageRgba indirect = run.indirect();
+  std::vector<uint8_t> mask(f.position.size(), 0);
+  for (size_t i = 0; i < mask.size(); ++i) mask[i] = f.position[i].w != 0.0f && f.position[i].x > 0.0f;  // room B, its side of the shared wall included
+  auto lum = [](const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
+  const size_t pixels = size_t(std::count(mask.begin(), mask.end(), uint8_t(1)));
+  return {lum(render::meanOver(f.hdr, &mask)), lum(render::meanOver(indirect, &mask)), pixels};
+}
+
+// Light leaking through a wall thinner than two voxels: room B (no light of its own) with the wall
+// closed against room B with a doorway in it. The goal (issue 17) is under 5 percent.
+TEST_F(RenderTest, QualityLeakThroughAThinWallPerTechnique) {
+  std::printf("quality-leak| technique | room B closed (final, indirect) | room B with a doorway (final, indirect) | leak final | leak indirect\n");
+  for (const Config& c : configs()) {
+    SCOPED_TRACE(c.label);
+    const RoomLight closed = roomB(context(), c.settings, "two-rooms");
+    const RoomLight door = roomB(context(), c.settings, "two-rooms-door");
+    ASSERT_GT(closed.pixels, size_t(kSize * kSize / 2)) << "the camera sees room B";
+    ASSERT_GT(door.pixels, size_t(kSize * kSize / 2));
+    ASSERT_GT(door.indirect, 0.0) << "light reaches room B through the doorway";
+    const double leakFinal = closed.final / door.final, leakIndirect = closed.indirect / door.indirect;
+    std::printf("quality-leak| %s | %.5f, %.5f | %.5f, %.5f | %.2f%% | %.2f%%\n", c.label, closed.final, closed.indirect, door.final,
+                door.indirect, 100 * leakFinal, 100 * leakIndirect);
+    EXPECT_LT(leakFinal, 0.05);
+    EXPECT_LT(leakIndirect, 0.05);
+  }
+}
 
 TEST_F(RenderTest, QualityFlickerAndSettleTimePerTechnique) {
   std::printf("quality| technique | flicker final | flicker indirect | light on: frames, first-frame error | light moved 0.6 m | box moved into the light\n");
