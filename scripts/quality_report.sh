@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Prints the GI quality tables, technique by metric, as the render tests measure them
 # (tests/render/quality_test.cpp; deterministic: fixed time step and seeds): flicker and settle time
-# after a change, and light leaking through a thin wall. docs/QUALITY.md keeps the last table. Needs a build with tests:
+# after a change, light leaking through a thin wall, ghosting behind a moving box. docs/QUALITY.md keeps the last table. Needs a build with tests:
 #   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDYNGI_BUILD_TESTS=ON && cmake --build build -j"$(nproc)"
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,3 +18,5 @@ echo
 table quality
 echo
 table quality-leak
+echo
+table quality-ghost
