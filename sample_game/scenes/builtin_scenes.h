@@ -4,6 +4,7 @@
 
 #include "dyngi/engine/ecs/world.h"
 #include "dyngi/engine/scene/assets.h"
+#include "dyngi/engine/scene/components.h"
 
 namespace dyngi::sample {
 
@@ -26,6 +27,10 @@ struct TwoRoomsLayout {
 };
 
 bool isBuiltinScene(const std::string& name);
+// One mesh entity of a built-in scene: transform, mesh, a diffuse material of `albedo`, a name, and the
+// static or dynamic tag.
+scene::Entity addSceneMesh(ecs::World& world, scene::AssetStore& assets, scene::MeshData mesh, const glm::vec3& albedo,
+                           const scene::Transform& transform, bool dynamic, const char* name);
 // Builds `name` ("cornell", "cornell-dynamic", "two-rooms", "two-rooms-door") into the world; adds a camera.
 void buildBuiltinScene(const std::string& name, ecs::World& world, scene::AssetStore& assets);
 

@@ -14,9 +14,8 @@ bool isBuiltinScene(const std::string& name) {
   return name == "cornell" || name == "cornell-dynamic" || name == "two-rooms" || name == "two-rooms-door";
 }
 
-namespace {
-Entity addMesh(ecs::World& w, AssetStore& assets, MeshData mesh, const glm::vec3& albedo, const Transform& t, bool dynamic,
-               const char* name) {
+Entity addSceneMesh(ecs::World& w, AssetStore& assets, MeshData mesh, const glm::vec3& albedo, const Transform& t, bool dynamic,
+                    const char* name) {
   Entity e = w.create();
   mesh.name = name;
   w.add(e, t);
@@ -30,27 +29,26 @@ Entity addMesh(ecs::World& w, AssetStore& assets, MeshData mesh, const glm::vec3
   else w.add(e, StaticTag{});
   return e;
 }
-}  // namespace
 
 void buildBuiltinScene(const std::string& name, ecs::World& w, AssetStore& assets) {
   if (name == "two-rooms" || name == "two-rooms-door") return buildTwoRooms(name == "two-rooms-door", w, assets);
   const bool dynamic = name == "cornell-dynamic";
   const glm::vec3 white(CornellLayout::kWhite), red(0.63f, 0.065f, 0.05f), green(0.14f, 0.45f, 0.091f);
   // Walls: quads whose normal (U x V) faces into the room.
-  addMesh(w, assets, makeQuad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}), white, {}, false, "floor");
-  addMesh(w, assets, makeQuad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}), white, {}, false, "ceiling");
-  addMesh(w, assets, makeQuad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}), white, {}, false, "back_wall");
-  addMesh(w, assets, makeQuad({-1, 0, 1}, {0, 0, -2}, {0, 2, 0}), red, {}, false, "left_wall_red");
-  addMesh(w, assets, makeQuad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}), green, {}, false, "right_wall_green");
+  addSceneMesh(w, assets, makeQuad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}), white, {}, false, "floor");
+  addSceneMesh(w, assets, makeQuad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}), white, {}, false, "ceiling");
+  addSceneMesh(w, assets, makeQuad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}), white, {}, false, "back_wall");
+  addSceneMesh(w, assets, makeQuad({-1, 0, 1}, {0, 0, -2}, {0, 2, 0}), red, {}, false, "left_wall_red");
+  addSceneMesh(w, assets, makeQuad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}), green, {}, false, "right_wall_green");
 
   Transform shortBox;
   shortBox.translation = {0.35f, 0.3f, 0.3f};
   shortBox.rotation = glm::angleAxis(glm::radians(-17.0f), glm::vec3(0, 1, 0));
-  Entity shortE = addMesh(w, assets, makeBox({0.3f, 0.3f, 0.3f}), white, shortBox, dynamic, "short_box");
+  Entity shortE = addSceneMesh(w, assets, makeBox({0.3f, 0.3f, 0.3f}), white, shortBox, dynamic, "short_box");
   Transform tallBox;
   tallBox.translation = {-0.35f, 0.6f, -0.35f};
   tallBox.rotation = glm::angleAxis(glm::radians(17.0f), glm::vec3(0, 1, 0));
-  Entity tallE = addMesh(w, assets, makeBox({0.3f, 0.6f, 0.3f}), white, tallBox, dynamic, "tall_box");
+  Entity tallE = addSceneMesh(w, assets, makeBox({0.3f, 0.6f, 0.3f}), white, tallBox, dynamic, "tall_box");
 
   Entity spot = w.create();
   Transform st;
@@ -143,7 +141,7 @@ std::string buildAnimatedScene(const std::string& name, ecs::World& w, AssetStor
       Transform ht;
       ht.translation = {i == 0 ? -0.13f : 0.13f, 0.0f, 0.0f};
       ht.parent = pivot;
-      addMesh(w, assets, makeBox({0.13f, 0.2f, 0.2f}), colours[i], ht, true, i == 0 ? "rotating_red" : "rotating_blue");
+      addSceneMesh(w, assets, makeBox({0.13f, 0.2f, 0.2f}), colours[i], ht, true, i == 0 ? "rotating_red" : "rotating_blue");
     }
     return {};
   }

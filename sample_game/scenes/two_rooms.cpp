@@ -12,19 +12,9 @@ using namespace scene;
 
 namespace {
 Entity addStatic(ecs::World& w, AssetStore& assets, MeshData mesh, const glm::vec3& albedo, const glm::vec3& at, const char* name) {
-  Entity e = w.create();
-  mesh.name = name;
   Transform t;
   t.translation = at;
-  w.add(e, t);
-  w.add(e, WorldTransform{t.matrix()});
-  w.add(e, MeshInstance{assets.addMesh(std::move(mesh)), true});
-  Material m;
-  m.baseColor = glm::vec4(albedo, 1.0f);
-  w.add(e, m);
-  w.add(e, Name{name});
-  w.add(e, StaticTag{});
-  return e;
+  return addSceneMesh(w, assets, std::move(mesh), albedo, t, /*dynamic=*/false, name);
 }
 }  // namespace
 
