@@ -59,15 +59,6 @@ std::string notForThisRun(const Options& o, const std::string& flag) {
 
 }  // namespace
 
-std::vector<gi::OptionRef> Options::giOptions() {
-  std::vector<gi::OptionRef> refs;
-  if (usesGiSystem())
-    if (const gi::TechniqueEntry* e = gi::findTechnique(giSettings.technique)) append(refs, e->options(giSettings));
-  if (gi == "path") append(refs, gi::bindOptions(pathTracer));
-  if (usesGiSystem() || view == "voxels" || view == "svo-steps") append(refs, gi::bindOptions(giSettings.voxels));
-  return refs;
-}
-
 std::string usage() {
   std::string u =
       "usage: dyngi_sample [options]\n"

@@ -42,8 +42,6 @@ struct Options {
   gi::GiSettings giSettings;
   gi::PathTracerSettings pathTracer;
   bool usesGiSystem() const { return gi == "svo" || gi == "bvh"; }
-  // The tables this run reads (bound to giSettings / pathTracer): what --stats lists under "settings".
-  std::vector<gi::OptionRef> giOptions();
 };
 
 std::string usage();
