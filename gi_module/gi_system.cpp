@@ -15,6 +15,7 @@ class GiFrameUpdate final : public render::RenderFeature {
   explicit GiFrameUpdate(GiSystem& gi) : gi_(gi) {}
   const char* name() const override { return "gi_frame_update"; }
   void prepare(render::VulkanContext&, const render::RenderSnapshot& snapshot) override { gi_.updateTechnique(snapshot); }
+  void frameFinished(render::VulkanContext&) override { gi_.frameTimed(); }
   bool record(render::FrameContext&) override { return false; }
 
  private:
@@ -34,11 +35,13 @@ GiSystem::GiSystem(render::VulkanContext& ctx, const scene::AssetStore& assets, 
   }
   technique_ = entry_->create(TechniqueServices{ctx, assets, *bvh_, voxels_.get()}, s);
   frameUpdate_ = std::make_unique<GiFrameUpdate>(*this);
+  if (s.budget.budgetMs > 0.0f) budget_ = std::make_unique<BudgetController>(s.budget.budgetMs, technique_->qualityKnobs());
 }
 
 GiSystem::~GiSystem() = default;
 
 void GiSystem::attach(render::Renderer& renderer) {
+  renderer_ = &renderer;
   renderer.addFeature(frameUpdate_.get());
   if (voxels_) renderer.addFeature(voxels_.get());
   for (render::RenderFeature* f : technique_->features()) renderer.addFeature(f);
@@ -56,6 +59,31 @@ void GiSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {
   // 4. The technique's CPU work waits for the renderer's snapshot (updateTechnique).
   pending_.merge(changes);
   syncMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::vector<const char*> GiSystem::timedSections() const {
+  std::vector<const char*> names;
+  if (voxels_) names = VoxelScene::timedSections();
+  for (const char* n : technique_->timedSections()) names.push_back(n);
+  return names;
+}
+
+double GiSystem::measureLastFrame() const {
+  if (!renderer_) return -1;
+  const std::vector<const char*> sections = timedSections();
+  double ms = 0;
+  bool timed = false;
+  for (const auto& [name, gpuMs] : renderer_->lastStats().gpuMs)
+    for (const char* s : sections)
+      if (name == s) ms += gpuMs, timed = true;
+  if (!timed) return -1;  // no frame rendered yet, or timestamps off
+  for (const auto& [name, cpuMs] : technique_->cpuMs()) ms += cpuMs;
+  return ms;
+}
+
+void GiSystem::frameTimed() {
+  giMs_ = measureLastFrame();
+  if (budget_ && giMs_ >= 0) budget_->onFrame(giMs_);
 }
 
 void GiSystem::updateTechnique(const render::RenderSnapshot& snapshot) {
@@ -88,6 +116,7 @@ GiStats GiSystem::stats() const {
     s.temporalSet = t->lastRenderedSet();
   }
   s.syncMs = syncMs_;
+  s.giMs = giMs_;
   return s;
 }
 

@@ -37,8 +37,10 @@ void append(std::vector<gi::OptionRef>& to, std::vector<gi::OptionRef> from) { t
 // Every option this run can take: the technique's, the path tracer's (--gi path), the voxel scene's.
 std::vector<gi::OptionRef> acceptedOptions(Options& o) {
   std::vector<gi::OptionRef> refs;
-  if (o.usesGiSystem())
+  if (o.usesGiSystem()) {
     if (const gi::TechniqueEntry* e = gi::findTechnique(o.giSettings.technique)) append(refs, e->options(o.giSettings));
+    append(refs, gi::bindOptions(o.giSettings.budget));
+  }
   if (o.gi == "path") append(refs, gi::bindOptions(o.pathTracer));
   append(refs, gi::bindOptions(o.giSettings.voxels));
   return refs;
@@ -54,6 +56,8 @@ std::string notForThisRun(const Options& o, const std::string& flag) {
   gi::PathTracerSettings pt;
   for (const gi::OptionRef& r : gi::bindOptions(pt))
     if (name == r.spec->name) return flag + " is an option of --gi path, not of --gi " + o.gi;
+  for (const gi::OptionRef& r : gi::bindOptions(probe.budget))
+    if (name == r.spec->name) return flag + " is an option of --gi svo | --gi bvh, not of --gi " + o.gi;
   return "unknown option '" + flag + "' (see --help)";
 }
 
@@ -71,7 +75,8 @@ std::string usage() {
       "                                         bvh (VPLs, Embree visibility on the CPU) | path (reference path tracer)\n"
       "  --vpl-source paths|rsm                 incremental light paths (default) or per-frame RSM sampling (svo)\n"
       "  --animate NAME                         static | moving-spot | rotating-object | moving-camera |\n"
-      "                                         walking-fox | fox-and-spot (benchmark and soak scenes)\n"
+      "                                         walking-fox | fox-and-spot | fox-spot-light-on (benchmark, soak and\n"
+      "                                         GI budget scenes: the last switches a second spot on at 4 s)\n"
       "  --out FILE.png                         write the last frame (tone-mapped, sRGB)\n"
       "  --hdr-out FILE.exr                     write the last frame's linear radiance before exposure\n"
       "  --stats FILE.json                      write timings (medians over frames after warm-up) and the settings used\n"
@@ -96,6 +101,7 @@ std::string usage() {
   gi::PathTracerSettings pt;
   u += "\nReference path tracer (--gi path):\n" + gi::optionHelp(gi::bindOptions(pt));
   u += "\nVoxel scene (--gi svo, --view voxels | svo-steps):\n" + gi::optionHelp(gi::bindOptions(defaults.voxels));
+  u += "\nGI budget (--gi svo | bvh; docs/QUALITY.md, \"The GI budget\"):\n" + gi::optionHelp(gi::bindOptions(defaults.budget));
   u += "\nWindowed: WASD move, hold the right mouse button to look, Q/E down/up, Esc quits.\n";
   return u;
 }
@@ -165,9 +171,9 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
     } else if (a == "--animate") {
       if (!value(o.animate)) return std::nullopt;
       if (o.animate != "static" && o.animate != "moving-spot" && o.animate != "rotating-object" && o.animate != "moving-camera" &&
-          o.animate != "walking-fox" && o.animate != "fox-and-spot") {
+          o.animate != "walking-fox" && o.animate != "fox-and-spot" && o.animate != "fox-spot-light-on") {
         error = "unknown --animate '" + o.animate +
-                "' (available: static, moving-spot, rotating-object, moving-camera, walking-fox, fox-and-spot)";
+                "' (available: static, moving-spot, rotating-object, moving-camera, walking-fox, fox-and-spot, fox-spot-light-on)";
         return std::nullopt;
       }
     } else if (a == "--exposure") {

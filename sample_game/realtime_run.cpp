@@ -75,6 +75,19 @@ void reportGi(const Options& o, const GiSetup& g, RunStats& stats) {
     }
     for (auto& [section, values] : gi->technique().statsSections())
       for (auto& [key, value] : values) stats.sections[section][key] = value;
+    if (const gi::BudgetController* b = gi->budget()) {
+      RunStats::Budget out;
+      out.budgetMs = b->budgetMs();
+      out.met = b->budgetMet();
+      out.level = b->level();
+      out.floorLevel = b->floorLevel();
+      out.knobs = b->knobValues();
+      for (const gi::BudgetController::Change& c : b->changes()) out.trace.push_back({c.frame, c.level, c.medianMs, b->valuesAt(c.level)});
+      stats.budget = out;
+      if (!out.met)
+        std::fprintf(stderr, "dyngi_sample: note: the GI budget of %g ms was not met: the GI costs more with every knob at its floor\n",
+                     out.budgetMs);
+    }
   }
   if (const gi::VoxelScene* voxels = g.voxels) {
     const gi::VoxelStats& v = voxels->stats();
@@ -182,7 +195,9 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
       stats.cpuStageMs["render_record"].push(fs.cpuRecordMs);
       stats.cpuStageMs["render_wait"].push(fs.cpuWaitMs);
       if (gi.system) {
-        stats.cpuStageMs["gi_bvh_update"].push(gi.system->stats().bvh.updateMs);
+        const gi::GiStats giStats = gi.system->stats();
+        stats.cpuStageMs["gi_bvh_update"].push(giStats.bvh.updateMs);
+        if (giStats.giMs >= 0) stats.giMs.push(giStats.giMs);
         for (const auto& [name, ms] : gi.system->technique().cpuMs()) stats.cpuStageMs[name].push(ms);
       }
     }

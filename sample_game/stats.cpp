@@ -61,6 +61,24 @@ std::string RunStats::toJson() const {
     for (auto& [name, v] : values) o[name] = number(v);
     j[key] = o;
   }
+  if (!giMs.empty()) j["gi_ms"] = {{"median", number(giMs.percentile(0.5))}, {"p95", number(giMs.percentile(0.95))}};
+  if (budget) {
+    auto knobs = [](const std::vector<std::pair<std::string, double>>& values) {
+      nlohmann::ordered_json o = nlohmann::ordered_json::object();
+      for (auto& [name, v] : values) o[name] = number(v);
+      return o;
+    };
+    nlohmann::ordered_json b;
+    b["budget_ms"] = budget->budgetMs;
+    b["met"] = budget->met;
+    b["level"] = budget->level;
+    b["floor_level"] = budget->floorLevel;
+    b["knobs"] = knobs(budget->knobs);
+    b["trace"] = nlohmann::ordered_json::array();
+    for (const BudgetStep& step : budget->trace)
+      b["trace"].push_back({{"frame", step.frame}, {"level", step.level}, {"median_ms", number(step.medianMs)}, {"knobs", knobs(step.knobs)}});
+    j["budget"] = b;
+  }
   // Invalid UTF-8 (a scene path from the command line) is replaced, not thrown.
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }

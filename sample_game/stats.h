@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,23 @@ struct RunStats {
   std::map<std::string, SampleSeries> cpuStageMs;  // system / CPU step -> per frame
   std::map<std::string, double> scalars;                  // counts and sizes
   std::map<std::string, std::map<std::string, double>> sections;  // extra objects, e.g. "vpl": {...}
+  SampleSeries giMs;  // the GI's measured cost per frame (GPU sections + the technique's CPU sections)
+  // A GI budget's run: its settings and state at the end, and each change of quality level with the
+  // knob values it set ("budget" in the JSON; absent without --gi-budget-ms).
+  struct BudgetStep {
+    uint64_t frame;
+    uint32_t level;
+    double medianMs;  // the measured median that led to it
+    std::vector<std::pair<std::string, double>> knobs;
+  };
+  struct Budget {
+    double budgetMs = 0;
+    bool met = true;
+    uint32_t level = 0, floorLevel = 0;
+    std::vector<std::pair<std::string, double>> knobs;  // at the end
+    std::vector<BudgetStep> trace;
+  };
+  std::optional<Budget> budget;
 
   std::string toJson() const;
   std::string table() const;  // human-readable per-stage medians

@@ -50,6 +50,12 @@ void ScriptedMotionSystem::run(ecs::World& world, const ecs::SystemContext& ctx)
       t.rotation = rot;
     }
   }
+  std::vector<std::pair<Entity, bool>> switches;
+  world.each<ScriptedLightSwitch, Light>([&](Entity e, const ScriptedLightSwitch& s, const Light& l) {
+    const bool on = ctx.time.time >= s.onAt && ctx.time.time < s.offAt;
+    if (on != l.enabled) switches.push_back({e, on});
+  });
+  for (auto& [e, on] : switches) world.write<Light>(e).enabled = on;
 }
 
 }  // namespace dyngi::scene

@@ -41,8 +41,11 @@ void buildTwoRooms(bool doorway, ecs::World& world, scene::AssetStore& assets);
 //  moving-spot      the spot sliding back and forth over the floor;
 //  rotating-object  a two-coloured object (red and blue halves) turning under the spot;
 //  walking-fox      the glTF fox walking on the floor (needs `sharedScenesDir`/Fox.glb);
-//  fox-and-spot     the walking fox under the moving spot (the soak scene, scripts/soak.sh).
+//  fox-and-spot     the walking fox under the moving spot (the soak scene, scripts/soak.sh);
+//  fox-spot-light-on  fox-and-spot, and a second spot switched on at kSecondLightOnAt seconds (the GI
+//                   budget's load change, scripts/budget_run.sh).
 // Returns an empty string on success, else the problem.
+constexpr double kSecondLightOnAt = 4.0;  // seconds of scripted time (frame 240 of a headless run)
 std::string buildAnimatedScene(const std::string& name, ecs::World& world, scene::AssetStore& assets,
                                const std::string& sharedScenesDir);
 

@@ -151,6 +151,26 @@ std::string buildAnimatedScene(const std::string& name, ecs::World& w, AssetStor
     oscillateAll<Light>(w, {0.6f, 0.0f, 0.0f}, 0.25f);
     return {};
   }
+  if (name == "fox-spot-light-on") {  // the GI budget's load change: fox-and-spot, then a second spot at 4 s
+    std::string err = buildAnimatedScene("fox-and-spot", w, assets, sharedScenesDir);
+    if (!err.empty()) return err;
+    Entity second = w.create();
+    Transform t;
+    t.translation = {-0.5f, CornellLayout::kSpotHeight, 0.4f};
+    t.rotation = glm::quatLookAtRH(glm::normalize(glm::vec3(0.4f, -1.0f, -0.3f)), glm::vec3(0, 1, 0));
+    w.add(second, t);
+    Light light;
+    light.type = LightType::Spot;
+    light.color = {1.0f, 0.85f, 0.6f};
+    light.intensity = CornellLayout::kSpotIntensity;
+    light.outerConeAngle = glm::radians(CornellLayout::kSpotOuterDeg);
+    light.innerConeAngle = glm::radians(CornellLayout::kSpotInnerDeg);
+    light.enabled = false;
+    w.add(second, light);
+    w.add(second, ScriptedLightSwitch{kSecondLightOnAt});
+    w.add(second, Name{"second_spot"});
+    return {};
+  }
   if (name == "walking-fox") {
     std::string path = sharedScenesDir + "/Fox.glb";
     std::vector<Entity> existing;

@@ -2,8 +2,10 @@
 // s = (x mod K) + K (y mod K) and gathers only VPLs s, s + K^2, ...; one workgroup covers pixels of one
 // sub-image, so its threads walk the same VPLs (coherent VPL and SVO reads). E = sum flux G V with
 // G = cos_x cos_y / max(B, d^2) and V from the SVO-restart march or precomputed bits; dim or back-facing
-// VPLs are skipped before marching. The light is K^2 E / pi^2, so the K x K filter's average is the full
-// sum's E / pi (what the lighting pass multiplies by albedo).
+// VPLs are skipped before marching. The light is (N / n_s) E / pi^2 for a sub-image that gathered n_s of
+// the N VPLs it stands for (N = estimatedCount; n_s = N / K^2 when N is a multiple of K^2): every
+// sub-image estimates the full sum's E / pi (what the lighting pass multiplies by albedo), so the K x K
+// filter's average does too, even where an edge leaves it only some sub-images.
 //
 // A gather shader (gather.comp, or a technique's own such as the temporal technique's
 // temporal_gather.comp) includes this file, may declare bindings from DYNGI_GATHER_FIRST_TECHNIQUE_BINDING
@@ -81,7 +83,8 @@ bool gatherPixel(out ivec2 px, out vec3 light, out float depth, out uvec2 packed
       ++m;
     } while (i < pc.vplCount);
   }
-  light = float(K2) * e / (PI * PI);
+  const uint gathered = s < pc.vplCount ? (pc.vplCount - s + K2 - 1u) / K2 : 0u;  // n_s
+  light = gathered > 0u ? (float(pc.estimatedCount) / float(gathered)) * e / (PI * PI) : vec3(0.0);
   packedNormal = packFilterNormal(nx);
   return true;
 }

@@ -219,7 +219,11 @@ struct GatherPush {
   uint svoDepth;
   uint firstVpl;        // offset into the VPL buffer
   uint bitsPerPixel;    // DYNGI_VISIBILITY_BITS: visibility bits per pixel
-  uint pad0, pad1;
+  // The VPLs whose summed light the gathered ones estimate: vplCount, or a temporal set's size when
+  // a GI budget gathers an evenly spread subset of it (each sub-image's sum is scaled by this over the
+  // VPLs it gathered, so every sub-image is an unbiased estimate of the whole).
+  uint estimatedCount;
+  uint pad0;
 };
 
 #define DYNGI_MAX_RSM_LAYERS 24

@@ -255,6 +255,7 @@ bool ManyLights::record(render::FrameContext& frame) {
     pc.liftVoxels = settings_.vpl.liftVoxels;
     pc.voxelResolution = float(vol.resolution);
     pc.vplCount = vplTotal;
+    pc.estimatedCount = vplTotal;  // every VPL of the frame is gathered (its flux is its share of the lights')
     pc.interleave = K;
     pc.visibility = settings_.visibility ? DYNGI_VISIBILITY_SVO : DYNGI_VISIBILITY_NONE;
     pc.svoDepth = vol.depth();

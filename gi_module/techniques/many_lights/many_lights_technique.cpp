@@ -33,6 +33,15 @@ class ManyLightsTechnique final : public Technique {
     return true;
   }
   std::vector<const char*> timedSections() const override { return {"rsm", "vpl_generate", "vpl_bounce", "indirect", "filter"}; }
+  // VPLs per frame: cost proportional to them in every stage after the RSMs.
+  std::vector<QualityKnob> qualityKnobs() override {
+    const uint32_t bounces = feature_.settings().vpl.bounces;
+    return {{"vpls_per_frame", geometricLevels(feature_.vplCount(), kBudgetFloorFraction, kBudgetStepRatio, bounces),
+             [this](double v) { feature_.setVplsPerFrame(uint32_t(v)); }}};
+  }
+  std::map<std::string, std::map<std::string, double>> statsSections() const override {
+    return {{"vpl", {{"count", feature_.vplCount()}}}};
+  }
   ManyLights& feature() { return feature_; }
 
  private:

@@ -21,6 +21,7 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
   if (settings.visibility == VisibilityBackend::Bvh && !bvh) throw std::invalid_argument("BVH visibility needs an EmbreeScene");
   sets_ = std::min(paths.settings().temporalSets, uint32_t(DYNGI_MAX_TEMPORAL_SETS));
   perSet_ = (paths.settings().vpl.vplCount + sets_ - 1) / sets_;
+  gathered_ = perSet_;
   lastRendered_.assign(sets_, -1);
   const Binding accumulate[] = {{DYNGI_TEMPORAL_GATHER_BINDING_SET_SAMPLES, kStorageImage, kCS},
                                 {DYNGI_TEMPORAL_GATHER_BINDING_SUMS, kStorageImage, kCS},
@@ -85,11 +86,13 @@ void TemporalIndirect::prepare(render::VulkanContext&, const render::RenderSnaps
       if (best < 0 || lastRendered_[s] < lastRendered_[size_t(best)]) best = int(s);
     }
   currentSet_ = uint32_t(best);
-  // Upload that set's VPLs (VPLs[T i + k]).
-  std::vector<gpu::GpuVpl> gpuVpls(perSet_);
-  setVpls_.assign(perSet_, TemporalVpl{{}, {}, false});
+  // Upload that set's VPLs (VPLs[T i + k]), or an evenly spread subset of them (setVplsPerFrame).
+  std::vector<gpu::GpuVpl> gpuVpls(gathered_);
+  setVpls_.assign(gathered_, TemporalVpl{{}, {}, false});
   const auto& all = paths_.vpls();
-  for (uint32_t i = 0; i < perSet_; ++i) {
+  const double stride = double(perSet_) / double(gathered_);
+  for (uint32_t j = 0; j < gathered_; ++j) {
+    const uint32_t i = std::min(perSet_ - 1, uint32_t(double(j) * stride));
     uint32_t index = i * sets_ + currentSet_;
     gpu::GpuVpl g{};
     g.position = glm::vec4(0, 0, 0, -1);
@@ -99,9 +102,9 @@ void TemporalIndirect::prepare(render::VulkanContext&, const render::RenderSnaps
       g.position = glm::vec4(v.position, float(index % paths_.bounces()));
       g.normal = glm::vec4(v.normal, float(index / paths_.bounces()));
       g.flux = glm::vec4(v.flux, lum);
-      setVpls_[i] = {v.position, v.normal, lum > 0.0f};
+      setVpls_[j] = {v.position, v.normal, lum > 0.0f};
     }
-    gpuVpls[i] = g;
+    gpuVpls[j] = g;
   }
   vpls_.upload(gpuVpls.data(), gpuVpls.size() * sizeof(gpu::GpuVpl));
 }
@@ -130,7 +133,7 @@ void TemporalIndirect::computeBvhVisibility(render::FrameContext& frame, uint32_
         glm::vec3 n = glm::normalize(glm::vec3(nrm[p]));
         glm::vec3 from = glm::vec3(pos[p]) + n * lift;
         uint32_t s = (x % K) + K * (y % K);
-        for (uint32_t m = 0, i = s; i < perSet_; i += K2, ++m) {
+        for (uint32_t m = 0, i = s; i < gathered_; i += K2, ++m) {
           if (!setVpls_[i].valid) continue;
           segs.push_back({from, setVpls_[i].position + setVpls_[i].normal * lift});
           bitIndex.push_back(p * perPixel + m);
@@ -152,7 +155,7 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
   if (!accumulated_.valid()) return false;
   if (settings_.visibility == VisibilityBackend::Svo && !voxels_->hasVolume()) return false;
   const uint32_t K = interleave(), K2 = K * K;
-  const uint32_t perPixel = (perSet_ + K2 - 1) / K2;
+  const uint32_t perPixel = (gathered_ + K2 - 1) / K2;
   // (No ScopedPass here: the mid-frame submit would split a debug label across command buffers; the
   // CPU time is reported as lastBvhVisibilityMs.)
   if (settings_.visibility == VisibilityBackend::Bvh) computeBvhVisibility(frame, perPixel);
@@ -190,7 +193,8 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     }
     pc.distanceClamp = settings_.vpl.distanceClamp;
     pc.luminanceThreshold = settings_.vpl.luminanceThreshold;
-    pc.vplCount = perSet_;
+    pc.vplCount = gathered_;
+    pc.estimatedCount = perSet_;
     pc.interleave = K;
     if (settings_.visibility == VisibilityBackend::Bvh) pc.visibility = DYNGI_VISIBILITY_BITS;
     if (settings_.visibility == VisibilityBackend::None) pc.visibility = DYNGI_VISIBILITY_NONE;

@@ -3,6 +3,7 @@
 // Techniques include this (not gi_system.h) to find their options in it.
 #include <string>
 
+#include "dyngi/gi/budget_controller.h"
 #include "dyngi/gi/many_lights_options.h"
 #include "dyngi/gi/temporal_options.h"
 #include "dyngi/gi/voxel_scene.h"
@@ -15,6 +16,7 @@ struct GiSettings {
   VoxelSettings voxels;                // the voxel scene, for techniques that use one (resolution)
   ManyLightsOptions manyLights;
   TemporalOptions temporal;
+  BudgetOptions budget;                // off by default: a GI budget in milliseconds (budget_controller.h)
 };
 
 }  // namespace dyngi::gi

@@ -15,6 +15,7 @@
 
 #include "dyngi/engine/ecs/scheduler.h"
 #include "dyngi/engine/render/renderer.h"
+#include "dyngi/gi/budget_controller.h"
 #include "dyngi/gi/bvh.h"
 #include "dyngi/gi/change_set.h"
 #include "dyngi/gi/gi_settings.h"
@@ -33,6 +34,9 @@ struct GiStats {
   double syncMs = 0;           // the whole CPU side of run()
   double bvhVisibilityMs = 0;  // Embree visibility of the last frame (BVH backend)
   uint32_t temporalSet = 0;    // the set gathered last frame
+  // The GI's cost of the last frame rendered: its GPU sections (voxel scene and technique) plus the
+  // technique's CPU sections (cpuMs); what a GI budget holds. -1 before the first timed frame.
+  double giMs = -1;
 };
 
 class GiSystem final : public ecs::System {
@@ -57,6 +61,10 @@ class GiSystem final : public ecs::System {
   ManyLights* manyLights();
   // The VPL count the technique uses: its options' count rounded down to a multiple of the bounces.
   uint32_t effectiveVplCount() const;
+  // The GI budget's controller, when GiSettings::budget asks for one.
+  const BudgetController* budget() const { return budget_.get(); }
+  // Every GPU section the GI times: the voxel scene's (when it has one) and the technique's.
+  std::vector<const char*> timedSections() const;
 
  private:
   template <class F>
@@ -69,6 +77,10 @@ class GiSystem final : public ecs::System {
   friend class GiFrameUpdate;
   // The technique's CPU work on the renderer's snapshot, with every change since the last such call.
   void updateTechnique(const render::RenderSnapshot& snapshot);
+  // After the frame's fence: its GI cost (GiStats::giMs) to the budget controller, whose knob changes
+  // apply from the next frame.
+  void frameTimed();
+  double measureLastFrame() const;  // the GI's cost in the renderer's last timed frame, or -1
 
   const scene::AssetStore& assets_;
   GiSettings settings_;
@@ -78,6 +90,9 @@ class GiSystem final : public ecs::System {
   std::unique_ptr<VoxelSyncSystem> voxelSync_;
   std::unique_ptr<Technique> technique_;
   std::unique_ptr<render::RenderFeature> frameUpdate_;  // attached first: calls updateTechnique
+  const render::Renderer* renderer_ = nullptr;           // whose timings the budget reads (attach)
+  std::unique_ptr<BudgetController> budget_;
+  double giMs_ = -1;
   ChangeTracker changes_;  // the one change set per frame
   ChangeSet pending_;      // changes not yet handed to the technique (run() more often than render())
   double syncMs_ = 0;      // run() plus the last updateTechnique()

@@ -28,8 +28,13 @@ class ManyLights final : public render::RenderFeature {
   void resize(render::VulkanContext& ctx, uint32_t width, uint32_t height) override;
 
   ManyLightsOptions& settings() { return settings_; }
-  // VPLs per frame as used: the requested count rounded down to a multiple of the bounces.
-  uint32_t vplCount() const { return settings_.vpl.effectiveVplCount(); }
+  // VPLs per frame as used: the requested count rounded down to a multiple of the bounces, or fewer
+  // while a GI budget lowers it (setVplsPerFrame; 0 gives the requested count back).
+  uint32_t vplCount() const {
+    const uint32_t requested = settings_.vpl.effectiveVplCount(), b = std::clamp(settings_.vpl.bounces, 1u, 3u);
+    return perFrame_ ? std::clamp(perFrame_ / b * b, b, requested) : requested;
+  }
+  void setVplsPerFrame(uint32_t count) { perFrame_ = count; }
 
  private:
   friend std::vector<VplReadback> readbackVpls(ManyLights&);  // tests (gi_module/testing)
@@ -39,6 +44,7 @@ class ManyLights final : public render::RenderFeature {
   VoxelScene& voxels_;
   ManyLightsOptions settings_;
   uint32_t rsmLayers_ = 0, rsmLayersUsed_ = 0, perBounce_ = 0;
+  uint32_t perFrame_ = 0;  // a GI budget's VPL count (0: the options')
   render::Image rsmPosition_, rsmNormal_, rsmFlux_, rsmDepth_;
   render::Buffer layers_, lights_, rowPrefix_, rowCdf_, vpls_;
   render::Image raw_;

@@ -15,6 +15,7 @@
 #include "dyngi/engine/render/render_feature.h"
 #include "dyngi/engine/render/snapshot.h"
 #include "dyngi/engine/scene/assets.h"
+#include "dyngi/gi/budget_controller.h"
 #include "dyngi/gi/change_set.h"
 #include "dyngi/gi/options.h"
 
@@ -56,6 +57,9 @@ class Technique {
   virtual std::map<std::string, double> cpuMs() const { return {}; }
   // Its own figures for the stats JSON: section name -> (key -> value).
   virtual std::map<std::string, std::map<std::string, double>> statsSections() const { return {}; }
+  // The knobs a GI budget (GiSettings::budget) may lower at run time, in the order they are lowered:
+  // the one whose loss shows least first. Level 0 of each is its value in the technique's options.
+  virtual std::vector<QualityKnob> qualityKnobs() { return {}; }
 };
 
 // One registered technique.

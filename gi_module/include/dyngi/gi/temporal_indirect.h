@@ -48,6 +48,12 @@ class TemporalIndirect final : public render::RenderFeature {
   TemporalOptions& settings() { return settings_; }
   VplPaths& paths() { return paths_; }
   uint32_t lastRenderedSet() const { return currentSet_; }
+  // VPLs gathered per frame: a set's VPLs (VPLs / T) by default. Fewer (a GI budget's knob) gathers an
+  // evenly spread subset of each set, standing for the whole set (GatherPush::estimatedCount: unbiased,
+  // noisier).
+  uint32_t setSize() const { return perSet_; }
+  uint32_t vplsPerFrame() const { return gathered_; }
+  void setVplsPerFrame(uint32_t count) { gathered_ = std::clamp(count, 1u, perSet_); }
   uint32_t setsRendered() const;  // sets rendered at least once
   double lastBvhVisibilityMs() const { return bvhMs_; }
 
@@ -62,6 +68,7 @@ class TemporalIndirect final : public render::RenderFeature {
   const EmbreeScene* bvh_;
   TemporalOptions settings_;  // a copy of the paths' options: tests switch accumulation modes on it
   uint32_t sets_ = 1, perSet_ = 1;
+  uint32_t gathered_ = 1;  // of a set's perSet_ VPLs, how many are gathered (setVplsPerFrame)
   uint32_t currentSet_ = 0;
   uint64_t frameCounter_ = 0;
   std::vector<int64_t> lastRendered_;   // frame each set was last gathered (-1: never)

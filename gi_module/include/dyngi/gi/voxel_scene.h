@@ -60,6 +60,8 @@ class VoxelScene final : public render::RenderFeature {
   ~VoxelScene() override;
 
   const char* name() const override { return "voxels"; }
+  // The GPU sections it times (stats' stages_ms).
+  static std::vector<const char*> timedSections() { return {"voxelize", "svo_build"}; }
   void prepare(render::VulkanContext& ctx, const render::RenderSnapshot& snapshot) override;
   bool record(render::FrameContext& frame) override;
   void frameFinished(render::VulkanContext& ctx) override;

@@ -29,9 +29,17 @@ struct ScriptedMotion {
   float phase = 0.0f;       // seconds added to time
 };
 
+// A light that is on only from `onAt` until `offAt` (seconds of scripted time): a scripted load change.
+struct ScriptedLightSwitch {
+  double onAt = 0.0;
+  double offAt = 1e30;
+};
+
 // Pose at time t (translation, rotation). Scale is left to the Transform.
 void evaluateMotion(const ScriptedMotion& m, double t, glm::vec3& translation, glm::quat& rotation);
 
+// Moves every entity with a ScriptedMotion and switches every light with a ScriptedLightSwitch (writing
+// only what changed, so the change ticks say exactly that).
 class ScriptedMotionSystem final : public ecs::System {
  public:
   const char* name() const override { return "scripted_motion"; }
