@@ -73,6 +73,8 @@ void reportGi(const Options& o, const GiSetup& g, RunStats& stats) {
       if (name == "temporal") stats.scalars["temporal_sets"] = r.get();
       stats.sections["settings"][r.spec->name] = r.get();
     }
+    gi::BudgetOptions budget = o.giSettings.budget;
+    for (const gi::OptionRef& r : gi::bindOptions(budget)) stats.sections["settings"][r.spec->name] = r.get();
     for (auto& [section, values] : gi->technique().statsSections())
       for (auto& [key, value] : values) stats.sections[section][key] = value;
     if (const gi::BudgetController* b = gi->budget()) {

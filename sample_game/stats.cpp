@@ -102,6 +102,24 @@ std::string RunStats::table() const {
   if (frameMs.empty()) std::snprintf(line, sizeof line, "  no frame timed: the run ended within the %d warm-up frames\n", warmupFrames);
   else std::snprintf(line, sizeof line, "  frame (median / p95)    %10.3f / %.3f\n", frameMs.percentile(0.5), frameMs.percentile(0.95));
   t << line;
+  if (!giMs.empty()) {
+    std::snprintf(line, sizeof line, "  gi (median / p95)       %10.3f / %.3f\n", giMs.percentile(0.5), giMs.percentile(0.95));
+    t << line;
+  }
+  if (budget) {
+    std::string knobs;
+    for (auto& [name, v] : budget->knobs) knobs += " " + name + " " + std::to_string(int64_t(v));
+    std::snprintf(line, sizeof line, "  gi budget %.3f ms: %s, level %u of %u, %zu changes, at the end%s\n", budget->budgetMs,
+                  budget->met ? "met" : "NOT met at the floor", budget->level, budget->floorLevel, budget->trace.size(), knobs.c_str());
+    t << line;
+    for (const BudgetStep& step : budget->trace) {
+      std::string values;
+      for (auto& [name, v] : step.knobs) values += " " + name + " " + std::to_string(int64_t(v));
+      std::snprintf(line, sizeof line, "    frame %4llu: level %2u after a median of %7.2f ms:%s\n", (unsigned long long)step.frame, step.level,
+                    step.medianMs, values.c_str());
+      t << line;
+    }
+  }
   return t.str();
 }
 

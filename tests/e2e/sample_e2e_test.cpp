@@ -143,7 +143,7 @@ INSTANTIATE_TEST_SUITE_P(Sample, SampleGiMode,
                          [](const auto& p) { return std::string(p.param.name); });
 
 TEST(SampleAnimate, EveryScriptedSceneRendersAGoodFrame) {
-  for (const char* scene : {"static", "moving-spot", "rotating-object", "moving-camera", "walking-fox", "fox-and-spot"}) {
+  for (const char* scene : {"static", "moving-spot", "rotating-object", "moving-camera", "walking-fox", "fox-and-spot", "fox-spot-light-on"}) {
     if (std::string(scene).find("fox") != std::string::npos) {
       DYNGI_SHARED_SCENE_OR_SKIP(fox, "Fox.glb");
     }
@@ -155,6 +155,27 @@ TEST(SampleAnimate, EveryScriptedSceneRendersAGoodFrame) {
     expectDocumentedKeys(o.stats, "svo", true);
     EXPECT_EQ(o.stats.value("scene", ""), std::string("animate:") + scene);
   }
+}
+
+// --gi-budget-ms: the stats carry the GI's measured cost and the budget's state and trace. A budget no
+// level can meet ends at the floor, says so once on stderr, and still renders a good image.
+TEST(SampleBudget, AnUnreachableBudgetEndsAtTheFloorAndSaysSo) {
+  TempDir dir;
+  SampleRun r = runSample("--headless --validation --size 64x64 --frames 20 --gi svo --gi-budget-ms 0.001" + withOutputs(dir), dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("the GI budget of 0.001 ms was not met"), std::string::npos) << r.err;
+  Outputs o = readOutputs(dir, 64, 64);
+  expectAGoodImage(o, "--gi-budget-ms 0.001");
+  ASSERT_TRUE(o.stats.contains("budget")) << o.stats.dump();
+  const auto& b = o.stats["budget"];
+  EXPECT_NEAR(b["budget_ms"].get<double>(), 0.001, 1e-9);
+  EXPECT_FALSE(b["met"].get<bool>());
+  EXPECT_EQ(b["level"], b["floor_level"]);
+  EXPECT_GT(b["floor_level"].get<int>(), 0);
+  ASSERT_FALSE(b["trace"].empty());
+  EXPECT_EQ(b["trace"].back()["knobs"]["vpls_per_frame"], b["knobs"]["vpls_per_frame"]);
+  EXPECT_GT(o.stats["gi_ms"]["median"].get<double>(), 0.0);
+  EXPECT_NEAR(o.stats["settings"]["gi-budget-ms"].get<double>(), 0.001, 1e-9);
 }
 
 TEST(SampleView, EveryDebugViewWritesAnImage) {

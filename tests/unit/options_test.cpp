@@ -80,6 +80,10 @@ TEST(Options, GiSettingsComeFromTheTechniquesTables) {
   ASSERT_TRUE(d) << err;
   EXPECT_EQ(d->giSettings.temporal.vpl.vplCount, dyngi::gi::VplOptions{}.vplCount);
   EXPECT_EQ(d->giSettings.temporal.temporalSets, dyngi::gi::TemporalOptions{}.temporalSets);
+  EXPECT_EQ(d->giSettings.budget.budgetMs, 0.0f) << "no GI budget unless asked for";
+  auto b = parse({"--gi", "bvh", "--gi-budget-ms", "12.5"}, err);
+  ASSERT_TRUE(b) << err;
+  EXPECT_EQ(b->giSettings.budget.budgetMs, 12.5f);
   auto p = parse({"--gi", "path", "--spp", "9", "--bounces", "12", "--seed", "3"}, err);
   ASSERT_TRUE(p) << err;
   EXPECT_EQ(p->pathTracer.spp, 9u);
@@ -104,6 +108,8 @@ TEST(Options, ATableOptionOutsideItsRangeOrTechniqueIsOneClearLine) {
       {{"--gi", "svo", "--spp", "4"}, "--spp is an option of --gi path"},
       {{"--gi", "svo", "--vpls"}, "--vpls needs a value"},
       {{"--gi", "bvh", "--view", "vpls"}, "--view vpls needs --gi svo --vpl-source rsm"},
+      {{"--gi", "svo", "--gi-budget-ms", "-1"}, "--gi-budget-ms wants a number in 0..10000"},
+      {{"--gi", "path", "--gi-budget-ms", "10"}, "--gi-budget-ms is an option of --gi svo | --gi bvh"},
   };
   for (const Case& c : cases) {
     std::string err;
