@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Prints the GI quality tables, technique by metric, as the render tests measure them
 # (tests/render/quality_test.cpp; deterministic: fixed time step and seeds): flicker and settle time
-# after a change, light leaking through a thin wall, ghosting behind a moving box. docs/QUALITY.md keeps the last table. Needs a build with tests:
+# after a change, flicker under a slow camera pan, light leaking through a thin wall, ghosting behind a
+# moving box. docs/QUALITY.md keeps the last tables. Needs a build with tests:
 #   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDYNGI_BUILD_TESTS=ON && cmake --build build -j"$(nproc)"
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,6 +17,8 @@ table() {  # the lines the tests print with prefix $1, as a Markdown table
 }
 echo
 table quality
+echo
+table quality-pan
 echo
 table quality-leak
 echo

@@ -58,6 +58,47 @@ double flicker(const std::vector<ImageRgba>& frames) {
   return sum / double(frames.size() - 1);
 }
 
+double reprojectedChange(const ImageRgba& current, const ImageRgba& currentPosition, const ImageRgba& previous,
+                         const ImageRgba& previousPosition, const glm::mat4& previousViewProj, uint32_t width, uint32_t height,
+                         float positionTolerance) {
+  const size_t n = size_t(width) * height;
+  if (current.size() < n || currentPosition.size() < n || previous.size() < n || previousPosition.size() < n) return 0.0;
+  double diff = 0, level = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const glm::vec4 p = currentPosition[i];
+    if (p.w == 0.0f) continue;
+    const glm::vec4 clip = previousViewProj * glm::vec4(glm::vec3(p), 1.0f);
+    if (clip.w <= 0.0f) continue;
+    // Bilinear between the four pixel centres around the point, each tap (with a weight) on the same
+    // surface: nearest-pixel resampling alone would change a smooth image by its gradient.
+    const glm::vec2 pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(float(width), float(height)) - 0.5f;
+    const glm::vec2 base = glm::floor(pixel), f = pixel - base;
+    glm::dvec3 sample(0.0);
+    bool usable = true;
+    for (int t = 0; t < 4 && usable; ++t) {
+      const int dx = t & 1, dy = t >> 1;
+      const double weight = double(dx ? f.x : 1.0f - f.x) * double(dy ? f.y : 1.0f - f.y);
+      if (weight == 0.0) continue;
+      const int qx = int(base.x) + dx, qy = int(base.y) + dy;
+      if (qx < 0 || qy < 0 || qx >= int(width) || qy >= int(height)) {
+        usable = false;
+        break;
+      }
+      const size_t q = size_t(qy) * width + size_t(qx);
+      const glm::vec4 was = previousPosition[q];
+      usable = was.w != 0.0f && glm::length(glm::vec3(was) - glm::vec3(p)) <= positionTolerance;
+      sample += weight * glm::dvec3(previous[q]);
+    }
+    if (!usable) continue;
+    for (int c = 0; c < 3; ++c) {
+      diff += std::abs(double(current[i][c]) - sample[c]);
+      level += std::abs(sample[c]);
+    }
+  }
+  if (level == 0.0) return diff == 0.0 ? 0.0 : 1.0;
+  return diff / level;
+}
+
 size_t settleFrames(const std::vector<ImageRgba>& frames, const ImageRgba& converged, double tolerance) {
   size_t settled = frames.size();
   for (size_t i = frames.size(); i-- > 0;) {

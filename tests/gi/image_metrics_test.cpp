@@ -3,6 +3,8 @@
 #include <cmath>
 #include <random>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "dyngi/engine/render/image_metrics.h"
 
 using namespace dyngi::render;
@@ -73,4 +75,38 @@ TEST(ImageMetrics, FlickerAndSettleOnKnownSequences) {
   EXPECT_EQ(settleFrames(approach, flat(1.0f), 0.05), 10u);
   approach.back() = flat(0.5f);
   EXPECT_EQ(settleFrames(approach, flat(1.0f), 0.05), approach.size()) << "never settles";
+}
+
+// A camera that moved one pixel to the right over a plane: every pixel's point is found one pixel to
+// the right in the previous frame (orthographic, so exactly), the last column was off screen, and a
+// pixel whose previous position shows another point (disoccluded) is left out.
+TEST(ImageMetrics, ReprojectedChangeFollowsTheSurfaceNotThePixel) {
+  constexpr uint32_t W = 8, H = 6;
+  // Previous camera: world x in [0, 8] and y in [0, 6] onto the image (z = 0 plane).
+  const glm::mat4 previousViewProj = glm::translate(glm::mat4(1.0f), glm::vec3(-1.0f, -1.0f, 0.0f)) *
+                                     glm::scale(glm::mat4(1.0f), glm::vec3(2.0f / W, 2.0f / H, 1.0f));
+  auto shade = [](glm::vec3 p) { return glm::vec4(0.1f + p.x, 0.5f + 0.1f * p.y, 1.0f, 1.0f); };  // a function of the surface point
+  ImageRgba prevPos(W * H), prev(W * H), curPos(W * H), cur(W * H);
+  for (uint32_t y = 0; y < H; ++y)
+    for (uint32_t x = 0; x < W; ++x) {
+      const size_t i = size_t(y) * W + x;
+      const float fx = float(x), fy = float(y);
+      prevPos[i] = glm::vec4(fx + 0.5f, fy + 0.5f, 0.0f, 1.0f);
+      curPos[i] = glm::vec4(fx + 1.5f, fy + 0.5f, 0.0f, 1.0f);  // the view moved one pixel to the right
+      prev[i] = shade(glm::vec3(prevPos[i]));
+      cur[i] = shade(glm::vec3(curPos[i]));
+    }
+  EXPECT_NEAR(reprojectedChange(cur, curPos, prev, prevPos, previousViewProj, W, H, 1e-3f), 0.0, 1e-7);
+  EXPECT_GT(relativeL1(cur, prev), 0.1) << "pixel by pixel the frames differ: only the reprojection sees the same surface";
+  // 10 percent brighter everywhere: a change of 0.1.
+  ImageRgba brighter = cur;
+  for (auto& p : brighter) p *= 1.1f;
+  EXPECT_NEAR(reprojectedChange(brighter, curPos, prev, prevPos, previousViewProj, W, H, 1e-3f), 0.1, 1e-6);
+  // A pixel whose previous sample shows another point (an occluder was there) does not count.
+  ImageRgba occluded = prevPos;
+  occluded[2 * W + 4] = glm::vec4(4.5f, 2.5f, -1.0f, 1.0f);
+  ImageRgba changedThere = cur;
+  changedThere[2 * W + 3] = glm::vec4(100.0f);  // the current pixel that maps onto it
+  EXPECT_NEAR(reprojectedChange(changedThere, curPos, prev, occluded, previousViewProj, W, H, 1e-3f), 0.0, 1e-7);
+  EXPECT_GT(reprojectedChange(changedThere, curPos, prev, prevPos, previousViewProj, W, H, 1e-3f), 1.0);
 }

@@ -24,6 +24,15 @@ double relativeL1(const ImageRgba& a, const ImageRgba& reference, const std::vec
 // Flicker of a sequence of frames of a static scene: the mean absolute frame-to-frame change, relative
 // to the frames' mean level (the mean over consecutive pairs of relativeL1(frame i, frame i-1)).
 double flicker(const std::vector<ImageRgba>& frames);
+// One frame's change under a moving camera: each pixel of `current` that shows a surface (position
+// w != 0) is compared with `previous` where its point projects through `previousViewProj` (Vulkan clip
+// space, pixel = (ndc / 2 + 1/2) x size, as the temporal reprojection does), interpolated bilinearly
+// between pixels that show the same surface (positions within `positionTolerance` of the point); pixels
+// that were off screen or hidden are left out. Relative like relativeL1 (previous as the reference); 0
+// when nothing matched.
+double reprojectedChange(const ImageRgba& current, const ImageRgba& currentPosition, const ImageRgba& previous,
+                         const ImageRgba& previousPosition, const glm::mat4& previousViewProj, uint32_t width, uint32_t height,
+                         float positionTolerance);
 // After a change: the number of frames until every later frame is within `tolerance` (relativeL1) of
 // `converged`: 0 when the first frame already is; frames.size() when the sequence never settles.
 size_t settleFrames(const std::vector<ImageRgba>& frames, const ImageRgba& converged, double tolerance);
