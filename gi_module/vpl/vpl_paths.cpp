@@ -45,7 +45,11 @@ VplPaths::VplPaths(const TemporalOptions& s) : settings_(s) {
   reshootBudget_ = settings_.reshootBudget == 0 ? std::max(1u, n / settings_.temporalSets) : settings_.reshootBudget;
   vpls_.assign(n, PathVpl{});
   pathLight_.assign(paths_, LightState{});
-  setDirty_.assign(settings_.temporalSets, 1);
+  // Nothing rendered yet: every VPL counts as changed since its set was.
+  changedSinceRendered_.assign(n, 2);
+  setChanges_.assign(settings_.temporalSets, 0);
+  setHardChanges_.assign(settings_.temporalSets, 0);
+  for (uint32_t i = 0; i < n; ++i) ++setChanges_[setOf(i)], ++setHardChanges_[setOf(i)];
   reshootCounts_.assign(n, 0);
   stats_.count = n;
   stats_.reshootBudget = reshootBudget_;
@@ -84,19 +88,45 @@ void VplPaths::refreshMaterials(const render::RenderSnapshot& snapshot, const Em
       if (!changed) continue;
       if (v.placed) v.flux = v.incident * v.albedo;
       carry = true;
-      setDirty_[setOf(i)] = 1;
+      markChanged(i, /*hard=*/false);  // the same paths, re-weighted
       ++stats_.refreshedThisFrame;
     }
   }
 }
 
-void VplPaths::invalidateIndex(uint32_t index) {
+void VplPaths::markChanged(uint32_t index, bool hard) {
+  const uint8_t kind = hard ? 2 : 1, was = changedSinceRendered_[index];
+  if (was >= kind) return;
+  changedSinceRendered_[index] = kind;
+  if (was == 0) ++setChanges_[setOf(index)];
+  if (hard) ++setHardChanges_[setOf(index)];
+}
+
+void VplPaths::markSetRendered(uint32_t set) {
+  for (uint32_t i = set; i < changedSinceRendered_.size(); i += settings_.temporalSets) changedSinceRendered_[i] = 0;
+  setChanges_[set] = setHardChanges_[set] = 0;
+}
+
+float VplPaths::setStaleFraction(uint32_t set) const {
+  const uint32_t n = uint32_t(vpls_.size()), T = settings_.temporalSets;
+  const uint32_t inSet = set < n ? (n - set + T - 1) / T : 0;
+  return inSet ? float(setHardChanges_[set]) / float(inSet) : 0.0f;
+}
+
+bool VplPaths::lightJumped(const LightState& from, glm::vec3 position, glm::vec3 direction, float scale) const {
+  const float moveTolerance = std::max(settings_.lightMoveTolerance, 0.01f) * scale;
+  const float turnTolerance = std::max(settings_.lightTurnTolerance, 0.01f);
+  return glm::distance(position, from.position) > kLightJump * moveTolerance ||
+         glm::dot(direction, from.direction) < std::cos(std::min(3.14159265f, kLightJump * turnTolerance));
+}
+
+void VplPaths::invalidateIndex(uint32_t index, bool hard) {
   uint32_t path = index / settings_.vpl.bounces;
   for (uint32_t b = index % settings_.vpl.bounces; b < settings_.vpl.bounces; ++b) {
     uint32_t i = path * settings_.vpl.bounces + b;
     if (!vpls_[i].valid) continue;
     vpls_[i].valid = false;
-    setDirty_[setOf(i)] = 1;
+    markChanged(i, hard);
     ++stats_.invalidatedThisFrame;
   }
 }
@@ -115,7 +145,7 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
     const render::LightItem* light = nullptr;
     for (const auto& l : snapshot.lights)
       if (l.entity == ls.entity) light = &l;
-    bool lightOk = light && light->light.enabled;
+    bool lightOk = light && light->light.enabled, hard = false;
     if (lightOk) {
       // Power, cone and type must be exactly what the path was shot with; position and direction
       // within the tolerances.
@@ -126,9 +156,15 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
       bool turned = settings_.lightTurnTolerance > 0.0f ? glm::dot(light->direction, ls.direction) < std::cos(settings_.lightTurnTolerance)
                                                         : light->direction != ls.direction;
       lightOk = now == ls && !lightMoved && !turned;
+      // Switched, re-coloured or jumped: what the path lit before says little about what it lights now.
+      hard = !(now == ls) || lightJumped(ls, light->position, light->direction, scale);
+    } else {
+      hard = true;  // gone or switched off
     }
     if (!lightOk) {
-      invalidateIndex(path * settings_.vpl.bounces);  // the whole path
+      invalidateIndex(path * settings_.vpl.bounces, hard);  // the whole path
+      // Gone or off: the path's next shot, whatever light it finds, lights something new.
+      if (!light || !light->light.enabled) pathLight_[path].entity = {};
       continue;
     }
     if (!v.placed) continue;  // escaped ray: nothing to see, valid while its parent is
@@ -258,7 +294,15 @@ void VplPaths::replace(const render::RenderSnapshot& snapshot, const EmbreeScene
   stats_.replacedThisFrame = 0;
   const uint32_t n = uint32_t(vpls_.size());
   uint32_t budget = reshootBudget_;
+  if (settings_.reshootBurst > budget) {
+    // More invalid than the budget (a light switched, moved or turned): reshoot them all now, up to the
+    // burst limit, so the pool is whole again this frame instead of T frames later.
+    uint32_t invalid = 0;
+    for (const PathVpl& v : vpls_) invalid += !v.valid;
+    budget = std::max(budget, std::min(invalid, settings_.reshootBurst));
+  }
   SceneSurfaces surfaces(snapshot, assets);
+  const float scale = snapshot.sceneBounds.valid() ? std::max(glm::length(snapshot.sceneBounds.extent()), 1e-3f) : 1.0f;
   for (uint32_t visited = 0; visited < n && budget > 0; ++visited) {
     uint32_t i = cursor_;
     cursor_ = (cursor_ + 1) % n;
@@ -266,12 +310,24 @@ void VplPaths::replace(const render::RenderSnapshot& snapshot, const EmbreeScene
     // A VPL is reshot only from a valid parent: start at the first invalid VPL of its path.
     uint32_t first = i;
     while (first % settings_.vpl.bounces > 0 && !vpls_[first - 1].valid) --first;
+    // A path shot from another light, or from this one after it was switched, re-coloured or jumped,
+    // changes its set's light from what it was (a hard change; TemporalOptions::dropStaleSets); its later
+    // bounces follow.
+    bool hard = false;
     for (uint32_t j = first; j <= i && budget > 0; ++j) {
+      const uint32_t path = j / settings_.vpl.bounces;
+      const LightState before = pathLight_[path];
       if (!shoot(j, snapshot, bvh, surfaces)) break;
+      if (j % settings_.vpl.bounces == 0) {
+        const LightState& after = pathLight_[path];
+        hard = before.entity != after.entity || before.radiant != after.radiant || before.type != after.type ||
+               before.outer != after.outer || before.inner != after.inner || before.range != after.range ||
+               lightJumped(before, after.position, after.direction, scale);
+      }
       --budget;
       ++stats_.replacedThisFrame;
       ++reshootCounts_[j];
-      setDirty_[setOf(j)] = 1;
+      markChanged(j, hard);
     }
   }
   stats_.replacedTotal += stats_.replacedThisFrame;

@@ -101,7 +101,7 @@ TEST(VplPaths, BudgetIsRespectedRestoreIsTimelyAndCursorIsFair) {
   Fixture f;
   auto snap = f.frame();
   const uint32_t budget = 37;
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 600, .bounces = 2}, .reshootBudget = budget});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 600, .bounces = 2}, .reshootBudget = budget, .reshootBurst = 0});
   std::unordered_set<ecs::Entity> none;
   // From empty: valid grows by exactly the budget per frame and is complete after ceil(600/37) frames.
   uint32_t frames = 0;
@@ -134,6 +134,76 @@ TEST(VplPaths, BudgetIsRespectedRestoreIsTimelyAndCursorIsFair) {
   auto [mn, mx] = std::minmax_element(paths.reshootCounts().begin(), paths.reshootCounts().end());
   EXPECT_EQ(*mn, 7u);
   EXPECT_EQ(*mx, 7u);
+}
+
+// More invalid VPLs than the budget: all of them are reshot at once, up to the burst limit.
+TEST(VplPaths, ABurstRefillsThePoolAtOnceUpToItsLimit) {
+  Fixture f;
+  auto snap = f.frame();
+  std::unordered_set<ecs::Entity> none;
+  gi::VplPaths unlimited(gi::TemporalOptions{.vpl = {.vplCount = 600, .bounces = 2}, .reshootBudget = 37, .reshootBurst = 4096});
+  unlimited.update(snap, f.bvh, f.assets, none);
+  EXPECT_EQ(unlimited.stats().valid, 600u) << "one frame";
+  gi::VplPaths limited(gi::TemporalOptions{.vpl = {.vplCount = 600, .bounces = 2}, .reshootBudget = 37, .reshootBurst = 100});
+  uint32_t frames = 0;
+  while (limited.stats().valid < 600 && frames < 100) {
+    limited.update(snap, f.bvh, f.assets, none);
+    EXPECT_LE(limited.stats().replacedThisFrame, 100u);
+    ++frames;
+  }
+  EXPECT_EQ(frames, 6u);
+}
+
+// A set's stored light is stale (TemporalIndirect drops it) after its VPLs' light was switched or jumped,
+// not after the light crept past its tolerance or an occluder moved.
+TEST(VplPaths, OnlyASwitchedOrJumpingLightMakesSetsStale) {
+  Fixture f;
+  auto snap = f.frame();
+  std::unordered_set<ecs::Entity> none;
+  const uint32_t T = 4;
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 256, .bounces = 1}, .temporalSets = T});
+  paths.update(snap, f.bvh, f.assets, none);
+  ASSERT_EQ(paths.stats().valid, 256u);
+  auto renderAll = [&] {
+    for (uint32_t s = 0; s < T; ++s) paths.markSetRendered(s);
+  };
+  auto maxStale = [&] {
+    float m = 0;
+    for (uint32_t s = 0; s < T; ++s) m = std::max(m, paths.setStaleFraction(s));
+    return m;
+  };
+  renderAll();
+  EXPECT_EQ(maxStale(), 0.0f);
+  Entity light{};
+  f.world.each<Light>([&](Entity e, const Light&) { light = e; });
+  const float diagonal = glm::length(snap.sceneBounds.extent());
+  const float tolerance = gi::TemporalOptions{}.lightMoveTolerance * diagonal;
+  // Crept 1.5 tolerances: every VPL reshot (the burst), none stale.
+  f.world.write<Transform>(light).translation.x += 1.5f * tolerance;
+  snap = f.frame();
+  paths.update(snap, f.bvh, f.assets, none);
+  EXPECT_EQ(paths.stats().replacedThisFrame, 256u);
+  for (uint32_t s = 0; s < T; ++s) EXPECT_TRUE(paths.setDirty(s));
+  EXPECT_EQ(maxStale(), 0.0f);
+  renderAll();
+  // Jumped (kLightJump tolerances and more): every set stale.
+  f.world.write<Transform>(light).translation.x -= 1.2f * gi::VplPaths::kLightJump * tolerance;
+  snap = f.frame();
+  paths.update(snap, f.bvh, f.assets, none);
+  for (uint32_t s = 0; s < T; ++s) EXPECT_EQ(paths.setStaleFraction(s), 1.0f) << s;
+  renderAll();
+  // Switched off: stale (the sets held its light); rendered dark, then switched on: stale again.
+  f.world.write<Light>(light).enabled = false;
+  snap = f.frame();
+  paths.update(snap, f.bvh, f.assets, none);
+  EXPECT_EQ(paths.stats().valid, 0u);
+  EXPECT_EQ(maxStale(), 1.0f);
+  renderAll();
+  f.world.write<Light>(light).enabled = true;
+  snap = f.frame();
+  paths.update(snap, f.bvh, f.assets, none);
+  EXPECT_EQ(paths.stats().valid, 256u);
+  for (uint32_t s = 0; s < T; ++s) EXPECT_EQ(paths.setStaleFraction(s), 1.0f) << s;
 }
 
 TEST(VplPaths, TemporalSetsPartitionThePool) {

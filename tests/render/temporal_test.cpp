@@ -25,7 +25,8 @@ gi::GiSettings settings(uint32_t T, gi::VisibilityBackend vis = gi::VisibilityBa
   s.temporal.visibility = vis;
   s.temporal.vpl.vplCount = 512;
   s.temporal.temporalSets = T;
-  s.temporal.reshootBudget = 512;  // fill the pool in the first frame; the sets then take T frames to render
+  s.temporal.reshootBudget = 512;  // fill the pool in the first frame; the sets then take T frames to render,
+  s.temporal.catchUpSets = 1;      // one a frame (the schedule these tests reason about; the catch-up has its own)
   return s;
 }
 double meanLum(const render::ImageRgba& img) {

@@ -73,7 +73,7 @@ bool gatherPixel(out ivec2 px, out vec3 light, out float depth, out uvec2 packed
     vec3 xv = (x - pc.worldToVoxel.xyz) * pc.worldToVoxel.w + nx * pc.liftVoxels;
     // Importance sampling gives every first-bounce VPL the same luminance; the threshold is relative to it.
     float threshold = pc.luminanceThreshold * vpls[pc.firstVpl].flux.w;
-    uint bitBase = (uint(px.y) * frame.sizeAndCount.x + uint(px.x)) * pc.bitsPerPixel;
+    uint bitBase = pc.firstBit + (uint(px.y) * frame.sizeAndCount.x + uint(px.x)) * pc.bitsPerPixel;
     // A do-while: lavapipe runs a for loop's body once more, masked, before it sees every lane has left;
     // checking at the end saves that pass (a gather and an SVO march step per pixel).
     uint i = s, m = 0u;

@@ -223,7 +223,7 @@ struct GatherPush {
   // a GI budget gathers an evenly spread subset of it (each sub-image's sum is scaled by this over the
   // VPLs it gathered, so every sub-image is an unbiased estimate of the whole).
   uint estimatedCount;
-  uint pad0;
+  uint firstBit;        // DYNGI_VISIBILITY_BITS: where this gather's block of bits starts (one block a set)
 };
 
 #define DYNGI_MAX_RSM_LAYERS 24

@@ -30,7 +30,9 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
   gatherPass_ = std::make_unique<IndirectGatherPass>(ctx, DYNGI_SHADER(spv_temporal_gather_comp), accumulate, uint32_t(sizeof(gpu::AccumulatePush)),
                                                      "temporal_gather");
   filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
-  vpls_ = Buffer(ctx, VkDeviceSize(perSet_) * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "temporal vpls");
+  maxSetsPerFrame_ = std::clamp(settings.catchUpSets, 1u, sets_);
+  vpls_ = Buffer(ctx, VkDeviceSize(perSet_) * maxSetsPerFrame_ * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload,
+                 "temporal vpls");
   // Sized as the reprojection shader declares it (a uniform array).
   cameras_ = Buffer(ctx, DYNGI_MAX_TEMPORAL_SETS * sizeof(gpu::TemporalSetCamera), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUsage::Upload,
                     "set cameras");
@@ -78,36 +80,60 @@ void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t width, uint32
 }
 
 void TemporalIndirect::prepare(render::VulkanContext&, const render::RenderSnapshot&) {
-  // Which set: a set whose VPLs changed, else the one gathered longest ago.
-  int best = -1;
-  for (int pass = 0; pass < 2 && best < 0; ++pass)
-    for (uint32_t s = 0; s < sets_; ++s) {
-      if (pass == 0 && !paths_.setDirty(s) && lastRendered_[s] >= 0) continue;
-      if (best < 0 || lastRendered_[s] < lastRendered_[size_t(best)]) best = int(s);
+  // Sets mostly stale (a light switched or jumped, and the burst reshot their VPLs) leave the average
+  // until they are gathered again: the running sums hold them, so this frame reprojects in full.
+  droppedSets_ = false;
+  for (uint32_t s = 0; s < sets_; ++s)
+    if (lastRendered_[s] >= 0 && settings_.dropStaleSets < 1.0f && paths_.setStaleFraction(s) > settings_.dropStaleSets) {
+      lastRendered_[s] = -1;
+      droppedSets_ = true;
     }
-  currentSet_ = uint32_t(best);
-  // Upload that set's VPLs (VPLs[T i + k]), or an evenly spread subset of them (setVplsPerFrame).
-  std::vector<gpu::GpuVpl> gpuVpls(gathered_);
-  setVpls_.assign(gathered_, TemporalVpl{{}, {}, false});
+  // Which sets: one a frame, or while some set has no stored light (at the start, or dropped as stale)
+  // up to catchUpSets of them; each a set whose VPLs changed, else the one gathered longest ago.
+  uint32_t unrendered = 0;
+  for (int64_t f : lastRendered_) unrendered += f < 0;
+  const uint32_t count = std::clamp(unrendered, 1u, maxSetsPerFrame_);
+  frameSets_.clear();
+  auto chosen = [&](uint32_t s) { return std::find(frameSets_.begin(), frameSets_.end(), s) != frameSets_.end(); };
+  while (frameSets_.size() < count) {
+    int best = -1;
+    for (int pass = 0; pass < 2 && best < 0; ++pass)
+      for (uint32_t s = 0; s < sets_; ++s) {
+        if (chosen(s) || (pass == 0 && !paths_.setDirty(s) && lastRendered_[s] >= 0)) continue;
+        if (best < 0 || lastRendered_[s] < lastRendered_[size_t(best)]) best = int(s);
+      }
+    frameSets_.push_back(uint32_t(best));
+  }
+  currentSet_ = frameSets_.back();
+  // Upload those sets' VPLs (set k: VPLs[T i + k]), each or an evenly spread subset of it
+  // (setVplsPerFrame), one after another.
+  std::vector<gpu::GpuVpl> gpuVpls(size_t(gathered_) * frameSets_.size());
+  setVpls_.assign(gpuVpls.size(), TemporalVpl{{}, {}, false});  // the BVH visibility's copy
   const auto& all = paths_.vpls();
   const double stride = double(perSet_) / double(gathered_);
-  for (uint32_t j = 0; j < gathered_; ++j) {
-    const uint32_t i = std::min(perSet_ - 1, uint32_t(double(j) * stride));
-    uint32_t index = i * sets_ + currentSet_;
-    gpu::GpuVpl g{};
-    g.position = glm::vec4(0, 0, 0, -1);
-    if (index < all.size() && all[index].valid && all[index].placed) {
-      const PathVpl& v = all[index];
-      float lum = 0.2126f * v.flux.r + 0.7152f * v.flux.g + 0.0722f * v.flux.b;
-      g.position = glm::vec4(v.position, float(index % paths_.bounces()));
-      g.normal = glm::vec4(v.normal, float(index / paths_.bounces()));
-      g.flux = glm::vec4(v.flux, lum);
-      setVpls_[j] = {v.position, v.normal, lum > 0.0f};
+  for (size_t k = 0; k < frameSets_.size(); ++k)
+    for (uint32_t j = 0; j < gathered_; ++j) {
+      const uint32_t i = std::min(perSet_ - 1, uint32_t(double(j) * stride));
+      uint32_t index = i * sets_ + frameSets_[k];
+      gpu::GpuVpl g{};
+      g.position = glm::vec4(0, 0, 0, -1);
+      if (index < all.size() && all[index].valid && all[index].placed) {
+        const PathVpl& v = all[index];
+        float lum = 0.2126f * v.flux.r + 0.7152f * v.flux.g + 0.0722f * v.flux.b;
+        g.position = glm::vec4(v.position, float(index % paths_.bounces()));
+        g.normal = glm::vec4(v.normal, float(index / paths_.bounces()));
+        g.flux = glm::vec4(v.flux, lum);
+        setVpls_[k * gathered_ + j] = {v.position, v.normal, lum > 0.0f};
+      }
+      gpuVpls[k * gathered_ + j] = g;
     }
-    gpuVpls[j] = g;
-  }
   vpls_.upload(gpuVpls.data(), gpuVpls.size() * sizeof(gpu::GpuVpl));
 }
+
+namespace {
+// The Embree visibility's bits of one set: one per pixel and VPL it gathers, in whole 32-bit words.
+size_t visibilityWordsPerSet(uint32_t width, uint32_t height, uint32_t perPixel) { return (size_t(width) * height * perPixel + 31) / 32; }
+}  // namespace
 
 void TemporalIndirect::computeBvhVisibility(render::FrameContext& frame, uint32_t perPixel) {
   auto t0 = std::chrono::steady_clock::now();
@@ -115,7 +141,8 @@ void TemporalIndirect::computeBvhVisibility(render::FrameContext& frame, uint32_
   std::vector<glm::vec4> pos = render::readbackImage(ctx_, frame.targets.position);
   std::vector<glm::vec4> nrm = render::readbackImage(ctx_, frame.targets.normal);
   const uint32_t W = frame.targets.width, H = frame.targets.height, K = interleave(), K2 = K * K;
-  size_t words = (size_t(W) * H * perPixel + 31) / 32;
+  // One block of bits per set gathered this frame (GatherPush::firstBit: where set k's block starts).
+  const size_t wordsPerSet = visibilityWordsPerSet(W, H, perPixel), words = wordsPerSet * frameSets_.size();
   std::vector<uint32_t> bits(words, 0);
   const float scale = frame.snapshot.sceneBounds.valid() ? glm::length(frame.snapshot.sceneBounds.extent()) : 1.0f;
   const float lift = 2e-3f * scale;
@@ -133,11 +160,13 @@ void TemporalIndirect::computeBvhVisibility(render::FrameContext& frame, uint32_
         glm::vec3 n = glm::normalize(glm::vec3(nrm[p]));
         glm::vec3 from = glm::vec3(pos[p]) + n * lift;
         uint32_t s = (x % K) + K * (y % K);
-        for (uint32_t m = 0, i = s; i < gathered_; i += K2, ++m) {
-          if (!setVpls_[i].valid) continue;
-          segs.push_back({from, setVpls_[i].position + setVpls_[i].normal * lift});
-          bitIndex.push_back(p * perPixel + m);
-        }
+        for (size_t set = 0; set < frameSets_.size(); ++set)
+          for (uint32_t m = 0, i = s; i < gathered_; i += K2, ++m) {
+            const TemporalVpl& v = setVpls_[set * gathered_ + i];
+            if (!v.valid) continue;
+            segs.push_back({from, v.position + v.normal * lift});
+            bitIndex.push_back(set * wordsPerSet * 32 + p * perPixel + m);
+          }
       }
       occ.resize(segs.size());
       bvh_->occluded(segs.data(), segs.size(), occ.data(), 1e-5f * scale);
@@ -159,18 +188,25 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
   // (No ScopedPass here: the mid-frame submit would split a debug label across command buffers; the
   // CPU time is reported as lastBvhVisibilityMs.)
   if (settings_.visibility == VisibilityBackend::Bvh) computeBvhVisibility(frame, perPixel);
-  // This frame's camera for the set about to be gathered.
+  // This frame's camera for the sets about to be gathered.
   const dyngi::gpu::FrameUniforms& view = frame.uniforms;  // what this frame's shaders see
   gpu::TemporalSetCamera cam{view.viewProj, view.cameraPos, view.pixelRay0, view.pixelRayStepX, view.pixelRayStepY};
-  cameras_.upload(&cam, sizeof(cam), VkDeviceSize(currentSet_) * sizeof(gpu::TemporalSetCamera));
+  std::vector<uint32_t> wasStored;
+  for (uint32_t set : frameSets_) {
+    cameras_.upload(&cam, sizeof(cam), VkDeviceSize(set) * sizeof(gpu::TemporalSetCamera));
+    wasStored.push_back(lastRendered_[set] >= 0 ? 1u : 0u);
+  }
   // Incremental accumulation when nothing but this set changed for this camera (see temporal_accumulate.glsl);
-  // a full reprojection otherwise, and every 256 frames to wash out float drift in the running sums.
-  const bool setWasStored = lastRendered_[currentSet_] >= 0;
-  const bool incremental = settings_.incrementalAccumulation && cam.viewProj == lastCamera_ && setWasStored && setCameras_[currentSet_] == cam.viewProj &&
-                           frameCounter_ % 256 != 0;
-  lastRendered_[currentSet_] = int64_t(frameCounter_++);
-  paths_.markSetRendered(currentSet_);
-  setCameras_[currentSet_] = cam.viewProj;
+  // a full reprojection otherwise (several sets gathered, a set dropped, the camera moved), and every 256
+  // frames to wash out float drift in the running sums.
+  const bool incremental = settings_.incrementalAccumulation && frameSets_.size() == 1 && cam.viewProj == lastCamera_ && wasStored[0] &&
+                           setCameras_[currentSet_] == cam.viewProj && !droppedSets_ && frameCounter_ % 256 != 0;
+  for (uint32_t set : frameSets_) {
+    lastRendered_[set] = int64_t(frameCounter_);
+    paths_.markSetRendered(set);
+    setCameras_[set] = cam.viewProj;
+  }
+  ++frameCounter_;
   lastCamera_ = cam.viewProj;
   uint32_t validMask = 0, sameCamera = 0;
   for (uint32_t s = 0; s < sets_; ++s) {
@@ -204,13 +240,11 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     gpu::AccumulatePush acc{};
     acc.setCount = sets_;
-    acc.currentSet = currentSet_;
     acc.storedSets = validMask;
     acc.setsFromThisCamera = sameCamera;
     // With an unchanged camera the gather queues the few pixels whose surface changed; otherwise every
     // pixel needs the full reprojection and the pass runs over all of them.
     acc.incremental = incremental ? 1u : 0u;
-    acc.currentSetWasStored = setWasStored ? 1u : 0u;
     acc.reprojectionCutoff = settings_.reprojectionCutoff;
     if (incremental) {
       const gpu::TemporalQueue empty{glm::uvec4(0u, 1u, 1u, 0u)};
@@ -228,7 +262,15 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
           .storageBuffer(DYNGI_TEMPORAL_GATHER_BINDING_QUEUE_ARGS, queueArgs_.handle());
     };
     in.extraPush = &acc;
-    gatherPass_->record(frame, accumulated_, in);
+    // One gather per set (each stores its own layer); the full reprojection after the last sums them all.
+    for (size_t k = 0; k < frameSets_.size(); ++k) {
+      if (k > 0) render::computeWriteBarrier(frame.cmd);
+      pc.firstVpl = uint32_t(k) * gathered_;
+      pc.firstBit = uint32_t(k * visibilityWordsPerSet(frame.targets.width, frame.targets.height, perPixel) * 32);
+      acc.currentSet = frameSets_[k];
+      acc.currentSetWasStored = wasStored[k];
+      gatherPass_->record(frame, accumulated_, in);
+    }
     recordReprojection(frame, acc, incremental);
   }
   filterPass_->record(frame, accumulated_, K, settings_.vpl.filterPlaneTolerance);

@@ -15,6 +15,13 @@ const OptionTable<TemporalOptions>& TemporalOptions::table() {
           .add({"temporal", "T temporal VPL sets, one gathered a frame (1: every VPL every frame)", 1, DYNGI_MAX_TEMPORAL_SETS},
                &TemporalOptions::temporalSets)
           .add({"reshoot", "VPLs reshot per frame (0: VPLs / T)", 0, 1000000}, &TemporalOptions::reshootBudget)
+          .add({"reshoot-burst", "all invalid VPLs up to this many are reshot at once when more than the budget are (0: off)", 0, 1000000},
+               &TemporalOptions::reshootBurst)
+          .add({"drop-stale-sets", "a set more than this fraction stale leaves the average until regathered (1: never)", 0, 1},
+               &TemporalOptions::dropStaleSets)
+          .add({"catch-up-sets", "sets gathered in one frame while some hold no light (start, after a light change)", 1,
+                DYNGI_MAX_TEMPORAL_SETS},
+               &TemporalOptions::catchUpSets)
           .add({"reprojection-cutoff", "a stored sample counts within this fraction of the view distance", 0, 1},
                &TemporalOptions::reprojectionCutoff)
           .add({"light-move-tolerance", "a light's VPLs live until it moved this fraction of the scene diagonal", 0, 1},

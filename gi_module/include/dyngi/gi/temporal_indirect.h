@@ -2,7 +2,8 @@
 // Temporal indirect light from incremental VPL paths (the render side of VplPaths).
 //
 // Each frame one temporal set is gathered (a set whose VPLs changed first, else the one rendered
-// longest ago) with K x K interleaving and the chosen visibility: the SVO march on the GPU, or Embree
+// longest ago; while some set holds no light, at the start or after a burst made sets stale, up to
+// catchUpSets of them) with K x K interleaving and the chosen visibility: the SVO march on the GPU, or Embree
 // on the CPU (this frame's G-buffer is read back mid-frame and the results are uploaded as bits). The
 // result is kept per set with its depth and camera; every frame all sets are reprojected into the
 // current view (samples whose surface moved more than the cut-off are dropped) and summed, then the
@@ -71,8 +72,11 @@ class TemporalIndirect final : public render::RenderFeature {
   uint32_t gathered_ = 1;  // of a set's perSet_ VPLs, how many are gathered (setVplsPerFrame)
   uint32_t currentSet_ = 0;
   uint64_t frameCounter_ = 0;
-  std::vector<int64_t> lastRendered_;   // frame each set was last gathered (-1: never)
-  std::vector<TemporalVpl> setVpls_;  // CPU copy of the VPLs uploaded this frame
+  std::vector<int64_t> lastRendered_;   // frame each set was last gathered (-1: never, or dropped as stale)
+  bool droppedSets_ = false;            // this frame dropped a stale set (TemporalOptions::dropStaleSets)
+  std::vector<uint32_t> frameSets_;     // the sets gathered this frame (one, or more while catching up)
+  uint32_t maxSetsPerFrame_ = 1;        // TemporalOptions::catchUpSets
+  std::vector<TemporalVpl> setVpls_;  // CPU copy of the VPLs uploaded this frame (every set gathered)
   render::Buffer vpls_, cameras_, bits_;
   // Per pixel (temporal_accumulate.glsl): each set's sample (one rg32ui layer a set: light, depth) and
   // the running sum with its depth and set count.

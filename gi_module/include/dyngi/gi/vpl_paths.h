@@ -6,8 +6,9 @@
 //  1. invalidation: a VPL is invalid when its parent no longer sees it (Embree occlusion), when the
 //     entity its surface belongs to moved, deformed or changed its material, when its light moved/turned/changed or is gone,
 //     or when it left its spot light's cone; invalidating a VPL invalidates its children;
-//  2. replacement: at most `reshootBudget` VPLs are reshot, found by a round-robin cursor that goes on
-//     where the last frame stopped; a VPL is reshot only when its parent is valid. Light rays sample the
+//  2. replacement: at most `reshootBudget` VPLs are reshot (all invalid ones, up to `reshootBurst`, when
+//     more are invalid: a light switched or moved), found by a round-robin cursor that goes on where the
+//     last frame stopped; a VPL is reshot only when its parent is valid. Light rays sample the
 //     light's emission (a spot's cone, a point's sphere, a directional light's beam over the scene),
 //     VPL rays a cosine hemisphere; the closest hit comes from Embree and the flux from the hit's
 //     material (texture via barycentrics). A ray that leaves the scene makes a valid VPL with no flux
@@ -76,9 +77,15 @@ class VplPaths {
   uint32_t paths() const { return paths_; }
   uint32_t bounces() const { return settings_.vpl.bounces; }
   uint32_t setOf(uint32_t index) const { return index % settings_.temporalSets; }
-  // Sets with a VPL invalidated or replaced since markSetRendered(set).
-  bool setDirty(uint32_t set) const { return setDirty_[set] != 0; }
-  void markSetRendered(uint32_t set) { setDirty_[set] = 0; }
+  // Sets with a VPL invalidated, replaced or re-coloured since markSetRendered(set).
+  bool setDirty(uint32_t set) const { return setChanges_[set] != 0; }
+  // The fraction of the set's VPLs that changed hard since then: their light was switched on or off,
+  // re-coloured, or jumped (moved or turned kLightJump times its tolerance), so the set's stored light
+  // says little about them now. Soft changes (a light moving by its tolerance, an occluder, a moved
+  // surface) keep the stored light a fair estimate until the set is gathered again.
+  float setStaleFraction(uint32_t set) const;
+  void markSetRendered(uint32_t set);
+  static constexpr float kLightJump = 5.0f;
   uint32_t cursor() const { return cursor_; }
   // How many times each VPL has been reshot (fairness checks).
   const std::vector<uint32_t>& reshootCounts() const { return reshootCounts_; }
@@ -92,7 +99,9 @@ class VplPaths {
     uint32_t type = 0;
     bool operator==(const LightState&) const = default;
   };
-  void invalidateIndex(uint32_t index);
+  void invalidateIndex(uint32_t index, bool hard = false);
+  void markChanged(uint32_t index, bool hard);  // counts a VPL once per set rendering (and once more if hard)
+  bool lightJumped(const LightState& from, glm::vec3 position, glm::vec3 direction, float scale) const;
   bool shoot(uint32_t index, const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const class SceneSurfaces& surfaces);
 
   TemporalOptions settings_;
@@ -100,7 +109,9 @@ class VplPaths {
   uint32_t paths_ = 0;
   std::vector<PathVpl> vpls_;
   std::vector<LightState> pathLight_;   // per path: the light state its bounce-0 VPL was shot from
-  std::vector<uint8_t> setDirty_;
+  std::vector<uint8_t> changedSinceRendered_;  // per VPL: 0 no, 1 soft, 2 hard change since its set was rendered
+  std::vector<uint32_t> setChanges_;           // per set: its VPLs changed since it was rendered
+  std::vector<uint32_t> setHardChanges_;       // ... of which hard
   std::vector<uint32_t> reshootCounts_;
   uint32_t cursor_ = 0;
   uint64_t shotCounter_ = 0;
