@@ -136,6 +136,8 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
   stats_.invalidatedThisFrame = 0;
   const float scale = snapshot.sceneBounds.valid() ? std::max(glm::length(snapshot.sceneBounds.extent()), 1e-3f) : 1.0f;
   const float eps = 1e-4f * scale;
+  float totalPower = 0.0f;
+  for (const auto& l : snapshot.lights) totalPower += lightPower(l, snapshot.sceneBounds);
   for (uint32_t i = 0; i < vpls_.size(); ++i) {
     PathVpl& v = vpls_[i];
     if (!v.valid) continue;
@@ -150,14 +152,18 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
       // Power, cone and type must be exactly what the path was shot with; position and direction
       // within the tolerances.
       LightState now{light->entity, ls.position, ls.direction, light->light.color * light->light.intensity,
-                     light->light.range, light->light.innerConeAngle, light->light.outerConeAngle, uint32_t(light->light.type)};
+                     light->light.range, light->light.innerConeAngle, light->light.outerConeAngle, uint32_t(light->light.type), ls.probability};
+      // Another light switched on or off, or changed its power: this light's share, which the path's flux
+      // was divided by, is not what it was. Every path of every light is redrawn (hard: the mix changed).
+      const float share = totalPower > 0.0f ? lightPower(*light, snapshot.sceneBounds) / totalPower : 0.0f;
+      const bool mixChanged = std::abs(share - ls.probability) > kShareTolerance * ls.probability;
       bool lightMoved = settings_.lightMoveTolerance > 0.0f ? glm::distance(light->position, ls.position) > settings_.lightMoveTolerance * scale
                                                         : light->position != ls.position;
       bool turned = settings_.lightTurnTolerance > 0.0f ? glm::dot(light->direction, ls.direction) < std::cos(settings_.lightTurnTolerance)
                                                         : light->direction != ls.direction;
-      lightOk = now == ls && !lightMoved && !turned;
+      lightOk = now == ls && !lightMoved && !turned && !mixChanged;
       // Switched, re-coloured or jumped: what the path lit before says little about what it lights now.
-      hard = !(now == ls) || lightJumped(ls, light->position, light->direction, scale);
+      hard = !(now == ls) || mixChanged || lightJumped(ls, light->position, light->direction, scale);
     } else {
       hard = true;  // gone or switched off
     }
@@ -247,7 +253,7 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
       }
     }
     pathLight_[path] = LightState{light->entity, light->position, light->direction, radiant, L.range, L.innerConeAngle, L.outerConeAngle,
-                                  uint32_t(L.type)};
+                                  uint32_t(L.type), pLight};
     throughput /= float(paths_);
   } else {
     const PathVpl& parent = vpls_[index - 1];
@@ -302,7 +308,6 @@ void VplPaths::replace(const render::RenderSnapshot& snapshot, const EmbreeScene
     budget = std::max(budget, std::min(invalid, settings_.reshootBurst));
   }
   SceneSurfaces surfaces(snapshot, assets);
-  const float scale = snapshot.sceneBounds.valid() ? std::max(glm::length(snapshot.sceneBounds.extent()), 1e-3f) : 1.0f;
   for (uint32_t visited = 0; visited < n && budget > 0; ++visited) {
     uint32_t i = cursor_;
     cursor_ = (cursor_ + 1) % n;
@@ -310,20 +315,15 @@ void VplPaths::replace(const render::RenderSnapshot& snapshot, const EmbreeScene
     // A VPL is reshot only from a valid parent: start at the first invalid VPL of its path.
     uint32_t first = i;
     while (first % settings_.vpl.bounces > 0 && !vpls_[first - 1].valid) --first;
-    // A path shot from another light, or from this one after it was switched, re-coloured or jumped,
-    // changes its set's light from what it was (a hard change; TemporalOptions::dropStaleSets); its later
-    // bounces follow.
+    // A path shot for the first time, or after its light went off or away, brings light its set did not
+    // have (a hard change; TemporalOptions::dropStaleSets); its later bounces follow. Switches, power
+    // changes and jumps of a light that stays were marked when invalidate() found them.
     bool hard = false;
     for (uint32_t j = first; j <= i && budget > 0; ++j) {
       const uint32_t path = j / settings_.vpl.bounces;
-      const LightState before = pathLight_[path];
+      const bool hadNoLight = pathLight_[path].entity.isNull();
       if (!shoot(j, snapshot, bvh, surfaces)) break;
-      if (j % settings_.vpl.bounces == 0) {
-        const LightState& after = pathLight_[path];
-        hard = before.entity != after.entity || before.radiant != after.radiant || before.type != after.type ||
-               before.outer != after.outer || before.inner != after.inner || before.range != after.range ||
-               lightJumped(before, after.position, after.direction, scale);
-      }
+      if (j % settings_.vpl.bounces == 0) hard = hadNoLight;
       --budget;
       ++stats_.replacedThisFrame;
       ++reshootCounts_[j];

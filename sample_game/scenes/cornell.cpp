@@ -10,6 +10,19 @@ namespace dyngi::sample {
 
 using namespace scene;
 
+namespace {
+// The Cornell box's spot: its power and cone (CornellLayout), in a colour.
+Light cornellSpot(glm::vec3 color) {
+  Light light;
+  light.type = LightType::Spot;
+  light.color = color;
+  light.intensity = CornellLayout::kSpotIntensity;
+  light.outerConeAngle = glm::radians(CornellLayout::kSpotOuterDeg);
+  light.innerConeAngle = glm::radians(CornellLayout::kSpotInnerDeg);
+  return light;
+}
+}  // namespace
+
 bool isBuiltinScene(const std::string& name) {
   return name == "cornell" || name == "cornell-dynamic" || name == "two-rooms" || name == "two-rooms-door";
 }
@@ -56,13 +69,7 @@ void buildBuiltinScene(const std::string& name, ecs::World& w, AssetStore& asset
   st.rotation = glm::angleAxis(glm::radians(-90.0f), glm::vec3(1, 0, 0));  // local -Z -> world -Y
   w.add(spot, st);
   w.add(spot, WorldTransform{st.matrix()});
-  Light light;
-  light.type = LightType::Spot;
-  light.color = {1.0f, 1.0f, 1.0f};
-  light.intensity = CornellLayout::kSpotIntensity;
-  light.outerConeAngle = glm::radians(CornellLayout::kSpotOuterDeg);
-  light.innerConeAngle = glm::radians(CornellLayout::kSpotInnerDeg);
-  w.add(spot, light);
+  w.add(spot, cornellSpot({1.0f, 1.0f, 1.0f}));
   w.add(spot, Name{"spot"});
 
   if (dynamic) {
@@ -112,8 +119,10 @@ void oscillateAll(ecs::World& w, glm::vec3 amplitude, float hz) {
 }
 }  // namespace
 
-std::string buildAnimatedScene(const std::string& name, ecs::World& w, AssetStore& assets, const std::string& sharedScenesDir) {
-  buildBuiltinScene("cornell", w, assets);
+namespace {
+// Adds scripted scene `name`'s motion and extras to a Cornell box already in `w` (scenes build on each
+// other: each builds the box once, in buildAnimatedScene).
+std::string addAnimation(const std::string& name, ecs::World& w, AssetStore& assets, const std::string& sharedScenesDir) {
   if (name == "static") return {};
   if (name == "moving-spot") {
     oscillateAll<Light>(w, {0.6f, 0.0f, 0.0f}, 0.25f);
@@ -146,25 +155,20 @@ std::string buildAnimatedScene(const std::string& name, ecs::World& w, AssetStor
     return {};
   }
   if (name == "fox-and-spot") {  // the soak scene: a skinned mesh deforming and a light moving, both at once
-    std::string err = buildAnimatedScene("walking-fox", w, assets, sharedScenesDir);
+    std::string err = addAnimation("walking-fox", w, assets, sharedScenesDir);
     if (!err.empty()) return err;
     oscillateAll<Light>(w, {0.6f, 0.0f, 0.0f}, 0.25f);
     return {};
   }
   if (name == "fox-spot-light-on") {  // the GI budget's load change: fox-and-spot, then a second spot at 4 s
-    std::string err = buildAnimatedScene("fox-and-spot", w, assets, sharedScenesDir);
+    std::string err = addAnimation("fox-and-spot", w, assets, sharedScenesDir);
     if (!err.empty()) return err;
     Entity second = w.create();
     Transform t;
     t.translation = {-0.5f, CornellLayout::kSpotHeight, 0.4f};
     t.rotation = glm::quatLookAtRH(glm::normalize(glm::vec3(0.4f, -1.0f, -0.3f)), glm::vec3(0, 1, 0));
     w.add(second, t);
-    Light light;
-    light.type = LightType::Spot;
-    light.color = {1.0f, 0.85f, 0.6f};
-    light.intensity = CornellLayout::kSpotIntensity;
-    light.outerConeAngle = glm::radians(CornellLayout::kSpotOuterDeg);
-    light.innerConeAngle = glm::radians(CornellLayout::kSpotInnerDeg);
+    Light light = cornellSpot({1.0f, 0.85f, 0.6f});
     light.enabled = false;
     w.add(second, light);
     w.add(second, ScriptedLightSwitch{kSecondLightOnAt});
@@ -206,6 +210,12 @@ std::string buildAnimatedScene(const std::string& name, ecs::World& w, AssetStor
     return {};
   }
   return "unknown animated scene '" + name + "'";
+}
+}  // namespace
+
+std::string buildAnimatedScene(const std::string& name, ecs::World& w, AssetStore& assets, const std::string& sharedScenesDir) {
+  buildBuiltinScene("cornell", w, assets);
+  return addAnimation(name, w, assets, sharedScenesDir);
 }
 
 bool addDefaultLightIfUnlit(ecs::World& w) {

@@ -206,6 +206,37 @@ TEST(VplPaths, OnlyASwitchedOrJumpingLightMakesSetsStale) {
   for (uint32_t s = 0; s < T; ++s) EXPECT_EQ(paths.setStaleFraction(s), 1.0f) << s;
 }
 
+// A second light switched on changes every light's share of the paths: every path is redrawn (before,
+// the first light kept all of them, with fluxes divided by a share of 1, and the second got none).
+TEST(VplPaths, ASecondLightSwitchedOnRedrawsEveryPath) {
+  Fixture f;
+  Entity second = f.world.create();
+  Transform t;
+  t.translation = {0.5f, 1.5f, 0.5f};
+  f.world.add(second, t);
+  f.world.add(second, Light{.type = LightType::Point, .intensity = 2.0f, .enabled = false});
+  auto snap = f.frame();
+  std::unordered_set<ecs::Entity> none;
+  const uint32_t T = 4;
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 256, .bounces = 1}, .temporalSets = T});
+  paths.update(snap, f.bvh, f.assets, none);
+  ASSERT_EQ(paths.stats().valid, 256u);
+  for (uint32_t s = 0; s < T; ++s) paths.markSetRendered(s);
+  paths.update(snap, f.bvh, f.assets, none);
+  EXPECT_EQ(paths.stats().invalidatedThisFrame, 0u) << "nothing changed";
+  f.world.write<Light>(second).enabled = true;
+  snap = f.frame();
+  paths.update(snap, f.bvh, f.assets, none);
+  EXPECT_EQ(paths.stats().invalidatedThisFrame, 256u);
+  EXPECT_EQ(paths.stats().valid, 256u) << "and reshot at once (the burst)";
+  for (uint32_t s = 0; s < T; ++s) EXPECT_EQ(paths.setStaleFraction(s), 1.0f) << s;
+  // Some VPLs now come from the point light: they lie outside the spot's cone (the spot points down
+  // from the ceiling's centre with a 45-degree cone), e.g. on the ceiling.
+  uint32_t onCeiling = 0;
+  for (const gi::PathVpl& v : paths.vpls()) onCeiling += v.placed && v.position.y > 1.99f;
+  EXPECT_GT(onCeiling, 0u);
+}
+
 TEST(VplPaths, TemporalSetsPartitionThePool) {
   gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 512, .bounces = 1}, .temporalSets = 16});
   std::vector<int> seen(512, 0);

@@ -5,6 +5,7 @@
 // the light (b = 0) or the VPL (p, b - 1). Each frame:
 //  1. invalidation: a VPL is invalid when its parent no longer sees it (Embree occlusion), when the
 //     entity its surface belongs to moved, deformed or changed its material, when its light moved/turned/changed or is gone,
+//     when its light's share of the total power changed (another light switched on or off),
 //     or when it left its spot light's cone; invalidating a VPL invalidates its children;
 //  2. replacement: at most `reshootBudget` VPLs are reshot (all invalid ones, up to `reshootBurst`, when
 //     more are invalid: a light switched or moved), found by a round-robin cursor that goes on where the
@@ -86,6 +87,8 @@ class VplPaths {
   float setStaleFraction(uint32_t set) const;
   void markSetRendered(uint32_t set);
   static constexpr float kLightJump = 5.0f;
+  // A light's share of the total power may drift this much (relative) before its paths are redrawn.
+  static constexpr float kShareTolerance = 0.01f;
   uint32_t cursor() const { return cursor_; }
   // How many times each VPL has been reshot (fairness checks).
   const std::vector<uint32_t>& reshootCounts() const { return reshootCounts_; }
@@ -97,6 +100,7 @@ class VplPaths {
     glm::vec3 radiant{0.0f};
     float range = 0, inner = 0, outer = 0;
     uint32_t type = 0;
+    float probability = 0;  // the chance this light had of being picked (its share of the lights' power)
     bool operator==(const LightState&) const = default;
   };
   void invalidateIndex(uint32_t index, bool hard = false);

@@ -1,0 +1,61 @@
+// The scripted scenes (--animate) build on each other (fox-spot-light-on is fox-and-spot plus a light,
+// which is walking-fox plus motion): each must hold one Cornell box, not one per layer (overlapping
+// walls and a spot per layer, which the soak and budget runs once measured).
+#include <gtest/gtest.h>
+
+#include "dyngi/engine/scene/components.h"
+#include "dyngi/engine/scene/scripted_motion.h"
+#include "scenes/builtin_scenes.h"
+#include "support/shared_scenes.h"
+
+using namespace dyngi;
+
+namespace {
+struct Census {
+  int floors = 0, lights = 0, enabledLights = 0, switches = 0;
+};
+Census census(const std::string& name) {
+  ecs::World w;
+  scene::AssetStore assets;
+  const std::string err = sample::buildAnimatedScene(name, w, assets, DYNGI_SHARED_SCENES);
+  EXPECT_TRUE(err.empty()) << name << ": " << err;
+  Census c;
+  w.each<scene::Name>([&](ecs::Entity, const scene::Name& n) { c.floors += n.value == "floor"; });
+  w.each<scene::Light>([&](ecs::Entity, const scene::Light& l) { ++c.lights, c.enabledLights += l.enabled; });
+  w.each<scene::ScriptedLightSwitch>([&](ecs::Entity, const scene::ScriptedLightSwitch&) { ++c.switches; });
+  return c;
+}
+}  // namespace
+
+TEST(ScriptedScenes, EachHoldsOneCornellBox) {
+  DYNGI_SHARED_SCENE_OR_SKIP(fox, "Fox.glb");
+  for (const char* name : {"static", "moving-spot", "rotating-object", "moving-camera", "walking-fox", "fox-and-spot"}) {
+    const Census c = census(name);
+    EXPECT_EQ(c.floors, 1) << name;
+    EXPECT_EQ(c.lights, 1) << name;
+  }
+  const Census on = census("fox-spot-light-on");
+  EXPECT_EQ(on.floors, 1);
+  EXPECT_EQ(on.lights, 2);
+  EXPECT_EQ(on.enabledLights, 1) << "the second spot starts off";
+  EXPECT_EQ(on.switches, 1);
+}
+
+// The second spot switches on at its time and only then (its change tick moves once).
+TEST(ScriptedScenes, ALightSwitchFollowsScriptedTime) {
+  ecs::World w;
+  ecs::Entity e = w.create();
+  w.add(e, scene::Light{.enabled = false});
+  w.add(e, scene::ScriptedLightSwitch{.onAt = 1.0, .offAt = 2.0});
+  scene::ScriptedMotionSystem system;
+  auto at = [&](double t) {
+    ecs::SystemContext ctx{};
+    ctx.time.time = t;
+    system.run(w, ctx);
+    return w.get<scene::Light>(e).enabled;
+  };
+  EXPECT_FALSE(at(0.5));
+  EXPECT_TRUE(at(1.0));
+  EXPECT_TRUE(at(1.9));
+  EXPECT_FALSE(at(2.0));
+}
