@@ -83,7 +83,7 @@ double GiSystem::measureLastFrame() const {
 
 void GiSystem::frameTimed() {
   giMs_ = measureLastFrame();
-  if (budget_ && giMs_ >= 0) budget_->onFrame(giMs_);
+  if (budget_ && giMs_ >= 0 && !technique_->lastFrameWasOneOff()) budget_->onFrame(giMs_);
 }
 
 void GiSystem::updateTechnique(const render::RenderSnapshot& snapshot) {

@@ -161,7 +161,7 @@ TEST(SampleAnimate, EveryScriptedSceneRendersAGoodFrame) {
 // level can meet ends at the floor, says so once on stderr, and still renders a good image.
 TEST(SampleBudget, AnUnreachableBudgetEndsAtTheFloorAndSaysSo) {
   TempDir dir;
-  SampleRun r = runSample("--headless --validation --size 64x64 --frames 20 --gi svo --gi-budget-ms 0.001" + withOutputs(dir), dir);
+  SampleRun r = runSample("--headless --validation --size 64x64 --frames 40 --gi svo --gi-budget-ms 0.001" + withOutputs(dir), dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("the GI budget of 0.001 ms was not met"), std::string::npos) << r.err;
   Outputs o = readOutputs(dir, 64, 64);

@@ -90,6 +90,25 @@ TEST(BudgetController, ConvergesNearTheBudgetAndHoldsWithoutOscillating) {
   }
 }
 
+// This machine's GI cost swings 30 percent from frame to frame at a fixed level (the fox re-voxelized,
+// VPLs reshot, the machine): the 9-frame median and the 10 percent tolerance keep the run's median in
+// the band and its p95 within the 40 percent.
+TEST(BudgetController, HoldsThroughLavapipeLikeNoise) {
+  for (double budget : {12.0, 20.0, 30.0}) {
+    SCOPED_TRACE(budget);
+    SyntheticGi gi;
+    gi.noise = 0.3;
+    BudgetController c(budget, gi.knobs());
+    run(gi, c, 900);
+    const std::vector<double> all = slice(c.measured(), 60, 900);
+    EXPECT_GE(median(all), budget * 0.85);
+    EXPECT_LE(median(all), budget * 1.05);
+    std::vector<double> sorted = all;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_LE(sorted[size_t(0.95 * double(sorted.size()))], budget * 1.3);
+  }
+}
+
 TEST(BudgetController, RecoversAfterALoadStepBothWays) {
   SyntheticGi gi;
   BudgetController c(20.0, gi.knobs());

@@ -65,11 +65,18 @@ TEST_F(RenderTest, AGiBudgetDrivesTheKnobsFromTheMeasuredCost) {
     gi::GiSettings tight = settingsFor(e, 512);
     tight.budget.budgetMs = 0.001f;
     GiRun run(context(), tight, "cornell", kSize, kSize);
-    run.step(kFrames);
+    size_t oneOff = 0;  // frames with one-off work (the temporal technique's catch-up at the start)
+    for (int i = 0; i < kFrames; ++i) {
+      run.step();
+      oneOff += run.gi->technique().lastFrameWasOneOff();
+    }
     const gi::BudgetController* b = run.gi->budget();
     ASSERT_NE(b, nullptr);
     EXPECT_GT(run.gi->stats().giMs, 0.0) << "the GI's cost is measured";
-    EXPECT_EQ(b->measured().size(), size_t(kFrames)) << "every rendered frame is measured";
+    EXPECT_EQ(b->measured().size(), size_t(kFrames) - oneOff) << "every rendered frame is measured, but for one-off ones";
+    if (e.name == std::string("temporal")) {
+      EXPECT_GT(oneOff, 0u) << "the sets are caught up at the start";
+    }
     EXPECT_EQ(b->level(), b->floorLevel());
     EXPECT_FALSE(b->budgetMet());
     const std::vector<gi::QualityKnob> knobs = run.gi->technique().qualityKnobs();

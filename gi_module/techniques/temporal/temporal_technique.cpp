@@ -85,6 +85,7 @@ class TemporalTechnique final : public Technique {
     return {{"vpls_per_frame", geometricLevels(set, floorFraction, kBudgetStepRatio),
              [this](double v) { feature_.setVplsPerFrame(uint32_t(v)); }}};
   }
+  bool lastFrameWasOneOff() const override { return feature_.lastFrameSetCount() > 1; }
   VplPaths& paths() { return paths_; }
   TemporalIndirect& feature() { return feature_; }
 

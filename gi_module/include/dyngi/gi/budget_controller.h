@@ -49,8 +49,8 @@ struct BudgetOptions {
 };
 
 struct BudgetControllerSettings {
-  uint32_t window = 5;             // frames per decision (their median is the measured cost)
-  double overTolerance = 0.05;     // lower the quality above budget x (1 + this)
+  uint32_t window = 9;             // frames per decision (their median is the measured cost)
+  double overTolerance = 0.1;      // lower the quality above budget x (1 + this)
   double assumedStepRatio = 0.85;  // cost ratio of a ladder step not measured yet
   uint32_t backoffFrames = 30;     // a failed up-step waits this long, doubled at each failure
   uint32_t maxBackoffFrames = 960;

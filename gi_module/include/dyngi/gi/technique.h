@@ -60,6 +60,10 @@ class Technique {
   // The knobs a GI budget (GiSettings::budget) may lower at run time, in the order they are lowered:
   // the one whose loss shows least first. Level 0 of each is its value in the technique's options.
   virtual std::vector<QualityKnob> qualityKnobs() { return {}; }
+  // True when the frame just rendered did one-off work on top of its steady cost (the temporal
+  // technique catching up several sets after a light switch): a GI budget leaves such frames out, so a
+  // few heavy frames do not throw the knobs to their floor for the seconds it takes to climb back.
+  virtual bool lastFrameWasOneOff() const { return false; }
 };
 
 // One registered technique.

@@ -49,6 +49,7 @@ class TemporalIndirect final : public render::RenderFeature {
   TemporalOptions& settings() { return settings_; }
   VplPaths& paths() { return paths_; }
   uint32_t lastRenderedSet() const { return currentSet_; }
+  uint32_t lastFrameSetCount() const { return uint32_t(frameSets_.size()); }  // sets gathered (more while catching up)
   // VPLs gathered per frame: a set's VPLs (VPLs / T) by default. Fewer (a GI budget's knob) gathers an
   // evenly spread subset of each set, standing for the whole set (GatherPush::estimatedCount: unbiased,
   // noisier).
