@@ -37,6 +37,17 @@ struct Fixture {
     return render::extractSnapshot(world, assets, 0);
   }
 };
+
+// 256 one-bounce VPLs in four temporal sets, filled at once, every set marked rendered: the starting
+// point of the staleness tests.
+constexpr uint32_t kStaleSets = 4;
+gi::VplPaths freshPaths(Fixture& f, const render::RenderSnapshot& snap) {
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 256, .bounces = 1}, .temporalSets = kStaleSets});
+  paths.update(snap, f.bvh, f.assets, {});
+  EXPECT_EQ(paths.stats().valid, 256u);
+  for (uint32_t s = 0; s < kStaleSets; ++s) paths.markSetRendered(s);
+  return paths;
+}
 }  // namespace
 
 TEST(VplPaths, OccluderInvalidatesExactlyWhatItBlocksAndDescendants) {
@@ -160,10 +171,8 @@ TEST(VplPaths, OnlyASwitchedOrJumpingLightMakesSetsStale) {
   Fixture f;
   auto snap = f.frame();
   std::unordered_set<ecs::Entity> none;
-  const uint32_t T = 4;
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 256, .bounces = 1}, .temporalSets = T});
-  paths.update(snap, f.bvh, f.assets, none);
-  ASSERT_EQ(paths.stats().valid, 256u);
+  const uint32_t T = kStaleSets;
+  gi::VplPaths paths = freshPaths(f, snap);
   auto renderAll = [&] {
     for (uint32_t s = 0; s < T; ++s) paths.markSetRendered(s);
   };
@@ -172,7 +181,6 @@ TEST(VplPaths, OnlyASwitchedOrJumpingLightMakesSetsStale) {
     for (uint32_t s = 0; s < T; ++s) m = std::max(m, paths.setStaleFraction(s));
     return m;
   };
-  renderAll();
   EXPECT_EQ(maxStale(), 0.0f);
   Entity light{};
   f.world.each<Light>([&](Entity e, const Light&) { light = e; });
@@ -217,11 +225,8 @@ TEST(VplPaths, ASecondLightSwitchedOnRedrawsEveryPath) {
   f.world.add(second, Light{.type = LightType::Point, .intensity = 2.0f, .enabled = false});
   auto snap = f.frame();
   std::unordered_set<ecs::Entity> none;
-  const uint32_t T = 4;
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 256, .bounces = 1}, .temporalSets = T});
-  paths.update(snap, f.bvh, f.assets, none);
-  ASSERT_EQ(paths.stats().valid, 256u);
-  for (uint32_t s = 0; s < T; ++s) paths.markSetRendered(s);
+  const uint32_t T = kStaleSets;
+  gi::VplPaths paths = freshPaths(f, snap);
   paths.update(snap, f.bvh, f.assets, none);
   EXPECT_EQ(paths.stats().invalidatedThisFrame, 0u) << "nothing changed";
   f.world.write<Light>(second).enabled = true;
