@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <functional>
@@ -603,10 +604,29 @@ std::string parseFailure(const std::string& name, const std::string& err) {
   std::string first = err.substr(0, err.find('\n'));
   return name + ": not a valid glTF file (" + (first.empty() ? "parse failed" : first) + ")";
 }
+
+// The error contract is one line: names and strings quoted from the file (a light type, a node name) or
+// a path from the command line may hold control characters, so they are written as escapes.
+std::string oneLine(const std::string& message) {
+  std::string out;
+  out.reserve(message.size());
+  for (unsigned char c : message) {
+    if (c == '\n') out += "\\n";
+    else if (c < 0x20 || c == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", unsigned(c));
+      out += hex;
+    } else {
+      out += char(c);
+    }
+  }
+  return out;
+}
 }  // namespace
 
-std::string importGltf(const std::string& path, ecs::World& world, AssetStore& assets, ImportReport* report,
-                       const ImportOptions& options) {
+namespace {
+std::string importGltfFile(const std::string& path, ecs::World& world, AssetStore& assets, ImportReport* report,
+                           const ImportOptions& options) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(path, ec)) return path + ": file not found";
@@ -626,6 +646,12 @@ std::string importGltf(const std::string& path, ecs::World& world, AssetStore& a
   if (!ok) return parseFailure(path, err);
   return importModel(model, path, world, assets, report, options);
 }
+}  // namespace
+
+std::string importGltf(const std::string& path, ecs::World& world, AssetStore& assets, ImportReport* report,
+                       const ImportOptions& options) {
+  return oneLine(importGltfFile(path, world, assets, report, options));
+}
 
 std::string importGltfFromMemory(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                                  ecs::World& world, AssetStore& assets, ImportReport* report, const ImportOptions& options) {
@@ -641,8 +667,8 @@ std::string importGltfFromMemory(const uint8_t* data, size_t size, const std::st
   } catch (const std::exception& ex) {
     err = ex.what();
   }
-  if (!ok) return parseFailure(name, err);
-  return importModel(model, name, world, assets, report, options);
+  if (!ok) return oneLine(parseFailure(name, err));
+  return oneLine(importModel(model, name, world, assets, report, options));
 }
 
 }  // namespace dyngi::scene
