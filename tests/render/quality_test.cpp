@@ -202,6 +202,9 @@ TEST_F(RenderTest, QualityFlickerUnderACameraPanPerTechnique) {
     }
     std::printf("quality-pan| %s | %.3f%% | %.3f%% | %.3f%%\n", c.label, 100 * final, 100 * indirect, 100 * direct);
     EXPECT_GT(direct, 0.0) << "the camera moved";
+    // A black indirect image would change by nothing: the GI must be there to be measured.
+    const glm::dvec3 lit = render::meanOver(previous.indirect);
+    EXPECT_GT(0.2126 * lit.r + 0.7152 * lit.g + 0.0722 * lit.b, 0.01) << "indirect light on screen";
     EXPECT_LE(indirect, c.maxPanFlicker);
   }
 }
