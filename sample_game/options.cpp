@@ -10,19 +10,24 @@ namespace dyngi::sample {
 
 namespace {
 
-const char* const kGiModes[] = {"off", "svo", "bvh", "path"};
+const char* const kGiModes[] = {"off", "svo", "bvh", "vct", "path"};
 const char* const kEngineViews[] = {"final", "voxels", "svo-steps"};  // the voxel scene's and the default
 
 // The command line that selects each technique of the registry (a new technique adds its --gi here).
 std::string flagsOf(std::string_view technique) {
   if (technique == "temporal") return "--gi svo | --gi bvh";
   if (technique == "many_lights") return "--gi svo --vpl-source rsm";
+  if (technique == "vct") return "--gi vct";
   return "--gi " + std::string(technique);
 }
 
 // --gi and --vpl-source pick the technique (and the temporal technique's visibility).
 void selectTechnique(Options& o) {
   if (!o.usesGiSystem()) return;
+  if (o.gi == "vct") {
+    o.giSettings.technique = "vct";
+    return;
+  }
   o.giSettings.technique = o.vplSource == "rsm" ? "many_lights" : "temporal";
   o.giSettings.temporal.visibility = o.gi == "bvh" ? gi::VisibilityBackend::Bvh : gi::VisibilityBackend::Svo;
 }
@@ -190,7 +195,7 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
       bool known = false;
       for (const char* m : kGiModes) known |= o.gi == m;
       if (!known) {
-        error = "unknown --gi mode '" + o.gi + "' (available: off, svo, bvh, path)";
+        error = "unknown --gi mode '" + o.gi + "' (available: off, svo, bvh, vct, path)";
         return std::nullopt;
       }
     } else if (a.rfind("--", 0) == 0 && a.size() > 2) {

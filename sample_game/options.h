@@ -41,7 +41,7 @@ struct Options {
   // names it; "" for --gi off and path), the voxel scene's, and the path tracer's for --gi path.
   gi::GiSettings giSettings;
   gi::PathTracerSettings pathTracer;
-  bool usesGiSystem() const { return gi == "svo" || gi == "bvh"; }
+  bool usesGiSystem() const { return gi == "svo" || gi == "bvh" || gi == "vct"; }
 };
 
 std::string usage();

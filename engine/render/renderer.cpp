@@ -97,6 +97,7 @@ bool Renderer::resize(uint32_t width, uint32_t height) {
   t.emissive = makeTarget(ctx_, width, height, VK_FORMAT_R16G16B16A16_SFLOAT, color, "gbuffer emissive");
   t.depth = makeTarget(ctx_, width, height, VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "depth");
   t.indirect = makeTarget(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "indirect");
+  t.specular = makeTarget(ctx_, width, height, VK_FORMAT_R16G16B16A16_SFLOAT, storage, "indirect specular");
   t.hdr = makeTarget(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "hdr");
   t.ldr = makeTarget(ctx_, width, height, VK_FORMAT_R8G8B8A8_UNORM, storage, "ldr");
   for (RenderFeature* f : features_) f->resize(ctx_, width, height);
@@ -191,6 +192,7 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
   };
   FrameContext frame{ctx_, cmd_, timer_.get(), snapshot, targets_, frameUniforms_, fu, meshes, linearSampler_, nearestSampler_, textures,
                      submitAndWait};
+  frame.lights = LightInputs{&shadow_->lights(), &shadow_->matrices(), &shadow_->shadowMap(), shadow_->lightCount()};
 
   if (!settings_.featuresOnly) {
     shadow_->execute(frame);
@@ -207,7 +209,7 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
     vkCmdClearColorImage(cmd_, targets_.indirect.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
   }
   if (!settings_.featuresOnly) {
-    lighting_->execute(frame, *shadow_, indirectWritten);
+    lighting_->execute(frame, *shadow_, indirectWritten, frame.specularWritten);
     for (RenderFeature* f : features_) f->recordAfterLighting(frame);
     tonemap_->execute(frame);
   }
@@ -286,6 +288,7 @@ Image& Renderer::target(TargetId id) {
     case TargetId::Albedo: return targets_.albedo;
     case TargetId::Emissive: return targets_.emissive;
     case TargetId::Indirect: return targets_.indirect;
+    case TargetId::Specular: return targets_.specular;
     case TargetId::Hdr: return targets_.hdr;
     case TargetId::Ldr: return targets_.ldr;
   }

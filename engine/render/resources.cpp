@@ -132,9 +132,10 @@ void Image::create() {
   VulkanContext& ctx = *ctx_;
   const ImageDesc& desc = desc_;
   VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  ici.imageType = VK_IMAGE_TYPE_2D;
+  const bool volume = desc.viewType == VK_IMAGE_VIEW_TYPE_3D;
+  ici.imageType = volume ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
   ici.format = desc.format;
-  ici.extent = {std::max(desc.width, 1u), std::max(desc.height, 1u), 1};
+  ici.extent = {std::max(desc.width, 1u), std::max(desc.height, 1u), volume ? std::max(desc.depth, 1u) : 1u};
   ici.mipLevels = desc.mips;
   ici.arrayLayers = desc.layers;
   ici.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -168,6 +169,17 @@ void Image::create() {
   } else {
     layerViews_.push_back(view_);
   }
+  if (desc.mips > 1) {
+    for (uint32_t m = 0; m < desc.mips; ++m) {
+      vci.viewType = desc.viewType;
+      vci.subresourceRange = {aspect(), m, 1, 0, desc.layers};
+      VkImageView v;
+      DYNGI_VK(vkCreateImageView(ctx.device(), &vci, nullptr, &v));
+      mipViews_.push_back(v);
+    }
+  } else {
+    mipViews_.push_back(view_);
+  }
   ctx.setName(VK_OBJECT_TYPE_IMAGE, uint64_t(image_), desc.name);
 }
 
@@ -182,6 +194,8 @@ Image& Image::operator=(Image&& o) noexcept {
     view_ = std::exchange(o.view_, VK_NULL_HANDLE);
     layerViews_ = std::move(o.layerViews_);
     o.layerViews_.clear();
+    mipViews_ = std::move(o.mipViews_);
+    o.mipViews_.clear();
     desc_ = o.desc_;
     layout_ = o.layout_;
     lastStage_ = o.lastStage_;
@@ -196,6 +210,9 @@ void Image::reset() {
   for (VkImageView v : layerViews_)
     if (v != view_) vkDestroyImageView(d, v, nullptr);
   layerViews_.clear();
+  for (VkImageView v : mipViews_)
+    if (v != view_) vkDestroyImageView(d, v, nullptr);
+  mipViews_.clear();
   if (view_) vkDestroyImageView(d, view_, nullptr);
   if (image_) vkDestroyImage(d, image_, nullptr);
   ctx_->freeMemory(memory_, memoryBytes_, memoryType_);
@@ -286,16 +303,23 @@ size_t formatBytesPerPixel(VkFormat format) {
 }
 
 namespace {
-Buffer copyToHost(VulkanContext& ctx, Image& img) {
+VkExtent3D levelExtent(const ImageDesc& d, uint32_t level) {
+  const uint32_t depth = d.viewType == VK_IMAGE_VIEW_TYPE_3D ? d.depth : 1u;
+  return {std::max(d.width >> level, 1u), std::max(d.height >> level, 1u), std::max(depth >> level, 1u)};
+}
+
+Buffer copyToHost(VulkanContext& ctx, Image& img, uint32_t level = 0) {
   size_t bpp = formatBytesPerPixel(img.desc().format);
   if (bpp == 0) throw VulkanError("readback: unsupported format");
-  VkDeviceSize bytes = VkDeviceSize(img.desc().width) * img.desc().height * bpp;
+  if (level >= img.desc().mips) throw VulkanError("readback: no such mip level");
+  const VkExtent3D e = levelExtent(img.desc(), level);
+  VkDeviceSize bytes = VkDeviceSize(e.width) * e.height * e.depth * bpp;
   Buffer out(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "readback");
   ctx.immediate([&](VkCommandBuffer cmd) {
     img.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {img.desc().width, img.desc().height, 1};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1};
+    region.imageExtent = e;
     vkCmdCopyImageToBuffer(cmd, img.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, out.handle(), 1, &region);
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
   });
@@ -304,9 +328,12 @@ Buffer copyToHost(VulkanContext& ctx, Image& img) {
 }
 }  // namespace
 
-std::vector<glm::vec4> readbackImage(VulkanContext& ctx, Image& img) {
-  Buffer buf = copyToHost(ctx, img);
-  size_t n = size_t(img.desc().width) * img.desc().height;
+std::vector<glm::vec4> readbackImage(VulkanContext& ctx, Image& img) { return readbackImageLevel(ctx, img, 0); }
+
+std::vector<glm::vec4> readbackImageLevel(VulkanContext& ctx, Image& img, uint32_t level) {
+  Buffer buf = copyToHost(ctx, img, level);
+  const VkExtent3D e = levelExtent(img.desc(), level);
+  size_t n = size_t(e.width) * e.height * e.depth;
   std::vector<glm::vec4> out(n);
   const uint8_t* src = static_cast<const uint8_t*>(buf.mapped());
   switch (img.desc().format) {

@@ -20,47 +20,23 @@ layout(set = 0, binding = DYNGI_LIGHTING_BINDING_SHADOW_MATRICES) readonly buffe
 layout(set = 0, binding = DYNGI_LIGHTING_BINDING_SHADOW_MAPS, r32f) uniform readonly image2DArray shadowMaps;
 layout(set = 0, binding = DYNGI_LIGHTING_BINDING_INDIRECT, rgba32f) uniform readonly image2D indirect;
 layout(set = 0, binding = DYNGI_LIGHTING_BINDING_OUT_HDR, rgba32f) uniform writeonly image2D outHdr;
+layout(set = 0, binding = DYNGI_LIGHTING_BINDING_SPECULAR, rgba16f) uniform readonly image2D specular;
 layout(push_constant) uniform Push { DYNGI_LIGHTING_PUSH };
+// A feature wrote indirect specular radiance (RenderTargets::specular): a pipeline variant.
+layout(constant_id = 0) const bool kSpecular = false;
 
 const float PI = 3.14159265358979;
+#include "shared/shadows.glsl"
 
-// Point lights use six layers (+X,-X,+Y,-Y,+Z,-Z); pick the face the direction falls in.
-uint cubeFace(vec3 d) {
-  vec3 a = abs(d);
-  if (a.x >= a.y && a.x >= a.z) return d.x > 0.0 ? 0u : 1u;
-  if (a.y >= a.z) return d.y > 0.0 ? 2u : 3u;
-  return d.z > 0.0 ? 4u : 5u;
-}
-
-float shadowFactor(GpuLight L, vec3 p, vec3 n, float dist) {
-  if (L.cone.z < 0.0) return 1.0;
-  uint layer = uint(L.cone.z);
-  int type = int(L.positionType.w);
-  // Normal offset grows with the texel footprint (distance for perspective maps).
-  float offset = L.cone.w * (type == DYNGI_LIGHT_DIRECTIONAL ? 1.0 : dist);
-  vec3 ps = p + n * offset;
-  if (type == DYNGI_LIGHT_POINT) layer += cubeFace(ps - L.positionType.xyz);
-  vec4 clip = shadowViewProj[layer] * vec4(ps, 1.0);
-  if (clip.w <= 0.0) return 1.0;
-  vec3 ndc = clip.xyz / clip.w;
-  vec2 uv = ndc.xy * 0.5 + 0.5;
-  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z > 1.0) return 1.0;
-  // The 3x3-texel tent of four bilinear comparisons half a texel off the position, from the nine texels
-  // themselves: with the position t in texels (texel i spans [i, i + 1)), the taps cover texels
-  // floor(t) - 1 .. floor(t) + 1 with weights (1 - f) / 2, 1 / 2, f / 2 per axis, f = fract(t).
-  // Nine storage-image loads cost lavapipe less than four filtered comparison samples.
-  ivec2 size = imageSize(shadowMaps).xy;
-  vec2 t = uv * vec2(size);
-  ivec2 first = ivec2(floor(t)) - 1;
-  vec2 f = fract(t);
-  vec3 wx = vec3(1.0 - f.x, 1.0, f.x) * 0.5, wy = vec3(1.0 - f.y, 1.0, f.y) * 0.5;
-  float sum = 0.0;
-  for (int y = 0; y < 3; ++y)
-    for (int x = 0; x < 3; ++x) {
-      ivec2 q = clamp(first + ivec2(x, y), ivec2(0), size - 1);
-      sum += ndc.z <= imageLoad(shadowMaps, ivec3(q, int(layer))).r ? wx[x] * wy[y] : 0.0;
-    }
-  return sum;
+// The directional albedo of a GGX specular lobe, F0 * A + B, from Karis' analytic fit to the split-sum
+// table ("Physically Based Shading on Mobile", 2014): what a prefiltered reflection is weighted by.
+vec3 specularColour(vec3 f0, float roughness, float nDotV) {
+  const vec4 c0 = vec4(-1.0, -0.0275, -0.572, 0.022);
+  const vec4 c1 = vec4(1.0, 0.0425, 1.04, -0.04);
+  vec4 r = roughness * c0 + c1;
+  float a004 = min(r.x * r.x, exp2(-9.28 * nDotV)) * r.x + r.y;
+  vec2 ab = vec2(-1.04, 1.04) * a004 + r.zw;
+  return f0 * ab.x + ab.y;
 }
 
 // Irradiance from light L at p (normal n), shadowed.
@@ -81,7 +57,8 @@ void main() {
     imageStore(outHdr, px, vec4(frame.background.rgb, 1.0));
     return;
   }
-  vec3 n = normalize(imageLoad(gNormal, px).xyz);
+  vec4 normalRough = imageLoad(gNormal, px);
+  vec3 n = normalize(normalRough.xyz);
   vec4 albedoMetal = imageLoad(gAlbedo, px);
   vec3 diffuse = albedoMetal.rgb * (1.0 - albedoMetal.a) / PI;
   vec3 radiance = imageLoad(gEmissive, px).rgb;
@@ -92,5 +69,11 @@ void main() {
     if (i < count) radiance += diffuse * directLight(lights[i], pos.xyz, n);
   } while (++i < count);
   if (hasIndirect != 0u) radiance += albedoMetal.rgb * (1.0 - albedoMetal.a) * imageLoad(indirect, px).rgb;
+  if (kSpecular) {
+    // Dielectrics reflect 4 percent at normal incidence, metals their base colour.
+    vec3 f0 = mix(vec3(0.04), albedoMetal.rgb, albedoMetal.a);
+    float nDotV = clamp(dot(n, normalize(frame.cameraPos.xyz - pos.xyz)), 0.0, 1.0);
+    radiance += specularColour(f0, normalRough.w, nDotV) * imageLoad(specular, px).rgb;
+  }
   imageStore(outHdr, px, vec4(radiance, 1.0));
 }

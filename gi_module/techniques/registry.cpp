@@ -4,7 +4,7 @@ namespace dyngi::gi {
 
 const std::vector<TechniqueEntry>& techniqueRegistry() {
   // A new technique adds its entry here (docs/ARCHITECTURE.md, "How to add a technique").
-  static const std::vector<TechniqueEntry> entries = {temporalTechniqueEntry(), manyLightsTechniqueEntry()};
+  static const std::vector<TechniqueEntry> entries = {temporalTechniqueEntry(), manyLightsTechniqueEntry(), vctTechniqueEntry()};
   return entries;
 }
 

@@ -7,5 +7,6 @@ namespace dyngi::gi {
 
 TechniqueEntry manyLightsTechniqueEntry();
 TechniqueEntry temporalTechniqueEntry();
+TechniqueEntry vctTechniqueEntry();
 
 }  // namespace dyngi::gi

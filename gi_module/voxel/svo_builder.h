@@ -34,6 +34,7 @@ class SvoBuilder {
 
   const render::Buffer& nodes() const { return nodes_; }
   const render::Buffer& levels() const { return levels_; }
+  const render::Buffer& nodeCells() const { return nodeCells_; }
   render::Buffer& counters() { return svoCounters_; }
   uint64_t bytes() const;  // nodes, node cells and the occupancy pyramid
 
@@ -47,7 +48,7 @@ class SvoBuilder {
   uint32_t maxNodeGroups_;
   uint32_t nodeGroupCapacity_ = 0;
   render::Buffer nodes_, levels_, svoCounters_;
-  render::Buffer nodeCells_;  // per node that may be subdivided: its cell's Morton code (svo_expand.comp), sized like nodes_
+  render::Buffer nodeCells_;  // per node, leaves included: its cell's Morton code (svo_expand.comp), sized like nodes_
   render::Buffer occupancy_;  // occupancy pyramid of every level (svo_mark.comp)
   // The pyramid of the entities in staticEntities_ alone: a build starts from a copy of it and marks the
   // moving entities' fragments only. Rebuilt when one of them moves or is removed, or when a moving

@@ -28,7 +28,9 @@ const OptionTable<VoxelSettings>& VoxelSettings::table() {
 }
 
 namespace {
-constexpr uint32_t kAttributeInts = 8;  // ints per leaf in the attribute buffer
+constexpr uint32_t kAttributeInts = DYNGI_LEAF_ATTRIBUTE_INTS;  // ints per leaf in the attribute buffer
+// Leaf slots per fragment slot the attributes start with (grown after a build that needed more).
+constexpr uint64_t kAttributeSlotsPerFragment = 2;
 }  // namespace
 
 VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings) : ctx_(ctx), settings_(settings) {
@@ -45,14 +47,17 @@ VoxelScene::~VoxelScene() = default;
 
 const render::Buffer& VoxelScene::nodes() const { return svo_->nodes(); }
 const render::Buffer& VoxelScene::levels() const { return svo_->levels(); }
+const render::Buffer& VoxelScene::nodeCells() const { return svo_->nodeCells(); }
 
 void VoxelScene::setDebugView(VoxelDebugView v) {
   settings_.debugView = v;
-  if (v == VoxelDebugView::Voxels && !settings_.leafAttributes) {  // the view colours voxels by albedo
+  if (v == VoxelDebugView::Voxels) enableLeafAttributes();  // the view colours voxels by albedo
+}
+
+void VoxelScene::enableLeafAttributes() {
+  if (!settings_.leafAttributes) {
     settings_.leafAttributes = true;
-    vkDeviceWaitIdle(ctx_.device());
-    attributes_ = Buffer(ctx_, stats_.fragmentCapacity * kAttributeInts * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly,
-                         "voxel leaf attributes");
+    allocateAttributes(kAttributeSlotsPerFragment * stats_.fragmentCapacity);
     storageMoved_ = true;  // build them
   }
 }
@@ -83,10 +88,16 @@ void VoxelScene::reallocateFragments(uint64_t slots, const std::vector<SlotCopy>
     if (!keep.empty()) vkCmdCopyBuffer(cmd, fragments_.handle(), fresh.handle(), uint32_t(keep.size()), keep.data());
   });
   fragments_ = std::move(fresh);
-  attributes_ = Buffer(ctx_, settings_.leafAttributes ? slots * kAttributeInts * 4 : 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                       MemoryUsage::GpuOnly, "voxel leaf attributes");
   stats_.fragmentCapacity = slots;
+  allocateAttributes(settings_.leafAttributes ? kAttributeSlotsPerFragment * slots : 0);
   storageMoved_ = true;
+}
+
+void VoxelScene::allocateAttributes(uint64_t leafSlots) {
+  vkDeviceWaitIdle(ctx_.device());
+  attributes_ = Buffer(ctx_, std::max<uint64_t>(leafSlots * kAttributeInts * 4, 16), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                       MemoryUsage::GpuOnly, "voxel leaf attributes");
+  attributeLeaves_ = leafSlots;
 }
 
 void VoxelScene::compactFragments() {
@@ -233,7 +244,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
   }
   {
     const render::Buffer* attributes = settings_.leafAttributes ? &attributes_ : nullptr;
-    svo_->record(frame, fragments_, uint32_t(ranges_.highWater()), depth, attributes, stats_.fragmentCapacity);
+    svo_->record(frame, fragments_, uint32_t(ranges_.highWater()), depth, attributes, attributeLeaves_);
   }
   stats_.rebuilt = true;
   return false;  // the voxel scene feeds other stages; it does not write indirect light
@@ -259,6 +270,12 @@ void VoxelScene::frameFinished(render::VulkanContext&) {
   }
   stats_.fragments = ranges_.storedFragments();
   if (svo_->frameFinished(stats_)) storageMoved_ = true;  // the conservative SVO stands until the next build
+  // The attributes are indexed by the leaf level's slots (empty siblings included), which can outnumber
+  // the fragments: grow to the node count (a bound on them) and build again.
+  if (settings_.leafAttributes && stats_.nodes > attributeLeaves_) {
+    allocateAttributes(stats_.nodes + stats_.nodes / 2);
+    storageMoved_ = true;
+  }
   stats_.totalBytes = fragments_.size() + svo_->bytes() + attributes_.size();
 }
 

@@ -37,7 +37,11 @@ TEST_F(RenderTest, EveryTechniqueTimesTheSectionsItDeclaresAndReportsTheOptionsI
         EXPECT_EQ(r.get(), 2.0);
       }
     }
-    EXPECT_EQ(run.gi->effectiveVplCount(), 100u);
+    bool hasVpls = false;
+    for (const gi::OptionRef& r : run.gi->technique().options()) hasVpls |= std::string_view(r.spec->name) == "vpls";
+    if (hasVpls) {
+      EXPECT_EQ(run.gi->effectiveVplCount(), 100u);
+    }
     for (const char* view : e.debugViews) EXPECT_TRUE(run.gi->technique().setDebugView(view)) << view;
     EXPECT_TRUE(run.gi->technique().setDebugView("final") || e.debugViews.empty());
     EXPECT_FALSE(run.gi->technique().setDebugView("no-such-view"));

@@ -109,11 +109,13 @@ class LightingPass {
  public:
   static constexpr const char* kName = "lighting";
   explicit LightingPass(VulkanContext& ctx);
-  void execute(FrameContext& frame, ShadowPass& shadows, bool hasIndirect);
+  void execute(FrameContext& frame, ShadowPass& shadows, bool hasIndirect, bool hasSpecular);
 
  private:
   VulkanContext& ctx_;
-  Pipeline pipeline_;
+  // Without and with the indirect specular term (a specialization constant: lavapipe would pay for
+  // the branch in every pixel of every frame that has none).
+  Pipeline pipeline_[2];
 };
 
 class TonemapPass {

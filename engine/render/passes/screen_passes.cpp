@@ -24,17 +24,22 @@ LightingPass::LightingPass(VulkanContext& ctx) : ctx_(ctx) {
                        {DYNGI_LIGHTING_BINDING_SHADOW_MATRICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
                        {DYNGI_LIGHTING_BINDING_SHADOW_MAPS, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
                        {DYNGI_LIGHTING_BINDING_INDIRECT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {DYNGI_LIGHTING_BINDING_OUT_HDR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
-  pipeline_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_lighting_comp), b, sizeof(gpu::LightingPush), "lighting");
+                       {DYNGI_LIGHTING_BINDING_OUT_HDR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {DYNGI_LIGHTING_BINDING_SPECULAR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
+  for (uint32_t specular : {0u, 1u}) {
+    const uint32_t spec[] = {specular};
+    pipeline_[specular] = Pipeline::compute(ctx, DYNGI_SHADER(spv_lighting_comp), b, sizeof(gpu::LightingPush), "lighting", spec);
+  }
 }
 
-void LightingPass::execute(FrameContext& frame, ShadowPass& shadows, bool hasIndirect) {
+void LightingPass::execute(FrameContext& frame, ShadowPass& shadows, bool hasIndirect, bool hasSpecular) {
   ScopedPass scope(ctx_, frame.timer, frame.cmd, kName);
   VkCommandBuffer cmd = frame.cmd;
   RenderTargets& t = frame.targets;
-  for (Image* in : {&t.position, &t.normal, &t.albedo, &t.emissive, &t.indirect}) prepareInput(cmd, *in);
+  for (Image* in : {&t.position, &t.normal, &t.albedo, &t.emissive, &t.indirect, &t.specular}) prepareInput(cmd, *in);
   prepareOutput(cmd, t.hdr);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
+  const Pipeline& pipeline = pipeline_[hasSpecular ? 1 : 0];
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
   DescriptorWrites()
       .uniformBuffer(DYNGI_LIGHTING_BINDING_FRAME, frame.frameUniforms.handle())
       .storageImage(DYNGI_LIGHTING_BINDING_G_POSITION, t.position.view())
@@ -46,9 +51,10 @@ void LightingPass::execute(FrameContext& frame, ShadowPass& shadows, bool hasInd
       .storageImage(DYNGI_LIGHTING_BINDING_SHADOW_MAPS, shadows.shadowMap().view())
       .storageImage(DYNGI_LIGHTING_BINDING_INDIRECT, t.indirect.view())
       .storageImage(DYNGI_LIGHTING_BINDING_OUT_HDR, t.hdr.view())
-      .push(ctx_, cmd, pipeline_);
+      .storageImage(DYNGI_LIGHTING_BINDING_SPECULAR, t.specular.view())
+      .push(ctx_, cmd, pipeline);
   const gpu::LightingPush pc{hasIndirect ? 1u : 0u};
-  vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
+  vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
   vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
 }
 

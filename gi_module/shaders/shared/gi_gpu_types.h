@@ -151,7 +151,15 @@ struct RsmPush {
 #define DYNGI_SVO_EXPAND_BINDING_OCCUPANCY 2
 #define DYNGI_SVO_EXPAND_BINDING_LEVELS 3
 #define DYNGI_SVO_EXPAND_BINDING_COUNTERS 4
-// svo_leaf_attributes
+// svo_leaf_attributes. A leaf's attributes are DYNGI_LEAF_ATTRIBUTE_INTS ints at leaf * that, sums over
+// its fragments (integer atomics): albedo 0..255 per channel, the fragment count, the normal x 127, the
+// emitted radiance x 256 per channel.
+#define DYNGI_LEAF_ATTRIBUTE_INTS 12u
+#define DYNGI_LEAF_ALBEDO 0u
+#define DYNGI_LEAF_COUNT 3u
+#define DYNGI_LEAF_NORMAL 4u
+#define DYNGI_LEAF_EMISSION 7u
+#define DYNGI_LEAF_EMISSION_SCALE 256.0
 #define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS 0
 #define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES 1
 #define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS 2
@@ -181,6 +189,60 @@ struct RsmPush {
 #define DYNGI_VOXELIZE_BINDING_COUNTERS 1
 #define DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX 2
 #define DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX 3
+
+// Voxel cone tracing (techniques/vct/): the passes over the occupied voxels (SVO leaves) and the screen.
+// vct_inject: direct light and emission of each occupied voxel into the radiance volume
+#define DYNGI_VCT_INJECT_BINDING_NODES 0
+#define DYNGI_VCT_INJECT_BINDING_NODE_CELLS 1
+#define DYNGI_VCT_INJECT_BINDING_LEVELS 2
+#define DYNGI_VCT_INJECT_BINDING_ATTRIBUTES 3
+#define DYNGI_VCT_INJECT_BINDING_LIGHTS 4
+#define DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES 5
+#define DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS 6
+#define DYNGI_VCT_INJECT_BINDING_PREVIOUS 7
+#define DYNGI_VCT_INJECT_BINDING_DIRECT 8
+#define DYNGI_VCT_INJECT_BINDING_RADIANCE 9
+// vct_bounce: one more bounce per occupied voxel (cones over the radiance volume), then vct_commit
+#define DYNGI_VCT_BOUNCE_BINDING_NODES 0
+#define DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS 1
+#define DYNGI_VCT_BOUNCE_BINDING_LEVELS 2
+#define DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES 3
+#define DYNGI_VCT_BOUNCE_BINDING_DIRECT 4
+#define DYNGI_VCT_BOUNCE_BINDING_RADIANCE 5
+#define DYNGI_VCT_BOUNCE_BINDING_ANISO 6
+#define DYNGI_VCT_BOUNCE_BINDING_OUT 7
+// vct_mips: one level of the radiance mip chain (isotropic) or of the six-direction atlas
+#define DYNGI_VCT_MIPS_BINDING_SOURCE 0
+#define DYNGI_VCT_MIPS_BINDING_DEST 1
+// vct_trace: the screen's cones; vct_upsample: to full resolution
+#define DYNGI_VCT_TRACE_BINDING_FRAME 0
+#define DYNGI_VCT_TRACE_BINDING_G_POSITION 1
+#define DYNGI_VCT_TRACE_BINDING_G_NORMAL 2
+#define DYNGI_VCT_TRACE_BINDING_RADIANCE 3
+#define DYNGI_VCT_TRACE_BINDING_ANISO 4
+#define DYNGI_VCT_TRACE_BINDING_OUT_DIFFUSE 5
+#define DYNGI_VCT_TRACE_BINDING_OUT_SPECULAR 6
+#define DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION 0
+#define DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL 1
+#define DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE 2
+#define DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR 3
+#define DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE 4
+#define DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR 5
+#define DYNGI_VCT_UPSAMPLE_BINDING_FRAME 6
+// vct_debug: views over the HDR image
+#define DYNGI_VCT_DEBUG_BINDING_FRAME 0
+#define DYNGI_VCT_DEBUG_BINDING_RADIANCE 1
+#define DYNGI_VCT_DEBUG_BINDING_ANISO 2
+#define DYNGI_VCT_DEBUG_BINDING_INDIRECT 3
+#define DYNGI_VCT_DEBUG_BINDING_SPECULAR 4
+#define DYNGI_VCT_DEBUG_BINDING_OUT_HDR 5
+// vct_cone_probe (tests): cones along given rays
+#define DYNGI_VCT_PROBE_BINDING_RAYS 0
+#define DYNGI_VCT_PROBE_BINDING_RADIANCE 1
+#define DYNGI_VCT_PROBE_BINDING_ANISO 2
+#define DYNGI_VCT_PROBE_BINDING_RESULTS 3
+// The six directions of the anisotropic atlas, in slab order: a cone travelling along +x reads slab 0.
+#define DYNGI_VCT_SLABS 6u
 
 // Bindings of the shared indirect gather (gather.glsl); a technique's gather variant adds its own after
 // them (temporal_gather.comp).
@@ -309,6 +371,29 @@ struct TemporalQueue {
   float lift;        /* voxel units the ray starts off its surface */
 #define DYNGI_MANY_LIGHTS_DEBUG_PUSH uint mode; uint K; uint vplCount;
 #define DYNGI_INDIRECT_FILTER_PUSH float planeTolerance;
+// The cone parameters every VCT pass that marches cones shares (vct_cone.glsl reads them by name).
+#define DYNGI_VCT_CONE_PARAMS                                                        \
+  vec4 volume;       /* xyz world origin, w voxel size */                          \
+  float res;         /* voxels per side */                                         \
+  float maxDistance; /* voxels a diffuse cone marches */                           \
+  float aoDistance;  /* voxels over which occlusion counts towards AO */          \
+  float coneOffset;  /* voxels off the surface a cone starts */                   \
+  float stepScale;   /* step = this x the cone's diameter */                       \
+  uint cones;        /* diffuse cones */
+#define DYNGI_VCT_INJECT_PUSH                                                        \
+  vec4 volume;       /* xyz world origin, w voxel size */                          \
+  uint depth;                                                                      \
+  uint leafCapacity;                                                               \
+  uint lightCount;                                                                 \
+  uint history;      /* 1: PREVIOUS holds last frame's radiance */                \
+  float temporalBlend;                                                             \
+  float temporalResponse;
+#define DYNGI_VCT_BOUNCE_PUSH DYNGI_VCT_CONE_PARAMS uint depth; uint leafCapacity; uint commit; /* 0 trace, 1 copy OUT to RADIANCE */
+#define DYNGI_VCT_MIPS_PUSH uint destSlabWidth; /* texels; the isotropic chain has one slab */ uint sourceSlabWidth; /* 0: one source slab */
+#define DYNGI_VCT_TRACE_PUSH DYNGI_VCT_CONE_PARAMS uint traceScale; uint specular;
+#define DYNGI_VCT_UPSAMPLE_PUSH uint traceScale;
+#define DYNGI_VCT_DEBUG_PUSH DYNGI_VCT_CONE_PARAMS uint mode; float mip;
+#define DYNGI_VCT_PROBE_PUSH DYNGI_VCT_CONE_PARAMS uint count; float tanHalf;
 
 #ifdef __cplusplus
 using uint = uint32_t;
@@ -324,6 +409,13 @@ struct VplSamplePush { DYNGI_VPL_SAMPLE_PUSH };
 struct VplBouncePush { DYNGI_VPL_BOUNCE_PUSH };
 struct ManyLightsDebugPush { DYNGI_MANY_LIGHTS_DEBUG_PUSH };
 struct IndirectFilterPush { DYNGI_INDIRECT_FILTER_PUSH };
+struct VctInjectPush { DYNGI_VCT_INJECT_PUSH };
+struct VctBouncePush { DYNGI_VCT_BOUNCE_PUSH };
+struct VctMipsPush { DYNGI_VCT_MIPS_PUSH };
+struct VctTracePush { DYNGI_VCT_TRACE_PUSH };
+struct VctUpsamplePush { DYNGI_VCT_UPSAMPLE_PUSH };
+struct VctDebugPush { DYNGI_VCT_DEBUG_PUSH };
+struct VctProbePush { DYNGI_VCT_PROBE_PUSH };
 #endif
 
 #ifdef __cplusplus
@@ -341,6 +433,8 @@ static_assert(sizeof(SvoMarkPush) == 8 && sizeof(SvoLevelPush) == 4 && sizeof(Sv
 static_assert(sizeof(SvoLeafAttributesPush) == 12 && sizeof(SvoMarchPush) == 32 && sizeof(VoxelDebugPush) == 28);
 static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && sizeof(VplSamplePush) == 16);
 static_assert(sizeof(VplBouncePush) == 40 && sizeof(ManyLightsDebugPush) == 12 && sizeof(IndirectFilterPush) == 4);
+static_assert(sizeof(VctInjectPush) == 40 && sizeof(VctBouncePush) == 52 && sizeof(VctMipsPush) == 8);
+static_assert(sizeof(VctTracePush) == 48 && sizeof(VctUpsamplePush) == 4 && sizeof(VctDebugPush) == 48 && sizeof(VctProbePush) == 48);
 }  // namespace dyngi::gi::gpu
 #endif
 

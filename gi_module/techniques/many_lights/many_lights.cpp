@@ -24,6 +24,8 @@ ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const Man
   // The values used from here on (Technique::options() reports them): bounces and K clamped, the VPL
   // count rounded to a multiple of the bounces.
   settings_.vpl.bounces = std::clamp(settings_.vpl.bounces, 1u, 3u);
+  // Bounced VPLs take the albedo and normal of the voxel they land on.
+  if (settings_.vpl.bounces > 1) voxels_.enableLeafAttributes();
   settings_.vpl.interleave = std::clamp(settings_.vpl.interleave, 1u, 8u);
   settings_.vpl.vplCount = settings_.vpl.effectiveVplCount();
   const Binding rowsB[] = {{DYNGI_VPL_CDF_ROWS_BINDING_RSM_FLUX, kSampled, kCS},

@@ -1,7 +1,7 @@
 #version 460
 // SVO build, step 2 of a level: every occupied node of `level` gets a group of 8 children, flagged from
 // one byte of the occupancy pyramid at level + 1 (DYNGI_SVO_LEVEL_BASE), each given its Morton code
-// (unless the children are leaves, which are never subdivided). One invocation writes a whole group, so no atomics touch the nodes; the groups come
+// (leaves too: radiance injection finds a leaf's voxel from it). One invocation writes a whole group, so no atomics touch the nodes; the groups come
 // from one counter (an append per subgroup). Nodes are visited in level order, which keeps a level's
 // groups contiguous (svo_level.comp relies on it).
 #extension GL_GOOGLE_include_directive : require
@@ -36,7 +36,7 @@ void expand(uint node) {
     for (uint c = 0u; c < 8u; ++c) {
       bool o = ((children >> c) & 1u) != 0u;
       nodes[8u * g + c] = o ? DYNGI_SVO_FLAG : 0u;
-      if (o && !childrenAreLeaves) nodeCells[8u * g + c] = 8u * code + c;
+      if (o) nodeCells[8u * g + c] = 8u * code + c;
     }
     if (childrenAreLeaves) leaves = bitCount(children);
     nodes[node] = DYNGI_SVO_FLAG | g;

@@ -1,6 +1,6 @@
 #version 460
-// Accumulates each fragment's albedo, normal and emission into its leaf (integer atomics: sums of
-// 8-bit albedo, signed 8-bit normals, 1/256-unit emission, and a count). Kept in a buffer apart from
+// Accumulates each fragment's albedo, normal and emission into its leaf (integer atomics; the layout is
+// DYNGI_LEAF_* in gi_gpu_types.h). Kept in a buffer apart from
 // the nodes so the visibility march never touches it.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
@@ -8,7 +8,7 @@ layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS) readonly buffer Fragments { uvec4 fragments[]; };
 layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES) buffer Attributes { int attributes[]; };  // 8 ints per leaf
+layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES) buffer Attributes { int attributes[]; };  // DYNGI_LEAF_ATTRIBUTE_INTS per leaf
 layout(push_constant) uniform Push { DYNGI_SVO_LEAF_ATTRIBUTES_PUSH };
 
 vec3 unpackEmission(uint e) {
@@ -32,16 +32,14 @@ void accumulate(uint i) {
   if (leaf >= leafCapacity) return;
   vec4 albedo = unpackUnorm4x8(f.y);
   vec4 normal = unpackSnorm4x8(f.z);
-  vec3 e = min(unpackEmission(f.w) * 256.0, vec3(8.0e6));
-  uint base = leaf * 8u;
-  atomicAdd(attributes[base + 0u], int(round(albedo.r * 255.0)));
-  atomicAdd(attributes[base + 1u], int(round(albedo.g * 255.0)));
-  atomicAdd(attributes[base + 2u], int(round(albedo.b * 255.0)));
-  atomicAdd(attributes[base + 3u], 1);
-  atomicAdd(attributes[base + 4u], int(round(normal.x * 127.0)));
-  atomicAdd(attributes[base + 5u], int(round(normal.y * 127.0)));
-  atomicAdd(attributes[base + 6u], int(round(normal.z * 127.0)));
-  atomicAdd(attributes[base + 7u], int(round((e.r + e.g + e.b) / 3.0)));
+  vec3 e = min(unpackEmission(f.w) * DYNGI_LEAF_EMISSION_SCALE, vec3(8.0e6));
+  uint base = leaf * DYNGI_LEAF_ATTRIBUTE_INTS;
+  for (uint c = 0u; c < 3u; ++c) {
+    atomicAdd(attributes[base + DYNGI_LEAF_ALBEDO + c], int(round(albedo[c] * 255.0)));
+    atomicAdd(attributes[base + DYNGI_LEAF_NORMAL + c], int(round(normal[c] * 127.0)));
+    atomicAdd(attributes[base + DYNGI_LEAF_EMISSION + c], int(round(e[c])));
+  }
+  atomicAdd(attributes[base + DYNGI_LEAF_COUNT], 1);
 }
 
 void main() {

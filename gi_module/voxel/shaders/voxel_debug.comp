@@ -29,12 +29,13 @@ void main() {
     color = vec3(s, 0.2 * (1.0 - abs(2.0 * s - 1.0)), 1.0 - s) * 0.6;
   } else if (node != 0xFFFFFFFFu) {
     uint leaf = node - levels[depth].range.x;
-    uint base = leaf * 8u;
-    float count = max(float(attributes[base + 3u]), 1.0);
-    vec3 albedo = vec3(attributes[base], attributes[base + 1u], attributes[base + 2u]) / (255.0 * count);
-    vec3 n = vec3(attributes[base + 4u], attributes[base + 5u], attributes[base + 6u]);
+    uint base = leaf * DYNGI_LEAF_ATTRIBUTE_INTS;
+    float count = max(float(attributes[base + DYNGI_LEAF_COUNT]), 1.0);
+    uint a = base + DYNGI_LEAF_ALBEDO, nb = base + DYNGI_LEAF_NORMAL, e = base + DYNGI_LEAF_EMISSION;
+    vec3 albedo = vec3(attributes[a], attributes[a + 1u], attributes[a + 2u]) / (255.0 * count);
+    vec3 n = vec3(attributes[nb], attributes[nb + 1u], attributes[nb + 2u]);
     float lambert = length(n) > 0.0 ? abs(dot(normalize(n), dirWorld)) : 1.0;
-    color = albedo * (0.25 + 0.75 * lambert) * 0.8 + vec3(attributes[base + 7u]) / (256.0 * count);
+    color = albedo * (0.25 + 0.75 * lambert) * 0.8 + vec3(attributes[e], attributes[e + 1u], attributes[e + 2u]) / (DYNGI_LEAF_EMISSION_SCALE * count);
   }
   imageStore(outHdr, px, vec4(color, 1.0));
 }

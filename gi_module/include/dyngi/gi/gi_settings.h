@@ -6,6 +6,7 @@
 #include "dyngi/gi/budget_controller.h"
 #include "dyngi/gi/many_lights_options.h"
 #include "dyngi/gi/temporal_options.h"
+#include "dyngi/gi/vct_options.h"
 #include "dyngi/gi/voxel_scene.h"
 
 namespace dyngi::gi {
@@ -16,6 +17,7 @@ struct GiSettings {
   VoxelSettings voxels;                // the voxel scene, for techniques that use one (resolution)
   ManyLightsOptions manyLights;
   TemporalOptions temporal;
+  VctOptions vct;
   BudgetOptions budget;                // off by default: a GI budget in milliseconds (budget_controller.h)
 };
 

@@ -74,6 +74,8 @@ class VoxelScene final : public render::RenderFeature {
   // Fixes the volume (otherwise the first snapshot's bounds decide it). Re-voxelizes everything.
   void setVolume(const VoxelVolume& v);
   void setDebugView(VoxelDebugView v);
+  // Builds the leaf attributes from now on (a technique that reads them: radiance injection).
+  void enableLeafAttributes();
 
   const VoxelVolume& volume() const { return volume_; }
   bool hasVolume() const { return haveVolume_; }
@@ -84,6 +86,10 @@ class VoxelScene final : public render::RenderFeature {
   const render::Buffer& nodes() const;
   const render::Buffer& leafAttributes() const { return attributes_; }
   const render::Buffer& levels() const;
+  // Per node, its cell's Morton code at its level (leaves included): where a leaf sits in the volume.
+  const render::Buffer& nodeCells() const;
+  // The leaf attributes' capacity in leaves (a leaf index at or past it has none).
+  uint64_t leafCapacity() const { return attributeLeaves_; }
 
  private:
   friend class VoxelProbe;  // tests' and tools' read-backs (gi_module/testing)
@@ -93,6 +99,7 @@ class VoxelScene final : public render::RenderFeature {
   // Moves every range's fragments into a buffer sized by what they hold (FragmentRanges::compact).
   void compactFragments();
   void reallocateFragments(uint64_t slots, const std::vector<SlotCopy>& keep);
+  void allocateAttributes(uint64_t leafSlots);  // leafSlots 0: none
 
   render::VulkanContext& ctx_;
   VoxelSettings settings_;
@@ -111,6 +118,7 @@ class VoxelScene final : public render::RenderFeature {
   std::vector<ecs::Entity> voxelizedThisFrame_;
 
   render::Buffer fragments_, counters_, attributes_;
+  uint64_t attributeLeaves_ = 0;  // leaf slots the attribute buffer holds
   uint64_t frameIndex_ = 0;
   // One voxelize pipeline per material kind (base-colour / emissive texture or not), made on first use:
   // lavapipe would run the texture lookups of a branch not taken.

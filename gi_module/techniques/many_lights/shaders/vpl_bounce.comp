@@ -40,10 +40,11 @@ void main() {
   uint node = svoFirstHit(o, dir, 0.0, 1e30, depth, res, tHit, steps);
   if (node != 0xFFFFFFFFu) {
     uint leaf = node - levels[depth].range.x;
-    uint base = leaf * 8u;
-    float cnt = max(float(attributes[base + 3u]), 1.0);
-    vec3 albedo = vec3(attributes[base], attributes[base + 1u], attributes[base + 2u]) / (255.0 * cnt);
-    vec3 vn = vec3(attributes[base + 4u], attributes[base + 5u], attributes[base + 6u]);
+    uint base = leaf * DYNGI_LEAF_ATTRIBUTE_INTS;
+    uint a = base + DYNGI_LEAF_ALBEDO, nb = base + DYNGI_LEAF_NORMAL;
+    float cnt = max(float(attributes[base + DYNGI_LEAF_COUNT]), 1.0);
+    vec3 albedo = vec3(attributes[a], attributes[a + 1u], attributes[a + 2u]) / (255.0 * cnt);
+    vec3 vn = vec3(attributes[nb], attributes[nb + 1u], attributes[nb + 2u]);
     vn = length(vn) > 0.0 ? normalize(vn) : -dir;
     if (dot(vn, dir) > 0.0) vn = -vn;  // face the incoming ray
     vec3 hitVoxel = o + dir * tHit;

@@ -23,6 +23,9 @@ struct RenderTargets {
   Image emissive;   // RGBA16F: rgb emitted radiance
   Image depth;      // D32
   Image indirect;   // RGBA32F: written by GI features (E_indirect / pi); cleared to 0 otherwise
+  Image specular;   // RGBA16F: indirect specular radiance along the reflected view ray, written by a GI
+                    // feature that sets FrameContext::specularWritten; lighting weighs it by the
+                    // specular colour (split-sum fit of the GGX BRDF) and ignores it otherwise
   Image hdr;        // RGBA32F: emission + direct + albedo * indirect, linear radiance before exposure
   Image ldr;        // RGBA8:   tone-mapped, sRGB-encoded display image
 };
@@ -68,6 +71,16 @@ inline void drawMesh(VkCommandBuffer cmd, const GpuMesh& mesh) {
   vkCmdDrawIndexed(cmd, mesh.indexCount, 1, 0, 0, 0);
 }
 
+// The frame's lights as the lighting pass sees them, for a feature that lights something itself
+// (radiance injection into a voxel volume): the GpuLight list, one view-projection per shadow layer and
+// the r32f lookup layers, which engine/shaders/shared/shadows.glsl reads. Valid while recording features.
+struct LightInputs {
+  const Buffer* lights = nullptr;          // GpuLight[count]
+  const Buffer* shadowMatrices = nullptr;  // mat4 per shadow layer
+  Image* shadowMaps = nullptr;             // r32f 2D array, GENERAL layout
+  uint32_t count = 0;
+};
+
 struct FrameContext {
   VulkanContext& ctx;
   VkCommandBuffer cmd;
@@ -84,6 +97,9 @@ struct FrameContext {
   // Submits what was recorded so far, waits for it, and reopens `cmd` for the rest of the frame. For a
   // feature that needs this frame's G-buffer on the CPU (ray-traced visibility); costs the overlap.
   std::function<void()> submitAndWait;
+  LightInputs lights;
+  // Set by a feature that wrote targets.specular this frame.
+  bool specularWritten = false;
 };
 
 }  // namespace dyngi::render

@@ -34,7 +34,7 @@ struct RendererSettings {
   bool featuresOnly = false;
 };
 
-enum class TargetId { Position, Normal, Albedo, Emissive, Indirect, Hdr, Ldr };
+enum class TargetId { Position, Normal, Albedo, Emissive, Indirect, Specular, Hdr, Ldr };
 
 struct FrameStats {
   std::vector<std::pair<std::string, double>> gpuMs;  // per pass, recording order

@@ -53,6 +53,7 @@ class Buffer {
 
 struct ImageDesc {
   uint32_t width = 1, height = 1, layers = 1, mips = 1;
+  uint32_t depth = 1;  // > 1 only with viewType VK_IMAGE_VIEW_TYPE_3D
   VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
   VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT;
   VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D;
@@ -75,6 +76,8 @@ class Image {
   VkImageView view() const { return view_; }
   // A 2D view of one array layer (shadow map faces are rendered one layer at a time).
   VkImageView layerView(uint32_t layer) const { return layerViews_.at(layer); }
+  // A view of one mip level (storage images are bound a level at a time: mip chains built by compute).
+  VkImageView mipView(uint32_t level) const { return mipViews_.at(level); }
   const ImageDesc& desc() const { return desc_; }
   VkExtent2D extent() const { return {desc_.width, desc_.height}; }
   VkImageAspectFlags aspect() const;
@@ -92,6 +95,7 @@ class Image {
   uint32_t memoryType_ = 0;
   VkImageView view_ = VK_NULL_HANDLE;
   std::vector<VkImageView> layerViews_;
+  std::vector<VkImageView> mipViews_;  // one per level when mips > 1 (else the image's view)
   ImageDesc desc_;
   VkImageLayout layout_ = VK_IMAGE_LAYOUT_UNDEFINED;
   VkPipelineStageFlags2 lastStage_ = VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT;
@@ -115,6 +119,8 @@ size_t formatBytesPerPixel(VkFormat format);
 // Synchronous; leaves the image in TRANSFER_SRC layout (the next transition moves it on).
 std::vector<glm::vec4> readbackImage(VulkanContext& ctx, Image& image);
 std::vector<uint8_t> readbackImageBytes(VulkanContext& ctx, Image& image);
+// One mip level of a 2D or 3D colour image (RGBA32F, RGBA16F or RGBA8), x fastest, then y, then z.
+std::vector<glm::vec4> readbackImageLevel(VulkanContext& ctx, Image& image, uint32_t level);
 // Copies the first `count` elements of a device buffer to the CPU (synchronous: tests and tools).
 template <class T>
 std::vector<T> readbackBuffer(VulkanContext& ctx, VkBuffer source, size_t count);

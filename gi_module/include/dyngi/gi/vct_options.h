@@ -1,0 +1,48 @@
+#pragma once
+// Options of the voxel cone tracing technique (`--gi vct`): the one place their defaults live. The table
+// (names, ranges, help) is in gi_module/techniques/vct/vct_technique.cpp.
+#include <cstdint>
+
+#include "dyngi/gi/options.h"
+
+namespace dyngi::gi {
+
+enum class VctView { Final, Radiance, Opacity, Ao, Indirect, Specular };
+
+struct VctOptions {
+  // Diffuse cones per pixel, spread over the hemisphere by cosine (equal weights); each cone's aperture
+  // covers its share of the hemisphere's solid angle (1/N of 2 pi).
+  uint32_t diffuseCones = 6;
+  // Light bounces: 1 is direct light injected into the volume and gathered by the screen cones; each
+  // more is a cone-tracing pass over the occupied voxels into a second volume.
+  uint32_t bounces = 1;
+  // Cones are traced for one pixel in traceScale x traceScale and upsampled with a depth- and
+  // normal-aware filter (1: every pixel). The GI budget's knob.
+  uint32_t traceScale = 2;
+  // Opacity and radiance of the mip chain per direction (6 volumes of half resolution, composited front
+  // to back along each axis): a thin wall stays opaque at coarse mips, so less light leaks through it.
+  bool anisotropic = true;
+  // The specular cone (aperture from the G-buffer roughness), weighted by the lighting pass with the
+  // specular colour (4 percent for dielectrics, the base colour for metals).
+  bool specular = true;
+  // Blend of the injected radiance with the previous frame's, per voxel: the fraction of history kept.
+  // A voxel whose radiance changed by more than `temporalResponse` (relative) takes the new value at once,
+  // so a light switched off is gone in the frame it went.
+  float temporalBlend = 0.5f;
+  float temporalResponse = 0.5f;
+  // Cone reach, in multiples of the volume's side: the distance a diffuse cone marches before it stops.
+  float maxDistance = 1.0f;
+  // Distance (volume side multiples) over which occlusion counts towards ambient occlusion.
+  float aoDistance = 0.15f;
+  // Where a cone starts: this many voxels off the surface along the normal (and as far along the cone).
+  float coneOffset = 1.0f;
+  // Step along a cone as a fraction of its diameter; opacity is corrected for it.
+  float stepScale = 1.0f;
+  // The mip the `radiance` and `opacity` debug views show.
+  uint32_t viewMip = 0;
+  VctView view = VctView::Final;  // set by name through the technique, not a table row
+
+  static const OptionTable<VctOptions>& table();
+};
+
+}  // namespace dyngi::gi

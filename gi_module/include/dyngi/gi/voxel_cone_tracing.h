@@ -1,0 +1,77 @@
+#pragma once
+// Voxel cone tracing (after Crassin et al. 2011, "Interactive Indirect Illumination Using Voxel Cone
+// Tracing"): the voxel scene's occupied voxels get the direct light they reflect and their emission
+// (radiance injection, shadowed through the renderer's shadow maps), a 3D mip chain filters it
+// (isotropic, or per direction), optional extra bounces cone-trace over the occupied voxels, and the
+// screen traces diffuse cones (indirect light and ambient occlusion) and a specular cone per pixel,
+// upsampled with a depth- and normal-aware filter. Writes targets.indirect and targets.specular.
+// Stages: inject, mips, bounce, trace, upsample (plus the voxel scene's voxelize and svo_build).
+#include <vector>
+
+#include "dyngi/engine/render/pipeline.h"
+#include "dyngi/engine/render/render_feature.h"
+#include "dyngi/gi/vct_options.h"
+#include "dyngi/gi/voxel_scene.h"
+
+namespace dyngi::gi {
+
+struct VctFrameStats {
+  bool injected = false;    // radiance injected this frame (every frame while the technique runs)
+  bool cleared = false;     // the volume's level 0 was cleared first (the voxels changed)
+  uint32_t traceWidth = 0, traceHeight = 0;  // the resolution cones were traced at
+  uint64_t volumeBytes = 0;  // radiance volumes, all levels
+};
+
+class VoxelConeTracing final : public render::RenderFeature {
+ public:
+  VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxels, const VctOptions& options = {});
+  ~VoxelConeTracing() override;
+
+  const char* name() const override { return "vct"; }
+  static std::vector<const char*> timedSections() { return {"inject", "mips", "bounce", "trace", "upsample"}; }
+  bool record(render::FrameContext& frame) override;
+  void recordAfterLighting(render::FrameContext& frame) override;
+
+  VctOptions& settings() { return options_; }
+  const VctFrameStats& stats() const { return stats_; }
+  // The trace resolution divisor in use: the options' unless a GI budget raised it (0 gives it back).
+  uint32_t traceScale() const { return budgetScale_ ? budgetScale_ : options_.traceScale; }
+  void setTraceScale(uint32_t scale) { budgetScale_ = scale; }
+
+  // For tests and tools: level 0 with its isotropic mip chain, the six-direction atlas (anisotropic),
+  // this frame's injected direct radiance. Valid after the first frame.
+  render::Image& radianceVolume() { return radiance_; }
+  render::Image& anisotropicVolume() { return aniso_; }
+  render::Image& directVolume() { return direct_[current_]; }
+  // Marches one cone per ray (voxel units: origin, direction) through the volume as it stands, on the
+  // GPU (vct_cone_probe.comp): rgb radiance, a opacity. Synchronous.
+  std::vector<glm::vec4> probeCones(const std::vector<std::pair<glm::vec3, glm::vec3>>& rays, float tanHalf);
+
+ private:
+  void ensureVolumes(uint32_t res);
+  void ensureTraceTargets(uint32_t width, uint32_t height);
+  void recordMips(VkCommandBuffer cmd);
+  void recordLeafPass(VkCommandBuffer cmd, const render::Pipeline& pipeline, const void* push, uint32_t pushBytes,
+                      render::DescriptorWrites& writes);
+  template <class Push>
+  void fillConeParams(Push& p) const;
+
+  render::VulkanContext& ctx_;
+  VoxelScene& voxels_;
+  VctOptions options_;
+  uint32_t budgetScale_ = 0;
+  uint32_t res_ = 0;
+  uint32_t current_ = 0;
+  uint64_t frames_ = 0;
+  bool rebuiltLastFrame_ = true;
+  render::Image radiance_;     // res^3, full mip chain
+  render::Image aniso_;        // 6 (res/2) x res/2 x res/2, mips (anisotropic only)
+  render::Image direct_[2];    // res^3: the injected radiance this frame and last (temporal blending)
+  render::Image bounced_;      // res^3: a bounce's output before it is committed to radiance_ level 0
+  render::Image lowDiffuse_, lowSpecular_;  // the traced pixels
+  VkSampler sampler_ = VK_NULL_HANDLE;
+  render::Pipeline inject_, mips_[2], bounce_[2], commit_, trace_[4], upsample_, debug_[2], probe_[2];
+  VctFrameStats stats_;
+};
+
+}  // namespace dyngi::gi

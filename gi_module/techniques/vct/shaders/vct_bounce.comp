@@ -1,0 +1,38 @@
+#version 460
+// One more light bounce: per occupied voxel, the light arriving through `cones` diffuse cones around its
+// normal over the radiance volume as it stands (direct light, or the bounce before), reflected by its
+// albedo and added to its own direct radiance: OUT = DIRECT + albedo E / pi. vct_commit.comp then copies
+// OUT into level 0 of the radiance volume (a pass apart: the cones read that level while this one runs).
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gi_gpu_types.h"
+layout(local_size_x = 64) in;
+layout(constant_id = 0) const bool kAnisotropic = false;
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES) readonly buffer Attributes { int attributes[]; };
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_DIRECT, rgba16f) uniform readonly image3D direct;
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_RADIANCE) uniform sampler3D vctRadiance;
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_ANISO) uniform sampler3D vctAniso;
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_OUT, rgba16f) uniform writeonly image3D outRadiance;
+layout(push_constant) uniform Push { DYNGI_VCT_BOUNCE_PUSH };
+#include "vct_cone.glsl"
+#include "vct_leaves.glsl"
+
+void bounce(uint i) {
+  VctLeaf leaf;
+  if (!vctLeaf(i, leaf)) return;
+  float nLen = length(leaf.normalSum);
+  vec3 L = imageLoad(direct, leaf.voxel).rgb;
+  if (nLen > 0.3) {  // a voxel whose fragments face both ways keeps its direct light only
+    float ao;
+    // From the voxel's centre: its surface is within half a voxel of it.
+    vec3 e = vctDiffuse(vec3(leaf.voxel) + 0.5, leaf.normalSum / nLen, ao);
+    L += leaf.albedo * e;
+  }
+  imageStore(outRadiance, leaf.voxel, vec4(L, 1.0));
+}
+
+void main() {
+  VCT_FOR_EACH_LEAF(i) bounce(i);
+}

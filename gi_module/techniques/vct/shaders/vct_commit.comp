@@ -1,0 +1,21 @@
+#version 460
+// Copies each occupied voxel's bounced radiance (vct_bounce.comp's OUT) into level 0 of the radiance
+// volume; empty voxels there are already clear.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gi_gpu_types.h"
+layout(local_size_x = 64) in;
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES) readonly buffer Attributes { int attributes[]; };
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_DIRECT, rgba16f) uniform readonly image3D bounced;
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_OUT, rgba16f) uniform writeonly image3D radiance;
+layout(push_constant) uniform Push { DYNGI_VCT_BOUNCE_PUSH };
+#include "vct_leaves.glsl"
+
+void main() {
+  VCT_FOR_EACH_LEAF(i) {
+    VctLeaf leaf;
+    if (vctLeaf(i, leaf)) imageStore(radiance, leaf.voxel, imageLoad(bounced, leaf.voxel));
+  }
+}

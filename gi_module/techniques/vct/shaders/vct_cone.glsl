@@ -1,0 +1,153 @@
+// One cone through the radiance volume, front to back: the GLSL every VCT pass that marches cones shares
+// (screen trace, voxel bounce, debug view, test probe). The C++ twin is gi::vctConeCpu (vct_cpu.cpp);
+// keep them in step. Positions and distances are in voxel units of the finest level (0..res per axis).
+//
+// The includer declares, before including:
+//   the push members of DYNGI_VCT_CONE_PARAMS (res, maxDistance, aoDistance, coneOffset, stepScale, ...)
+//   layout(constant_id = 0) const bool kAnisotropic
+//   uniform sampler3D vctRadiance;  level 0 and (isotropic) its mip chain: premultiplied radiance, opacity
+//   uniform sampler3D vctAniso;     (anisotropic) the six-direction atlas of half resolution, with mips
+#ifndef DYNGI_VCT_CONE_GLSL
+#define DYNGI_VCT_CONE_GLSL
+
+const float kVctPi = 3.14159265358979;
+const int kVctMaxSteps = 160;
+
+// The atlas slab for one axis of a direction: +x 0, -x 1, +y 2, -y 3, +z 4, -z 5.
+vec4 vctAnisoSlab(vec3 uvw, float lod, uint axis, bool negative, float clampHalf) {
+  uint slab = 2u * axis + (negative ? 1u : 0u);
+  // Keep the filter footprint inside the slab: x clamped half a texel of the coarser level off its edges.
+  float x = clamp(uvw.x, clampHalf, 1.0 - clampHalf);
+  return textureLod(vctAniso, vec3((float(slab) + x) / float(DYNGI_VCT_SLABS), uvw.y, uvw.z), lod);
+}
+
+vec4 vctCombineSlabs(vec4 sx, vec4 sy, vec4 sz, vec3 w) {
+  vec3 alphas = vec3(sx.a, sy.a, sz.a);
+  float transmittance = exp2(dot(w, log2(max(1.0 - alphas, vec3(1e-6)))));
+  vec3 premultiplied = w.x * sx.rgb + w.y * sy.rgb + w.z * sz.rgb;
+  float weightedAlpha = dot(w, alphas);
+  float alpha = 1.0 - transmittance;
+  return vec4(weightedAlpha > 1e-6 ? premultiplied * (alpha / weightedAlpha) : vec3(0.0), alpha);
+}
+
+// From a footprint of 2 voxels on (mip >= 1), the three atlas slabs the direction faces, weighted by its
+// squared components: transmittance as their weighted geometric mean, radiance as the weighted mean of
+// theirs. (A linear blend of the opacities would let an oblique cone see a floor as half transparent:
+// along x a thin floor covers one column in 2^mip.)
+vec4 vctSampleCoarse(vec3 p, float mip, vec3 dir) {
+  vec3 uvw = p / res;
+  if (!kAnisotropic) return textureLod(vctRadiance, uvw, mip);
+  float lod = max(mip - 1.0, 0.0);
+  float clampHalf = exp2(ceil(lod)) / res;  // half a texel of the coarser level, in uvw of the slab
+  vec3 w = dir * dir;
+  vec4 sx = vctAnisoSlab(uvw, lod, 0u, dir.x < 0.0, clampHalf), sy = vctAnisoSlab(uvw, lod, 1u, dir.y < 0.0, clampHalf),
+       sz = vctAnisoSlab(uvw, lod, 2u, dir.z < 0.0, clampHalf);
+  return vctCombineSlabs(sx, sy, sz, w);
+}
+
+// The volume at p (voxel units) filtered to a footprint of 2^mip voxels, as seen along `dir`. Level 0 is
+// isotropic: below mip 1 the anisotropic volume blends it with the atlas.
+vec4 vctSample(vec3 p, float mip, vec3 dir) {
+  if (!kAnisotropic) return vctSampleCoarse(p, mip, dir);
+  vec4 fine = textureLod(vctRadiance, p / res, 0.0);
+  return mix(fine, vctSampleCoarse(p, mip, dir), clamp(mip, 0.0, 1.0));
+}
+
+// One step of the front-to-back accumulation with sample s over stepScale footprints: opacity
+// 1 - (1 - a)^stepScale, the colour scaled alike; occlusion (AO) weighted by 1 - t / aoDistance.
+void vctAccumulate(vec4 s, float t, inout vec3 colour, inout float alpha, inout float occlusion) {
+  float a = 1.0 - pow(max(1.0 - s.a, 0.0), stepScale);
+  vec3 c = s.a > 1e-6 ? s.rgb * (a / s.a) : vec3(0.0);
+  colour += (1.0 - alpha) * c;
+  occlusion += (1.0 - occlusion) * a * max(1.0 - t / aoDistance, 0.0);
+  alpha += (1.0 - alpha) * a;
+}
+
+// Marches a cone of half-angle tangent `tanHalf` from `origin` along unit `dir` for `reach` voxels:
+// front-to-back accumulation (colour += (1 - a) c, a += (1 - a) a_voxel), each step the cone's diameter x
+// stepScale with the opacity corrected for that step length, until opaque or out of the volume.
+// `rise` is how fast the cone leaves the surface it starts from (dot(dir, normal)): the footprint is
+// kept under kVctSurfaceClearance times its distance from that surface, since a filtered sample reaches
+// about 1.5 texels around it and a wider one would gather the surface's own voxels (self-occlusion and
+// self-illumination).
+// Returns the radiance arriving along the cone (rgb) and its opacity (a); `occlusion` is the opacity met
+// within aoDistance, each sample weighted by 1 - t / aoDistance.
+const float kVctSurfaceClearance = 1.0 / 2.0;
+vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, out float occlusion) {
+  vec3 colour = vec3(0.0);
+  float alpha = 0.0;
+  occlusion = 0.0;
+  float t = coneOffset;
+  bool done = false;
+  int i = 0;
+  // Two loops, the first while the footprint is under 2 voxels (level 0 blended in), the second with the
+  // coarse levels only: lavapipe would pay for a level-0 fetch in every step of a single loop.
+  for (; i < kVctMaxSteps; ++i) {
+    float diameter = max(1.0, min(2.0 * tanHalf * t, kVctSurfaceClearance * (coneOffset + rise * t)));
+    if (diameter >= 2.0) break;
+    vec3 p = origin + t * dir;
+    vctAccumulate(vctSample(p, log2(diameter), dir), t, colour, alpha, occlusion);
+    t += stepScale * diameter;
+    bool outside = any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(res)));
+    if (alpha >= 0.99 || t > reach || outside) {
+      done = true;
+      break;
+    }
+  }
+  for (; !done && i < kVctMaxSteps; ++i) {
+    float diameter = min(2.0 * tanHalf * t, kVctSurfaceClearance * (coneOffset + rise * t));
+    vec3 p = origin + t * dir;
+    vctAccumulate(vctSampleCoarse(p, log2(diameter), dir), t, colour, alpha, occlusion);
+    t += stepScale * diameter;
+    bool outside = any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(res)));
+    if (alpha >= 0.99 || t > reach || outside) break;
+  }
+  return vec4(colour, alpha);
+}
+
+// Half-angle tangent of one of N diffuse cones: each covers 1/N of the hemisphere's solid angle
+// (2 pi (1 - cos) = 2 pi / N), at most 45 degrees.
+float vctDiffuseTan(uint n) {
+  float c = 1.0 - 1.0 / float(n);
+  return c <= 0.7071 ? 1.0 : sqrt(1.0 - c * c) / c;
+}
+
+// Direction k of N spread over the hemisphere around +z by cosine (a spiral with the golden angle):
+// equal weights then estimate the cosine-weighted mean radiance, E / pi.
+vec3 vctDiffuseDirection(uint k, uint n) {
+  float u = (float(k) + 0.5) / float(n);
+  float r = sqrt(u);
+  float phi = float(k) * 2.39996323;
+  return vec3(r * cos(phi), r * sin(phi), sqrt(max(1.0 - u, 0.0)));
+}
+
+// An orthonormal basis around unit n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited").
+mat3 vctBasis(vec3 n) {
+  float s = n.z >= 0.0 ? 1.0 : -1.0;
+  float a = -1.0 / (s + n.z);
+  float b = n.x * n.y * a;
+  return mat3(vec3(1.0 + s * n.x * n.x * a, s * b, -s * n.x), vec3(b, s + n.y * n.y * a, -n.y), n);
+}
+
+// E / pi at a surface point (voxel units) with unit normal n from N diffuse cones; `ao` the mean of the
+// cones' unoccluded fraction within aoDistance.
+vec3 vctDiffuse(vec3 p, vec3 n, out float ao) {
+  mat3 basis = vctBasis(n);
+  float tanHalf = vctDiffuseTan(cones);
+  vec3 origin = p + n * coneOffset;
+  vec3 sum = vec3(0.0);
+  float occluded = 0.0;
+  for (uint k = 0u; k < cones; ++k) {
+    float occ;
+    vec3 d = vctDiffuseDirection(k, cones);
+    // A cone tilted by theta keeps its half-angle under 90 - theta degrees (tan <= 0.9 cot theta): wider,
+    // it would reach below the horizon and meet the surface it starts from.
+    float coneTan = min(tanHalf, 0.9 * d.z / max(sqrt(1.0 - d.z * d.z), 1e-4));
+    sum += vctCone(origin, basis * d, coneTan, d.z, maxDistance, occ).rgb;
+    occluded += occ;
+  }
+  ao = 1.0 - occluded / float(cones);
+  return sum / float(cones);
+}
+
+#endif

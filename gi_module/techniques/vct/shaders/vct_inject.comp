@@ -1,0 +1,72 @@
+#version 460
+// Radiance injection: per occupied voxel, the direct light it reflects (every light, shadowed through
+// the renderer's shadow maps at the voxel's surface) plus its emission, as isotropic radiance with
+// opacity 1. Blended per voxel with the previous frame's radiance (temporalBlend), except where it
+// changed by more than temporalResponse (relative), so a light switched off leaves no trail. Written to
+// DIRECT (the frame's history, what bounces add to) and to level 0 of the radiance volume.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gpu_types.h"
+#include "shared/gi_gpu_types.h"
+#include "shared/lighting.glsl"
+layout(local_size_x = 64) in;
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_ATTRIBUTES) readonly buffer Attributes { int attributes[]; };
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES) readonly buffer ShadowMatrices { mat4 shadowViewProj[]; };
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, r32f) uniform readonly image2DArray shadowMaps;
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_PREVIOUS, rgba16f) uniform readonly image3D previous;
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_DIRECT, rgba16f) uniform writeonly image3D direct;
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_RADIANCE, rgba16f) uniform writeonly image3D radiance;
+layout(push_constant) uniform Push { DYNGI_VCT_INJECT_PUSH };
+#include "shared/shadows.glsl"
+#include "vct_leaves.glsl"
+
+const float PI = 3.14159265358979;
+
+float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+
+void inject(uint i) {
+  VctLeaf leaf;
+  if (!vctLeaf(i, leaf)) return;
+  float voxelSize = volume.w;
+  vec3 centre = volume.xyz + (vec3(leaf.voxel) + 0.5) * voxelSize;
+  // The surface lies somewhere in the voxel: light it one voxel out along its normal, so neither the
+  // shadow lookup nor the cosine sees the voxel's own far side. A voxel whose fragments face both ways
+  // (a wall thinner than a voxel) is lit from whichever side faces the light.
+  float nLen = length(leaf.normalSum);
+  bool twoSided = nLen < 0.3;
+  vec3 n = nLen > 1e-4 ? leaf.normalSum / nLen : vec3(0.0, 1.0, 0.0);
+  vec3 irradiance = vec3(0.0);
+  uint i2 = 0u;
+  do {
+    if (i2 < lightCount) {
+      GpuLight L = lights[i2];
+      if (L.radiance.w != 0.0) {
+        vec3 toLight;
+        float dist;
+        lightIrradiance(L, centre, n, toLight, dist);  // for the direction to the light
+        vec3 nl = twoSided && dot(n, toLight) < 0.0 ? -n : n;
+        vec3 p = centre + nl * voxelSize;
+        vec3 e = lightIrradiance(L, p, nl, toLight, dist);
+        if (max(e.r, max(e.g, e.b)) > 0.0) irradiance += e * shadowFactor(L, p, nl, dist);
+      }
+    }
+  } while (++i2 < lightCount);
+  vec3 L = leaf.emission + leaf.albedo * irradiance / PI;
+  if (history != 0u) {
+    vec4 prev = imageLoad(previous, leaf.voxel);
+    if (prev.a > 0.0) {
+      float lNew = luminance(L), lOld = luminance(prev.rgb);
+      float change = abs(lNew - lOld) / max(max(lNew, lOld), 1e-6);
+      L = mix(L, prev.rgb, temporalBlend * clamp(1.0 - change / temporalResponse, 0.0, 1.0));
+    }
+  }
+  imageStore(direct, leaf.voxel, vec4(L, 1.0));
+  imageStore(radiance, leaf.voxel, vec4(L, 1.0));
+}
+
+void main() {
+  VCT_FOR_EACH_LEAF(i) inject(i);
+}

@@ -1,0 +1,51 @@
+#version 460
+// The screen's cones: for one pixel in traceScale x traceScale (the one at the block's centre), the
+// indirect diffuse light (E / pi, from `cones` diffuse cones) with ambient occlusion in alpha, and the
+// specular cone along the reflected view ray, its aperture from the G-buffer roughness (alpha = r^2).
+// vct_upsample.comp takes both to full resolution.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gpu_types.h"
+#include "shared/gi_gpu_types.h"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 0) const bool kAnisotropic = false;
+layout(constant_id = 1) const bool kSpecular = true;
+layout(set = 0, binding = DYNGI_VCT_TRACE_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = DYNGI_VCT_TRACE_BINDING_G_POSITION, rgba32f) uniform readonly image2D gPosition;
+layout(set = 0, binding = DYNGI_VCT_TRACE_BINDING_G_NORMAL, rgba16f) uniform readonly image2D gNormal;
+layout(set = 0, binding = DYNGI_VCT_TRACE_BINDING_RADIANCE) uniform sampler3D vctRadiance;
+layout(set = 0, binding = DYNGI_VCT_TRACE_BINDING_ANISO) uniform sampler3D vctAniso;
+layout(set = 0, binding = DYNGI_VCT_TRACE_BINDING_OUT_DIFFUSE, rgba16f) uniform writeonly image2D outDiffuse;
+layout(set = 0, binding = DYNGI_VCT_TRACE_BINDING_OUT_SPECULAR, rgba16f) uniform writeonly image2D outSpecular;
+layout(push_constant) uniform Push { DYNGI_VCT_TRACE_PUSH };
+#include "vct_cone.glsl"
+
+// The narrowest specular cone: below a few degrees a cone only samples level 0 for many steps.
+const float kMinSpecularTan = 0.03;
+
+void main() {
+  ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(q, imageSize(outDiffuse)))) return;
+  ivec2 full = ivec2(frame.sizeAndCount.xy);
+  ivec2 px = min(q * int(traceScale) + int(traceScale / 2u), full - 1);
+  vec4 pos = imageLoad(gPosition, px);
+  if (pos.w == 0.0) {  // background: nothing to light (alpha 0 tells the upsample to skip it)
+    imageStore(outDiffuse, q, vec4(0.0, 0.0, 0.0, 1.0));
+    imageStore(outSpecular, q, vec4(0.0));
+    return;
+  }
+  vec4 nr = imageLoad(gNormal, px);
+  vec3 n = normalize(nr.xyz);
+  vec3 p = (pos.xyz - volume.xyz) / volume.w;
+  float ao;
+  vec3 diffuse = vctDiffuse(p, n, ao);
+  imageStore(outDiffuse, q, vec4(diffuse, ao));
+  vec3 specular = vec3(0.0);
+  if (kSpecular) {
+    vec3 v = normalize(frame.cameraPos.xyz - pos.xyz);
+    vec3 r = reflect(-v, n);
+    float tanHalf = clamp(nr.w * nr.w, kMinSpecularTan, 1.0);
+    float occ;
+    specular = vctCone(p + n * coneOffset, r, tanHalf, max(dot(r, n), 0.0), maxDistance, occ).rgb;
+  }
+  imageStore(outSpecular, q, vec4(specular, 1.0));
+}

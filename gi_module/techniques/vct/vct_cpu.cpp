@@ -1,0 +1,132 @@
+#include "dyngi/gi/vct_cpu.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dyngi::gi {
+
+namespace {
+constexpr uint32_t kSlabs = 6;
+constexpr int kMaxSteps = 160;  // vct_cone.glsl kVctMaxSteps
+constexpr float kSurfaceClearance = 1.0f / 2.0f;  // kVctSurfaceClearance
+glm::vec4 over(const glm::vec4& front, const glm::vec4& back) { return front + (1.0f - front.a) * back; }
+}  // namespace
+
+glm::vec4 VolumeLevel::at(int x, int y, int z) const {
+  if (x < 0 || y < 0 || z < 0 || x >= int(w) || y >= int(h) || z >= int(d)) return glm::vec4(0.0f);
+  return texels[(size_t(z) * h + y) * w + x];
+}
+
+glm::vec4 VolumeLevel::clampedAt(int x, int y, int z) const {
+  return at(std::clamp(x, 0, int(w) - 1), std::clamp(y, 0, int(h) - 1), std::clamp(z, 0, int(d) - 1));
+}
+
+VolumeLevel vctBoxDownsample(const VolumeLevel& s) {
+  VolumeLevel out{std::max(s.w / 2, 1u), std::max(s.h / 2, 1u), std::max(s.d / 2, 1u), {}};
+  out.texels.resize(size_t(out.w) * out.h * out.d);
+  for (uint32_t z = 0; z < out.d; ++z)
+    for (uint32_t y = 0; y < out.h; ++y)
+      for (uint32_t x = 0; x < out.w; ++x) {
+        glm::vec4 sum(0.0f);
+        for (int i = 0; i < 8; ++i) sum += s.at(2 * x + (i & 1), 2 * y + ((i >> 1) & 1), 2 * z + (i >> 2));
+        out.texels[(size_t(z) * out.h + y) * out.w + x] = sum * 0.125f;
+      }
+  return out;
+}
+
+VolumeLevel vctAnisoDownsample(const VolumeLevel& s, uint32_t sourceSlabWidth, uint32_t destSlabWidth) {
+  VolumeLevel out{kSlabs * destSlabWidth, destSlabWidth, destSlabWidth, {}};
+  out.texels.resize(size_t(out.w) * out.h * out.d);
+  for (uint32_t z = 0; z < out.d; ++z)
+    for (uint32_t y = 0; y < out.h; ++y)
+      for (uint32_t x = 0; x < out.w; ++x) {
+        const uint32_t slab = x / destSlabWidth, axis = slab / 2;
+        const bool negative = (slab & 1u) != 0;
+        const glm::ivec3 base = 2 * glm::ivec3(x % destSlabWidth, y, z);
+        const int offsetX = int((sourceSlabWidth == 0 ? 0 : slab) * sourceSlabWidth);
+        const glm::ivec3 along = axis == 0 ? glm::ivec3(1, 0, 0) : (axis == 1 ? glm::ivec3(0, 1, 0) : glm::ivec3(0, 0, 1));
+        const glm::ivec3 u = axis == 0 ? glm::ivec3(0, 1, 0) : glm::ivec3(1, 0, 0);
+        const glm::ivec3 v = axis == 2 ? glm::ivec3(0, 1, 0) : glm::ivec3(0, 0, 1);
+        glm::vec4 sum(0.0f);
+        for (int j = 0; j < 4; ++j) {
+          const glm::ivec3 c = base + (j & 1) * u + (j >> 1) * v;
+          const glm::vec4 lo = s.at(c.x + offsetX, c.y, c.z), hi = s.at(c.x + along.x + offsetX, c.y + along.y, c.z + along.z);
+          sum += negative ? over(hi, lo) : over(lo, hi);
+        }
+        out.texels[(size_t(z) * out.h + y) * out.w + x] = sum * 0.25f;
+      }
+  return out;
+}
+
+namespace {
+glm::vec4 trilinear(const VolumeLevel& l, const glm::vec3& uvw) {
+  const glm::vec3 t = uvw * glm::vec3(l.w, l.h, l.d) - 0.5f;
+  const glm::vec3 f0 = glm::floor(t);
+  const glm::vec3 f = t - f0;
+  const glm::ivec3 i0(f0);
+  glm::vec4 sum(0.0f);
+  for (int c = 0; c < 8; ++c) {
+    const glm::ivec3 o(c & 1, (c >> 1) & 1, c >> 2);
+    const float w = (o.x ? f.x : 1.0f - f.x) * (o.y ? f.y : 1.0f - f.y) * (o.z ? f.z : 1.0f - f.z);
+    sum += w * l.clampedAt(i0.x + o.x, i0.y + o.y, i0.z + o.z);
+  }
+  return sum;
+}
+}  // namespace
+
+glm::vec4 sampleVolumeLod(const std::vector<VolumeLevel>& levels, const glm::vec3& uvw, float lod) {
+  const float maxLod = float(levels.size() - 1);
+  lod = std::clamp(lod, 0.0f, maxLod);
+  const int l0 = int(std::floor(lod));
+  const int l1 = std::min(l0 + 1, int(maxLod));
+  const float f = lod - float(l0);
+  const glm::vec4 a = trilinear(levels[l0], uvw);
+  return f > 0.0f ? glm::mix(a, trilinear(levels[l1], uvw), f) : a;
+}
+
+namespace {
+glm::vec4 sampleCpu(const std::vector<VolumeLevel>& radiance, const std::vector<VolumeLevel>& aniso, const VctConeParams& p,
+                    const glm::vec3& pos, float mip, const glm::vec3& dir) {
+  const glm::vec3 uvw = pos / p.res;
+  if (!p.anisotropic) return sampleVolumeLod(radiance, uvw, mip);
+  const glm::vec4 fine = sampleVolumeLod(radiance, uvw, 0.0f);
+  const float lod = std::max(mip - 1.0f, 0.0f);
+  const float clampHalf = std::exp2(std::ceil(lod)) / p.res;
+  const glm::vec3 w = dir * dir;
+  glm::vec3 premultiplied(0.0f);
+  float logTransmittance = 0.0f, weightedAlpha = 0.0f;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int slab = 2 * axis + (dir[axis] < 0.0f ? 1 : 0);
+    const float x = std::clamp(uvw.x, clampHalf, 1.0f - clampHalf);
+    const glm::vec4 s = sampleVolumeLod(aniso, glm::vec3((float(slab) + x) / float(kSlabs), uvw.y, uvw.z), lod);
+    premultiplied += w[axis] * glm::vec3(s);
+    weightedAlpha += w[axis] * s.a;
+    logTransmittance += w[axis] * std::log2(std::max(1.0f - s.a, 1e-6f));
+  }
+  const float alpha = 1.0f - std::exp2(logTransmittance);
+  const glm::vec4 coarse(weightedAlpha > 1e-6f ? premultiplied * (alpha / weightedAlpha) : glm::vec3(0.0f), alpha);
+  return glm::mix(fine, coarse, std::clamp(mip, 0.0f, 1.0f));
+}
+}  // namespace
+
+glm::vec4 vctConeCpu(const std::vector<VolumeLevel>& radiance, const std::vector<VolumeLevel>& aniso, const VctConeParams& p,
+                     const glm::vec3& origin, const glm::vec3& dir, float tanHalf, float rise) {
+  glm::vec3 colour(0.0f);
+  float alpha = 0.0f;
+  float t = p.coneOffset;
+  for (int i = 0; i < kMaxSteps; ++i) {
+    const float diameter = std::max(1.0f, std::min(2.0f * tanHalf * t, kSurfaceClearance * (p.coneOffset + rise * t)));
+    const glm::vec3 pos = origin + t * dir;
+    const glm::vec4 s = sampleCpu(radiance, aniso, p, pos, std::log2(diameter), dir);
+    const float a = 1.0f - std::pow(std::max(1.0f - s.a, 0.0f), p.stepScale);
+    const glm::vec3 c = s.a > 1e-6f ? glm::vec3(s) * (a / s.a) : glm::vec3(0.0f);
+    colour += (1.0f - alpha) * c;
+    alpha += (1.0f - alpha) * a;
+    t += p.stepScale * diameter;
+    const bool outside = glm::any(glm::lessThan(pos, glm::vec3(0.0f))) || glm::any(glm::greaterThan(pos, glm::vec3(p.res)));
+    if (alpha >= 0.99f || t > p.maxDistance || outside) break;
+  }
+  return glm::vec4(colour, alpha);
+}
+
+}  // namespace dyngi::gi

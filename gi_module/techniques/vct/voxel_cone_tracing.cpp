@@ -1,0 +1,419 @@
+#include "dyngi/gi/voxel_cone_tracing.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstddef>
+
+#include "dyngi/engine/render/gpu_timer.h"
+#include "gpu_aliases.h"
+#include "shaders/shared/gi_gpu_types.h"
+#include "spirv/vct_bounce.comp.spv.h"
+#include "spirv/vct_commit.comp.spv.h"
+#include "spirv/vct_cone_probe.comp.spv.h"
+#include "spirv/vct_debug.comp.spv.h"
+#include "spirv/vct_inject.comp.spv.h"
+#include "spirv/vct_mips.comp.spv.h"
+#include "spirv/vct_trace.comp.spv.h"
+#include "spirv/vct_upsample.comp.spv.h"
+
+namespace dyngi::gi {
+
+namespace {
+constexpr VkFormat kRadianceFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkImageUsageFlags kVolumeUsage =
+    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+constexpr VkPipelineStageFlags2 kComputeAndTransfer = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+constexpr VkAccessFlags2 kReadWrite = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+                                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
+
+Image makeVolume(render::VulkanContext& ctx, uint32_t w, uint32_t h, uint32_t d, uint32_t mips, const char* name) {
+  render::ImageDesc desc;
+  desc.width = w;
+  desc.height = h;
+  desc.depth = d;
+  desc.mips = mips;
+  desc.format = kRadianceFormat;
+  desc.usage = kVolumeUsage;
+  desc.viewType = VK_IMAGE_VIEW_TYPE_3D;
+  desc.name = name;
+  return Image(ctx, desc);
+}
+
+uint64_t volumeBytes(const Image& img) {
+  if (!img.valid()) return 0;
+  uint64_t bytes = 0;
+  const auto& d = img.desc();
+  for (uint32_t m = 0; m < d.mips; ++m)
+    bytes += uint64_t(std::max(d.width >> m, 1u)) * std::max(d.height >> m, 1u) * std::max(d.depth >> m, 1u) * 8;
+  return bytes;
+}
+
+void clearLevel0(VkCommandBuffer cmd, Image& img) {
+  const VkClearColorValue zero{};
+  const VkImageSubresourceRange level0{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vkCmdClearColorImage(cmd, img.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &level0);
+}
+
+// Leaves of the SVO are visited by an indirect dispatch sized by the build (SvoLevel::dispatch).
+constexpr VkDeviceSize leafDispatchOffset(uint32_t depth) {
+  return VkDeviceSize(depth) * sizeof(gpu::SvoLevel) + offsetof(gpu::SvoLevel, dispatch);
+}
+}  // namespace
+
+VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxels, const VctOptions& options)
+    : ctx_(ctx), voxels_(voxels), options_(options) {
+  voxels_.enableLeafAttributes();  // albedo, normal and emission per voxel: what injection lights
+
+  const Binding leafB[] = {{DYNGI_VCT_INJECT_BINDING_NODES, kSSBO, kCS},
+                           {DYNGI_VCT_INJECT_BINDING_NODE_CELLS, kSSBO, kCS},
+                           {DYNGI_VCT_INJECT_BINDING_LEVELS, kSSBO, kCS},
+                           {DYNGI_VCT_INJECT_BINDING_ATTRIBUTES, kSSBO, kCS},
+                           {DYNGI_VCT_INJECT_BINDING_LIGHTS, kSSBO, kCS},
+                           {DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES, kSSBO, kCS},
+                           {DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, kStorageImage, kCS},
+                           {DYNGI_VCT_INJECT_BINDING_PREVIOUS, kStorageImage, kCS},
+                           {DYNGI_VCT_INJECT_BINDING_DIRECT, kStorageImage, kCS},
+                           {DYNGI_VCT_INJECT_BINDING_RADIANCE, kStorageImage, kCS}};
+  inject_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_inject_comp), leafB, sizeof(gpu::VctInjectPush), "vct_inject");
+
+  const Binding mipsB[] = {{DYNGI_VCT_MIPS_BINDING_SOURCE, kStorageImage, kCS}, {DYNGI_VCT_MIPS_BINDING_DEST, kStorageImage, kCS}};
+  const Binding bounceB[] = {{DYNGI_VCT_BOUNCE_BINDING_NODES, kSSBO, kCS},       {DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS, kSSBO, kCS},
+                             {DYNGI_VCT_BOUNCE_BINDING_LEVELS, kSSBO, kCS},      {DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES, kSSBO, kCS},
+                             {DYNGI_VCT_BOUNCE_BINDING_DIRECT, kStorageImage, kCS}, {DYNGI_VCT_BOUNCE_BINDING_RADIANCE, kSampled, kCS},
+                             {DYNGI_VCT_BOUNCE_BINDING_ANISO, kSampled, kCS},    {DYNGI_VCT_BOUNCE_BINDING_OUT, kStorageImage, kCS}};
+  const Binding commitB[] = {{DYNGI_VCT_BOUNCE_BINDING_NODES, kSSBO, kCS},
+                             {DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS, kSSBO, kCS},
+                             {DYNGI_VCT_BOUNCE_BINDING_LEVELS, kSSBO, kCS},
+                             {DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES, kSSBO, kCS},
+                             {DYNGI_VCT_BOUNCE_BINDING_DIRECT, kStorageImage, kCS},
+                             {DYNGI_VCT_BOUNCE_BINDING_OUT, kStorageImage, kCS}};
+  commit_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_commit_comp), commitB, sizeof(gpu::VctBouncePush), "vct_commit");
+  const Binding traceB[] = {{DYNGI_VCT_TRACE_BINDING_FRAME, kUBO, kCS},
+                            {DYNGI_VCT_TRACE_BINDING_G_POSITION, kStorageImage, kCS},
+                            {DYNGI_VCT_TRACE_BINDING_G_NORMAL, kStorageImage, kCS},
+                            {DYNGI_VCT_TRACE_BINDING_RADIANCE, kSampled, kCS},
+                            {DYNGI_VCT_TRACE_BINDING_ANISO, kSampled, kCS},
+                            {DYNGI_VCT_TRACE_BINDING_OUT_DIFFUSE, kStorageImage, kCS},
+                            {DYNGI_VCT_TRACE_BINDING_OUT_SPECULAR, kStorageImage, kCS}};
+  const Binding debugB[] = {{DYNGI_VCT_DEBUG_BINDING_FRAME, kUBO, kCS},          {DYNGI_VCT_DEBUG_BINDING_RADIANCE, kSampled, kCS},
+                            {DYNGI_VCT_DEBUG_BINDING_ANISO, kSampled, kCS},       {DYNGI_VCT_DEBUG_BINDING_INDIRECT, kStorageImage, kCS},
+                            {DYNGI_VCT_DEBUG_BINDING_SPECULAR, kStorageImage, kCS}, {DYNGI_VCT_DEBUG_BINDING_OUT_HDR, kStorageImage, kCS}};
+  const Binding probeB[] = {{DYNGI_VCT_PROBE_BINDING_RAYS, kSSBO, kCS},
+                            {DYNGI_VCT_PROBE_BINDING_RADIANCE, kSampled, kCS},
+                            {DYNGI_VCT_PROBE_BINDING_ANISO, kSampled, kCS},
+                            {DYNGI_VCT_PROBE_BINDING_RESULTS, kSSBO, kCS}};
+  // Variants by specialization constant (lavapipe runs both sides of a branch): anisotropic or not, and
+  // for the trace, with the specular cone or without.
+  for (uint32_t aniso : {0u, 1u}) {
+    const uint32_t spec[] = {aniso};
+    mips_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", spec);
+    bounce_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_bounce_comp), bounceB, sizeof(gpu::VctBouncePush), "vct_bounce", spec);
+    debug_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_debug_comp), debugB, sizeof(gpu::VctDebugPush), "vct_debug", spec);
+    probe_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_cone_probe_comp), probeB, sizeof(gpu::VctProbePush), "vct_cone_probe", spec);
+    for (uint32_t specular : {0u, 1u}) {
+      const uint32_t traceSpec[] = {aniso, specular};
+      trace_[aniso + 2 * specular] =
+          Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_trace_comp), traceB, sizeof(gpu::VctTracePush), "vct_trace", traceSpec);
+    }
+  }
+  const Binding upB[] = {{DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL, kStorageImage, kCS},
+                         {DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR, kStorageImage, kCS},
+                         {DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, kStorageImage, kCS},
+                         {DYNGI_VCT_UPSAMPLE_BINDING_FRAME, kUBO, kCS}};
+  upsample_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_upsample_comp), upB, sizeof(gpu::VctUpsamplePush), "vct_upsample");
+
+  // Quadrilinear, clamped to the edge: a coarse texel at the volume's side (a floor, a wall near it) is
+  // continued past it rather than faded to nothing, which would make a cone see half of it. A cone stops
+  // when it leaves the volume (vct_cone.glsl), so nothing beyond is sampled.
+  VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  si.magFilter = si.minFilter = VK_FILTER_LINEAR;
+  si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  si.maxLod = VK_LOD_CLAMP_NONE;
+  DYNGI_VK(vkCreateSampler(ctx.device(), &si, nullptr, &sampler_));
+}
+
+VoxelConeTracing::~VoxelConeTracing() {
+  if (sampler_) vkDestroySampler(ctx_.device(), sampler_, nullptr);
+}
+
+void VoxelConeTracing::ensureVolumes(uint32_t res) {
+  const bool wantAniso = options_.anisotropic;
+  const bool wantBounce = options_.bounces > 1;
+  if (res == res_ && aniso_.valid() == wantAniso && bounced_.valid() == wantBounce) return;
+  vkDeviceWaitIdle(ctx_.device());
+  const uint32_t levels = uint32_t(std::bit_width(res));  // res, res/2, ..., 1
+  if (res != res_) {
+    radiance_ = makeVolume(ctx_, res, res, res, levels, "vct radiance");
+    direct_[0] = makeVolume(ctx_, res, res, res, 1, "vct direct radiance A");
+    direct_[1] = makeVolume(ctx_, res, res, res, 1, "vct direct radiance B");
+    frames_ = 0;
+  }
+  const uint32_t half = std::max(res / 2, 1u);
+  aniso_ = wantAniso ? makeVolume(ctx_, DYNGI_VCT_SLABS * half, half, half, uint32_t(std::bit_width(half)), "vct anisotropic atlas") : Image();
+  bounced_ = wantBounce ? makeVolume(ctx_, res, res, res, 1, "vct bounced radiance") : Image();
+  res_ = res;
+  rebuiltLastFrame_ = true;
+  ctx_.immediate([&](VkCommandBuffer cmd) {
+    for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_}) {
+      if (!img->valid()) continue;
+      img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+      const VkClearColorValue zero{};
+      const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1};
+      vkCmdClearColorImage(cmd, img->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+    }
+  });
+  stats_.volumeBytes = volumeBytes(radiance_) + volumeBytes(aniso_) + volumeBytes(direct_[0]) * 2 + volumeBytes(bounced_);
+}
+
+void VoxelConeTracing::ensureTraceTargets(uint32_t width, uint32_t height) {
+  const uint32_t s = traceScale();
+  const uint32_t w = std::max((width + s - 1) / s, 1u), h = std::max((height + s - 1) / s, 1u);
+  if (lowDiffuse_.valid() && lowDiffuse_.desc().width == w && lowDiffuse_.desc().height == h) return;
+  vkDeviceWaitIdle(ctx_.device());
+  render::ImageDesc d;
+  d.width = w;
+  d.height = h;
+  d.format = kRadianceFormat;
+  d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  d.name = "vct traced diffuse";
+  lowDiffuse_ = Image(ctx_, d);
+  d.name = "vct traced specular";
+  lowSpecular_ = Image(ctx_, d);
+}
+
+template <class Push>
+void VoxelConeTracing::fillConeParams(Push& p) const {
+  const VoxelVolume& v = voxels_.volume();
+  p.volume = glm::vec4(v.origin, v.voxelSize);
+  p.res = float(res_);
+  p.maxDistance = options_.maxDistance * float(res_);
+  p.aoDistance = std::max(options_.aoDistance * float(res_), 1e-3f);
+  p.coneOffset = options_.coneOffset;
+  p.stepScale = options_.stepScale;
+  p.cones = options_.diffuseCones;
+}
+
+void VoxelConeTracing::recordLeafPass(VkCommandBuffer cmd, const Pipeline& pipeline, const void* push, uint32_t pushBytes,
+                                      DescriptorWrites& writes) {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+  writes.storageBuffer(DYNGI_VCT_INJECT_BINDING_NODES, voxels_.nodes().handle())
+      .storageBuffer(DYNGI_VCT_INJECT_BINDING_NODE_CELLS, voxels_.nodeCells().handle())
+      .storageBuffer(DYNGI_VCT_INJECT_BINDING_LEVELS, voxels_.levels().handle())
+      .storageBuffer(DYNGI_VCT_INJECT_BINDING_ATTRIBUTES, voxels_.leafAttributes().handle())
+      .push(ctx_, cmd, pipeline);
+  vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, pushBytes, push);
+  vkCmdDispatchIndirect(cmd, voxels_.levels().handle(), leafDispatchOffset(voxels_.volume().depth()));
+  render::computeWriteBarrier(cmd);
+}
+static_assert(DYNGI_VCT_INJECT_BINDING_NODES == DYNGI_VCT_BOUNCE_BINDING_NODES &&
+                  DYNGI_VCT_INJECT_BINDING_NODE_CELLS == DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS &&
+                  DYNGI_VCT_INJECT_BINDING_LEVELS == DYNGI_VCT_BOUNCE_BINDING_LEVELS &&
+                  DYNGI_VCT_INJECT_BINDING_ATTRIBUTES == DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES,
+              "the passes over leaves share their first four bindings (recordLeafPass)");
+
+void VoxelConeTracing::recordMips(VkCommandBuffer cmd) {
+  const bool aniso = options_.anisotropic;
+  const Pipeline& p = mips_[aniso ? 1 : 0];
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
+  auto level = [&](VkImageView source, VkImageView dest, uint32_t w, uint32_t h, uint32_t d, gpu::VctMipsPush pc) {
+    DescriptorWrites().storageImage(DYNGI_VCT_MIPS_BINDING_SOURCE, source).storageImage(DYNGI_VCT_MIPS_BINDING_DEST, dest).push(ctx_, cmd, p);
+    vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
+    vkCmdDispatch(cmd, dispatchGroups(w, 4), dispatchGroups(h, 4), dispatchGroups(d, 4));
+    render::computeWriteBarrier(cmd);
+  };
+  if (!aniso) {
+    for (uint32_t m = 1; m < radiance_.desc().mips; ++m) {
+      const uint32_t s = std::max(res_ >> m, 1u);
+      level(radiance_.mipView(m - 1), radiance_.mipView(m), s, s, s, {s, 0});
+    }
+    return;
+  }
+  // The atlas: its level 0 from the isotropic level 0 (one source slab), then each level from the one below.
+  for (uint32_t m = 0; m < aniso_.desc().mips; ++m) {
+    const uint32_t slab = std::max((res_ / 2) >> m, 1u);
+    const VkImageView source = m == 0 ? radiance_.mipView(0) : aniso_.mipView(m - 1);
+    level(source, aniso_.mipView(m), DYNGI_VCT_SLABS * slab, slab, slab, {slab, m == 0 ? 0u : 2 * slab});
+  }
+}
+
+bool VoxelConeTracing::record(render::FrameContext& frame) {
+  stats_.injected = false;
+  if (!voxels_.hasVolume() || !frame.lights.lights || frame.targets.width == 0) return false;
+  VkCommandBuffer cmd = frame.cmd;
+  options_.bounces = std::clamp(options_.bounces, 1u, 3u);
+  ensureVolumes(voxels_.volume().resolution);
+  ensureTraceTargets(frame.targets.width, frame.targets.height);
+  for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_, &lowDiffuse_, &lowSpecular_})
+    if (img->valid()) img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, kComputeAndTransfer, kReadWrite);
+  frame.lights.shadowMaps->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  render::RenderTargets& t = frame.targets;
+  for (Image* in : {&t.position, &t.normal})
+    in->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  for (Image* out : {&t.indirect, &t.specular})
+    out->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+
+  const uint32_t depth = voxels_.volume().depth();
+  const bool aniso = options_.anisotropic;
+  const VoxelVolume& vol = voxels_.volume();
+  const uint32_t previous = current_;
+  current_ ^= 1u;
+  const bool rebuilt = voxels_.stats().rebuilt;
+  {
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "inject");
+    // Voxels an object left must be empty: level 0 is cleared when the occupied set changed this frame,
+    // the direct image (written two frames ago) when it changed this frame or the last.
+    stats_.cleared = rebuilt || frames_ == 0;
+    if (stats_.cleared) clearLevel0(cmd, radiance_);
+    if (rebuilt || rebuiltLastFrame_) clearLevel0(cmd, direct_[current_]);
+    render::computeWriteBarrier(cmd);
+    gpu::VctInjectPush pc{};
+    pc.volume = glm::vec4(vol.origin, vol.voxelSize);
+    pc.depth = depth;
+    pc.leafCapacity = uint32_t(voxels_.leafCapacity());
+    pc.lightCount = frame.lights.count;
+    pc.history = frames_ > 0 && options_.temporalBlend > 0.0f ? 1u : 0u;
+    pc.temporalBlend = options_.temporalBlend;
+    pc.temporalResponse = std::max(options_.temporalResponse, 1e-3f);
+    DescriptorWrites w;
+    w.storageBuffer(DYNGI_VCT_INJECT_BINDING_LIGHTS, frame.lights.lights->handle())
+        .storageBuffer(DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES, frame.lights.shadowMatrices->handle())
+        .storageImage(DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, frame.lights.shadowMaps->view())
+        .storageImage(DYNGI_VCT_INJECT_BINDING_PREVIOUS, direct_[previous].view())
+        .storageImage(DYNGI_VCT_INJECT_BINDING_DIRECT, direct_[current_].view())
+        .storageImage(DYNGI_VCT_INJECT_BINDING_RADIANCE, radiance_.mipView(0));
+    recordLeafPass(cmd, inject_, &pc, sizeof(pc), w);
+    stats_.injected = true;
+  }
+  rebuiltLastFrame_ = rebuilt;
+  {
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "mips");
+    recordMips(cmd);
+  }
+  const VkImageView anisoView = aniso ? aniso_.view() : radiance_.view();  // bound either way; read when anisotropic
+  {
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "bounce");
+    for (uint32_t b = 1; b < options_.bounces; ++b) {
+      gpu::VctBouncePush pc{};
+      fillConeParams(pc);
+      pc.depth = depth;
+      pc.leafCapacity = uint32_t(voxels_.leafCapacity());
+      DescriptorWrites w;
+      w.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, direct_[current_].view())
+          .sampledImage(DYNGI_VCT_BOUNCE_BINDING_RADIANCE, radiance_.view(), sampler_)
+          .sampledImage(DYNGI_VCT_BOUNCE_BINDING_ANISO, anisoView, sampler_)
+          .storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, bounced_.view());
+      recordLeafPass(cmd, bounce_[aniso ? 1 : 0], &pc, sizeof(pc), w);
+      DescriptorWrites c;
+      c.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, bounced_.view()).storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, radiance_.mipView(0));
+      recordLeafPass(cmd, commit_, &pc, sizeof(pc), c);
+      recordMips(cmd);
+    }
+  }
+  const uint32_t scale = traceScale();
+  stats_.traceWidth = lowDiffuse_.desc().width;
+  stats_.traceHeight = lowDiffuse_.desc().height;
+  {
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "trace");
+    const Pipeline& p = trace_[(aniso ? 1 : 0) + (options_.specular ? 2 : 0)];
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
+    DescriptorWrites()
+        .uniformBuffer(DYNGI_VCT_TRACE_BINDING_FRAME, frame.frameUniforms.handle())
+        .storageImage(DYNGI_VCT_TRACE_BINDING_G_POSITION, t.position.view())
+        .storageImage(DYNGI_VCT_TRACE_BINDING_G_NORMAL, t.normal.view())
+        .sampledImage(DYNGI_VCT_TRACE_BINDING_RADIANCE, radiance_.view(), sampler_)
+        .sampledImage(DYNGI_VCT_TRACE_BINDING_ANISO, anisoView, sampler_)
+        .storageImage(DYNGI_VCT_TRACE_BINDING_OUT_DIFFUSE, lowDiffuse_.view())
+        .storageImage(DYNGI_VCT_TRACE_BINDING_OUT_SPECULAR, lowSpecular_.view())
+        .push(ctx_, cmd, p);
+    gpu::VctTracePush pc{};
+    fillConeParams(pc);
+    pc.traceScale = scale;
+    pc.specular = options_.specular ? 1u : 0u;
+    vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
+    vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth, 8), dispatchGroups(stats_.traceHeight, 8), 1);
+    render::computeWriteBarrier(cmd);
+  }
+  {
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "upsample");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, upsample_.handle());
+    DescriptorWrites()
+        .uniformBuffer(DYNGI_VCT_UPSAMPLE_BINDING_FRAME, frame.frameUniforms.handle())
+        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION, t.position.view())
+        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL, t.normal.view())
+        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE, lowDiffuse_.view())
+        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR, lowSpecular_.view())
+        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, t.indirect.view())
+        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, t.specular.view())
+        .push(ctx_, cmd, upsample_);
+    const gpu::VctUpsamplePush pc{scale};
+    vkCmdPushConstants(cmd, upsample_.layout(), kCS, 0, sizeof(pc), &pc);
+    vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
+    render::computeWriteBarrier(cmd);
+  }
+  ++frames_;
+  frame.specularWritten = options_.specular;
+  return true;
+}
+
+void VoxelConeTracing::recordAfterLighting(render::FrameContext& frame) {
+  if (options_.view == VctView::Final || !radiance_.valid()) return;
+  VkCommandBuffer cmd = frame.cmd;
+  render::RenderTargets& t = frame.targets;
+  t.hdr.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  const bool aniso = options_.anisotropic;
+  const Pipeline& p = debug_[aniso ? 1 : 0];
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
+  DescriptorWrites()
+      .uniformBuffer(DYNGI_VCT_DEBUG_BINDING_FRAME, frame.frameUniforms.handle())
+      .sampledImage(DYNGI_VCT_DEBUG_BINDING_RADIANCE, radiance_.view(), sampler_)
+      .sampledImage(DYNGI_VCT_DEBUG_BINDING_ANISO, aniso ? aniso_.view() : radiance_.view(), sampler_)
+      .storageImage(DYNGI_VCT_DEBUG_BINDING_INDIRECT, t.indirect.view())
+      .storageImage(DYNGI_VCT_DEBUG_BINDING_SPECULAR, t.specular.view())
+      .storageImage(DYNGI_VCT_DEBUG_BINDING_OUT_HDR, t.hdr.view())
+      .push(ctx_, cmd, p);
+  gpu::VctDebugPush pc{};
+  fillConeParams(pc);
+  pc.mode = uint32_t(options_.view) - uint32_t(VctView::Radiance);
+  pc.mip = float(std::min(options_.viewMip, radiance_.desc().mips - 1));
+  vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
+  vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
+  render::computeWriteBarrier(cmd);
+}
+
+std::vector<glm::vec4> VoxelConeTracing::probeCones(const std::vector<std::pair<glm::vec3, glm::vec3>>& rays, float tanHalf) {
+  std::vector<glm::vec4> results(rays.size());
+  if (rays.empty() || !radiance_.valid()) return results;
+  std::vector<glm::vec4> packed;
+  for (const auto& [o, d] : rays) packed.push_back(glm::vec4(o, 0.0f)), packed.push_back(glm::vec4(d, 0.0f));
+  Buffer rayBuf(ctx_, packed.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "vct probe rays");
+  rayBuf.upload(packed.data(), packed.size() * sizeof(glm::vec4));
+  Buffer out(ctx_, rays.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "vct probe results");
+  const bool aniso = options_.anisotropic;
+  const Pipeline& p = probe_[aniso ? 1 : 0];
+  ctx_.immediate([&](VkCommandBuffer cmd) {
+    for (Image* img : {&radiance_, &aniso_})
+      if (img->valid()) img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
+    DescriptorWrites()
+        .storageBuffer(DYNGI_VCT_PROBE_BINDING_RAYS, rayBuf.handle())
+        .sampledImage(DYNGI_VCT_PROBE_BINDING_RADIANCE, radiance_.view(), sampler_)
+        .sampledImage(DYNGI_VCT_PROBE_BINDING_ANISO, aniso ? aniso_.view() : radiance_.view(), sampler_)
+        .storageBuffer(DYNGI_VCT_PROBE_BINDING_RESULTS, out.handle())
+        .push(ctx_, cmd, p);
+    gpu::VctProbePush pc{};
+    fillConeParams(pc);
+    pc.count = uint32_t(rays.size());
+    pc.tanHalf = tanHalf;
+    vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
+    vkCmdDispatch(cmd, dispatchGroups(uint32_t(rays.size()), 64), 1, 1);
+    render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                          VK_ACCESS_2_HOST_READ_BIT);
+  });
+  out.invalidateForRead();
+  std::memcpy(results.data(), out.mapped(), results.size() * sizeof(glm::vec4));
+  return results;
+}
+
+}  // namespace dyngi::gi
