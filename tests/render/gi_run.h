@@ -1,6 +1,7 @@
 #pragma once
 // A GI system on a built-in scene with its own renderer, stepped with a fixed time step: the render
 // tests' way to run a technique for some frames and read back what it drew.
+#include <functional>
 #include <memory>
 #include <set>
 #include <string>
@@ -28,8 +29,12 @@ struct GiRun {
   std::set<std::string> gpuSections;  // every section the renderer timed so far
 
   GiRun(render::VulkanContext& ctx, const gi::GiSettings& s, const std::string& sceneName = "cornell", uint32_t width = 128,
-        uint32_t height = 128) {
-    sample::buildBuiltinScene(sceneName, world, assets);
+        uint32_t height = 128)
+      : GiRun(ctx, s, [&](ecs::World& w, scene::AssetStore& a) { sample::buildBuiltinScene(sceneName, w, a); }, width, height) {}
+  // A scene the test builds itself (with a camera).
+  GiRun(render::VulkanContext& ctx, const gi::GiSettings& s, const std::function<void(ecs::World&, scene::AssetStore&)>& build,
+        uint32_t width, uint32_t height) {
+    build(world, assets);
     renderer = std::make_unique<render::Renderer>(ctx);
     renderer->resize(width, height);
     scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());

@@ -14,6 +14,8 @@
 #include "render/cornell_regions.h"
 #include "render/gi_run.h"
 #include "render/render_fixture.h"
+#include "support/shared_scenes.h"
+#include "dyngi/engine/scene/gltf_import.h"
 
 using namespace dyngi;
 using namespace dyngi::test;
@@ -80,10 +82,11 @@ TEST_F(RenderTest, VctCornellMatchesPathTracerPerRegionWithColourBleeding) {
     if (n < 60) continue;
     const double a = lum(render::meanOver(f.hdr, &mask)), b = lum(render::meanOver(ref, &mask));
     std::printf("%-16s vct %.4f  path %.4f  ratio %.3f  (%zu px)\n", name.c_str(), a, b, a / b, n);
-    // The goal is 20 percent for every region. Two box faces in their own shadow miss it today:
-    // prefiltered voxels blur the lit floor into the box's shadow beside them (1.40 and 2.7 at 128^3);
-    // their bounds hold today's figures so they cannot get worse unseen.
-    const double tolerance = name == "short_box +z" ? 0.5 : (name == "tall_box -x" ? 2.0 : 0.20);
+    // The goal is 20 percent for every region. Two faces in their box's own shadow miss it or sit
+    // on the edge: the tall box's face to the red wall (96 pixels, 0.60 today) and the short box's front
+    // (1.20), where the cones' coarse texels mix the shadowed floor beside them with the lit floor
+    // around it. Their bounds hold today's figures.
+    const double tolerance = name == "tall_box -x" ? 0.5 : (name == "short_box +z" ? 0.25 : 0.20);
     EXPECT_NEAR(a / b, 1.0, tolerance) << name;
   }
   const double rel = render::relativeMse(f.hdr, ref);
@@ -97,10 +100,8 @@ TEST_F(RenderTest, VctCornellMatchesPathTracerPerRegionWithColourBleeding) {
   const double ours = redness(f.hdr, "tall_box -x") / redness(f.hdr, "tall_box +z");
   const double theirs = redness(ref, "tall_box -x") / redness(ref, "tall_box +z");
   std::printf("colour bleeding (red/green of the face to the red wall over the front face): vct %.3f path %.3f\n", ours, theirs);
-  // Redder, but about a third as much as the path tracer's (1.10 against 1.31): the same face as above,
-  // lit too much by the blurred white floor.
-  EXPECT_GT(ours, 1.05) << "the face turned to the red wall is redder";
-  EXPECT_NEAR(ours / theirs, 1.0, 0.25);
+  EXPECT_GT(ours, 1.2) << "the face turned to the red wall is redder";
+  EXPECT_NEAR(ours / theirs, 1.0, 0.2);
 }
 
 namespace {
@@ -237,3 +238,80 @@ TEST_F(RenderTest, VctInjectedRadianceEqualsTheDirectLight) {
   EXPECT_NEAR(median, 1.0, 0.05);
   EXPECT_GT(double(within) / double(ratios.size()), 0.9);
 }
+
+namespace {
+// Room B's mean luminance (final image) over the pixels that show room B (beyond the shared wall).
+double roomBMean(render::VulkanContext& ctx, const gi::GiSettings& s, const std::string& scene) {
+  GiRun run(ctx, s, scene, 64, 64);
+  run.step(3);
+  const Frame f = run.readFrame();
+  std::vector<uint8_t> mask(f.position.size(), 0);
+  for (size_t i = 0; i < mask.size(); ++i) mask[i] = f.position[i].w != 0.0f && f.position[i].x > 0.0f;
+  return lum(render::meanOver(f.hdr, &mask));
+}
+}  // namespace
+
+// Light leaking through the two-room scene's wall (0.05 m: 1.5 voxels at 128^3, 2.9 at 256^3), room B
+// (no light) closed against room B with a doorway: isotropic against anisotropic voxels.
+TEST_F(RenderTest, VctLeakThroughAThinWallIsotropicAndAnisotropic) {
+  std::map<std::pair<uint32_t, bool>, double> leak;
+  for (uint32_t res : {128u, 256u})
+    for (bool aniso : {false, true}) {
+      gi::GiSettings s = vctSettings();
+      s.voxels.resolution = res;
+      s.vct.anisotropic = aniso;
+      const double closed = roomBMean(context(), s, "two-rooms"), door = roomBMean(context(), s, "two-rooms-door");
+      ASSERT_GT(door, 0.0);
+      leak[{res, aniso}] = closed / door;
+      std::printf("vct-leak| %u^3 | %s | room B closed %.5f | with a doorway %.5f | leak %.1f%%\n", res, aniso ? "anisotropic" : "isotropic",
+                  closed, door, 100.0 * closed / door);
+    }
+  // Anisotropic voxels leak less; a wall of at least two voxels leaks less than a thinner one.
+  const double aniso128 = leak[{128, true}], iso128 = leak[{128, false}], aniso256 = leak[{256, true}];
+  EXPECT_LT(aniso128, iso128);
+  EXPECT_LT(aniso256, iso128);
+  // Today's figures, about 10 percent at both resolutions, miss the goal of 5: room A's lit floor runs
+  // under the wall, and a coarse texel straddling the wall shows it to a room-B cone travelling down and
+  // towards the wall (the -y slab sees through the straddling texel). Bounds so they cannot get worse unseen.
+  EXPECT_LT(aniso128, 0.15);
+  EXPECT_LT(aniso256, 0.15);
+}
+
+// An emissive quad as the only light (../shared/scenes/CornellBox.glb): its light reaches the floor and
+// the walls through the cones, within 30 percent of the path tracer per surface.
+TEST_F(RenderTest, VctEmissiveOnlySceneLightsTheRoom) {
+  DYNGI_SHARED_SCENE_OR_SKIP(path, "CornellBox.glb");
+  constexpr uint32_t kEmissiveSize = 96;
+  GiRun run(
+      context(), vctSettings(), [&](ecs::World& w, scene::AssetStore& a) { ASSERT_EQ(scene::importGltf(path, w, a), ""); }, kEmissiveSize,
+      kEmissiveSize);
+  run.step(3);
+  Frame f = run.readFrame();
+  const render::ImageRgba ref = run.pathTraced(4096, 1);
+  dump("vct_emissive", f.hdr, kEmissiveSize, kEmissiveSize);
+  dump("vct_emissive_path", ref, kEmissiveSize, kEmissiveSize);
+  // Surfaces by their G-buffer normal. The ceiling is left out: it is in the emitter's plane and sees
+  // nothing of it (the path tracer's 0.0007), where the voxels' isotropic radiance gives it 0.01.
+  const std::pair<const char*, glm::vec3> surfaces[] = {
+      {"floor", {0, 1, 0}}, {"left wall", {1, 0, 0}}, {"right wall", {-1, 0, 0}}, {"back wall", {0, 0, 1}}};
+  size_t checked = 0;
+  for (const auto& [name, normal] : surfaces) {
+    std::vector<uint8_t> mask(f.hdr.size(), 0);
+    size_t n = 0;
+    for (size_t i = 0; i < mask.size(); ++i) {
+      const bool onSurface = f.position[i].w > 0.5f && glm::dot(glm::vec3(f.normal[i]), normal) > 0.95f && f.hdr[i].r < 1.0f;
+      mask[i] = onSurface;
+      n += onSurface;
+    }
+    if (n < 100) continue;
+    const double a = lum(render::meanOver(f.hdr, &mask)), b = lum(render::meanOver(ref, &mask));
+    std::printf("emissive-only %-11s vct %.4f  path %.4f  ratio %.3f  (%zu px)\n", name, a, b, a / b, n);
+    // The goal is 30 percent. The floor misses it (0.57 today): it sees the small, bright panel
+    // (27 x 22 voxels at 2 m) only through coarse mips, where a thin emitter straddled by the samples
+    // loses part of its light (0.64 with 32 cones); its bound holds today's figure.
+    EXPECT_NEAR(a / b, 1.0, std::string(name) == "floor" ? 0.5 : 0.30) << name;
+    ++checked;
+  }
+  EXPECT_GE(checked, 4u);
+}
+

@@ -153,12 +153,14 @@ struct RsmPush {
 #define DYNGI_SVO_EXPAND_BINDING_COUNTERS 4
 // svo_leaf_attributes. A leaf's attributes are DYNGI_LEAF_ATTRIBUTE_INTS ints at leaf * that, sums over
 // its fragments (integer atomics): albedo 0..255 per channel, the fragment count, the normal x 127, the
-// emitted radiance x 256 per channel.
+// emitted radiance x 256 per channel and the count of emitting fragments (emission is their mean: a
+// light panel on a ceiling shares its voxels with the ceiling, and a mean over both would halve it).
 #define DYNGI_LEAF_ATTRIBUTE_INTS 12u
 #define DYNGI_LEAF_ALBEDO 0u
 #define DYNGI_LEAF_COUNT 3u
 #define DYNGI_LEAF_NORMAL 4u
 #define DYNGI_LEAF_EMISSION 7u
+#define DYNGI_LEAF_EMITTERS 10u
 #define DYNGI_LEAF_EMISSION_SCALE 256.0
 #define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS 0
 #define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES 1

@@ -40,6 +40,7 @@ void accumulate(uint i) {
     atomicAdd(attributes[base + DYNGI_LEAF_EMISSION + c], int(round(e[c])));
   }
   atomicAdd(attributes[base + DYNGI_LEAF_COUNT], 1);
+  if (f.w != 0u) atomicAdd(attributes[base + DYNGI_LEAF_EMITTERS], 1);
 }
 
 void main() {

@@ -35,7 +35,8 @@ void main() {
     vec3 albedo = vec3(attributes[a], attributes[a + 1u], attributes[a + 2u]) / (255.0 * count);
     vec3 n = vec3(attributes[nb], attributes[nb + 1u], attributes[nb + 2u]);
     float lambert = length(n) > 0.0 ? abs(dot(normalize(n), dirWorld)) : 1.0;
-    color = albedo * (0.25 + 0.75 * lambert) * 0.8 + vec3(attributes[e], attributes[e + 1u], attributes[e + 2u]) / (DYNGI_LEAF_EMISSION_SCALE * count);
+    color = albedo * (0.25 + 0.75 * lambert) * 0.8 + vec3(attributes[e], attributes[e + 1u], attributes[e + 2u]) /
+                                                                 (DYNGI_LEAF_EMISSION_SCALE * max(float(attributes[base + DYNGI_LEAF_EMITTERS]), 1.0));
   }
   imageStore(outHdr, px, vec4(color, 1.0));
 }

@@ -105,15 +105,12 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, out 
   return vec4(colour, alpha);
 }
 
-// Half-angle tangent of one of N diffuse cones: each covers 1/N of the hemisphere's solid angle
-// (2 pi (1 - cos) = 2 pi / N), at most 45 degrees.
-float vctDiffuseTan(uint n) {
-  float c = 1.0 - 1.0 / float(n);
-  return c <= 0.7071 ? 1.0 : sqrt(1.0 - c * c) / c;
-}
-
-// Direction k of N spread over the hemisphere around +z by cosine (a spiral with the golden angle):
-// equal weights then estimate the cosine-weighted mean radiance, E / pi.
+// Direction k of N spread over the hemisphere around +z by cosine (a spiral with the golden angle). Each
+// cone gets the solid angle whose projection is its share, pi / N: Omega = pi / (N cos theta), so the
+// cones tile the hemisphere (the mean of 1 / cos theta under that spread is 2) and a cone's mean radiance,
+// weighted by its projected solid angle over pi, is its part of E / pi both for light from everywhere
+// and for a source smaller than the cone. (Equal solid angles, 2 pi / N, would halve a small source seen
+// along the normal.)
 vec3 vctDiffuseDirection(uint k, uint n) {
   float u = (float(k) + 0.5) / float(n);
   float r = sqrt(u);
@@ -133,21 +130,25 @@ mat3 vctBasis(vec3 n) {
 // cones' unoccluded fraction within aoDistance.
 vec3 vctDiffuse(vec3 p, vec3 n, out float ao) {
   mat3 basis = vctBasis(n);
-  float tanHalf = vctDiffuseTan(cones);
   vec3 origin = p + n * coneOffset;
   vec3 sum = vec3(0.0);
-  float occluded = 0.0;
+  float occluded = 0.0, total = 0.0;
   for (uint k = 0u; k < cones; ++k) {
     float occ;
     vec3 d = vctDiffuseDirection(k, cones);
+    float cosHalf = max(1.0 - 1.0 / (2.0 * float(cones) * max(d.z, 1e-3)), 0.0);
+    float coneTan = sqrt(1.0 - cosHalf * cosHalf) / max(cosHalf, 1e-3);
     // A cone tilted by theta keeps its half-angle under 90 - theta degrees (tan <= 0.9 cot theta): wider,
-    // it would reach below the horizon and meet the surface it starts from.
-    float coneTan = min(tanHalf, 0.9 * d.z / max(sqrt(1.0 - d.z * d.z), 1e-4));
-    sum += vctCone(origin, basis * d, coneTan, d.z, maxDistance, occ).rgb;
-    occluded += occ;
+    // it would reach below the horizon and meet the surface it starts from. Its weight, its projected
+    // solid angle over pi, shrinks with it.
+    coneTan = min(coneTan, 0.9 * d.z / max(sqrt(1.0 - d.z * d.z), 1e-4));
+    float weight = 2.0 * (1.0 - inversesqrt(1.0 + coneTan * coneTan)) * d.z;
+    sum += weight * vctCone(origin, basis * d, coneTan, d.z, maxDistance, occ).rgb;
+    occluded += weight * occ;
+    total += weight;
   }
-  ao = 1.0 - occluded / float(cones);
-  return sum / float(cones);
+  ao = 1.0 - occluded / max(total, 1e-6);
+  return sum;
 }
 
 #endif

@@ -32,7 +32,8 @@ bool vctLeaf(uint i, out VctLeaf leaf) {
   leaf.voxel = vctCellOf(nodeCells[node]);
   leaf.albedo = vec3(attributes[a], attributes[a + 1u], attributes[a + 2u]) / (255.0 * count);
   leaf.normalSum = vec3(attributes[n], attributes[n + 1u], attributes[n + 2u]) / (127.0 * count);
-  leaf.emission = vec3(attributes[e], attributes[e + 1u], attributes[e + 2u]) / (DYNGI_LEAF_EMISSION_SCALE * count);
+  float emitters = max(float(attributes[base + DYNGI_LEAF_EMITTERS]), 1.0);
+  leaf.emission = vec3(attributes[e], attributes[e + 1u], attributes[e + 2u]) / (DYNGI_LEAF_EMISSION_SCALE * emitters);
   return true;
 }
 
