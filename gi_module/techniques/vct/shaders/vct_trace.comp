@@ -42,8 +42,12 @@ void main() {
   vec3 specular = vec3(0.0);
   if (kSpecular) {
     vec3 v = normalize(frame.cameraPos.xyz - pos.xyz);
-    vec3 r = reflect(-v, n);
-    float tanHalf = clamp(nr.w * nr.w, kMinSpecularTan, 1.0);
+    // The GGX lobe's dominant direction leans from the mirror direction towards the normal as the
+    // roughness grows (Lagarde and de Rousiers 2014, "Moving Frostbite to PBR"): a rough surface's wide
+    // cone then rises from it fast enough to open up, instead of grazing it.
+    float rough = nr.w;
+    vec3 r = normalize(mix(n, reflect(-v, n), (1.0 - rough) * (sqrt(1.0 - rough) + rough)));
+    float tanHalf = clamp(rough * rough, kMinSpecularTan, 1.0);
     float occ;
     specular = vctCone(p + n * coneOffset, r, tanHalf, max(dot(r, n), 0.0), maxDistance, occ).rgb;
   }
