@@ -77,7 +77,8 @@ std::string usage() {
       "  --size WxH                             render size (default 768x768)\n"
       "  --frames N                             frames to render (default: 60 headless, until closed windowed)\n"
       "  --gi MODE                              global illumination: off | svo (VPLs, SVO visibility on the GPU) |\n"
-      "                                         bvh (VPLs, Embree visibility on the CPU) | path (reference path tracer)\n"
+      "                                         bvh (VPLs, Embree visibility on the CPU) | vct (voxel cone tracing) |\n"
+      "                                         path (reference path tracer)\n"
       "  --vpl-source paths|rsm                 incremental light paths (default) or per-frame RSM sampling (svo)\n"
       "  --animate NAME                         static | moving-spot | rotating-object | moving-camera |\n"
       "                                         walking-fox | fox-and-spot | fox-spot-light-on (benchmark, soak and\n"
@@ -105,7 +106,7 @@ std::string usage() {
   }
   gi::PathTracerSettings pt;
   u += "\nReference path tracer (--gi path):\n" + gi::optionHelp(gi::bindOptions(pt));
-  u += "\nVoxel scene (--gi svo, --view voxels | svo-steps):\n" + gi::optionHelp(gi::bindOptions(defaults.voxels));
+  u += "\nVoxel scene (--gi svo | vct, --view voxels | svo-steps):\n" + gi::optionHelp(gi::bindOptions(defaults.voxels));
   u += "\nGI budget (--gi svo | bvh; docs/QUALITY.md, \"The GI budget\"):\n" + gi::optionHelp(gi::bindOptions(defaults.budget));
   u += "\nWindowed: WASD move, hold the right mouse button to look, Q/E down/up, Esc quits.\n";
   return u;
