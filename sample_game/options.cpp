@@ -62,7 +62,7 @@ std::string notForThisRun(const Options& o, const std::string& flag) {
   for (const gi::OptionRef& r : gi::bindOptions(pt))
     if (name == r.spec->name) return flag + " is an option of --gi path, not of --gi " + o.gi;
   for (const gi::OptionRef& r : gi::bindOptions(probe.budget))
-    if (name == r.spec->name) return flag + " is an option of --gi svo | --gi bvh, not of --gi " + o.gi;
+    if (name == r.spec->name) return flag + " is an option of --gi svo | --gi bvh | --gi vct, not of --gi " + o.gi;
   return "unknown option '" + flag + "' (see --help)";
 }
 
@@ -107,7 +107,7 @@ std::string usage() {
   gi::PathTracerSettings pt;
   u += "\nReference path tracer (--gi path):\n" + gi::optionHelp(gi::bindOptions(pt));
   u += "\nVoxel scene (--gi svo | vct, --view voxels | svo-steps):\n" + gi::optionHelp(gi::bindOptions(defaults.voxels));
-  u += "\nGI budget (--gi svo | bvh; docs/QUALITY.md, \"The GI budget\"):\n" + gi::optionHelp(gi::bindOptions(defaults.budget));
+  u += "\nGI budget (--gi svo | bvh | vct; docs/QUALITY.md, \"The GI budget\"):\n" + gi::optionHelp(gi::bindOptions(defaults.budget));
   u += "\nWindowed: WASD move, hold the right mouse button to look, Q/E down/up, Esc quits.\n";
   return u;
 }

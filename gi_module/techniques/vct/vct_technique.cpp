@@ -13,7 +13,8 @@ const OptionTable<VctOptions>& VctOptions::table() {
       OptionTable<VctOptions>()
           .add({"cones", "diffuse cones per pixel (cosine-spread over the hemisphere)", 1, 32}, &VctOptions::diffuseCones)
           .add({"bounces", "light bounces (each past the first: a cone pass over the occupied voxels)", 1, 3}, &VctOptions::bounces)
-          .add({"trace-scale", "trace one pixel in NxN and upsample (1: every pixel)", 1, 4}, &VctOptions::traceScale)
+          .add({"trace-scale", "trace one pixel in NxN and upsample (1: every pixel; 0: at most 192^2 traced)", 0, 8},
+               &VctOptions::traceScale)
           .add({"anisotropic", "mip chain per direction (less light leaks through thin walls)", 0, 1}, &VctOptions::anisotropic)
           .add({"specular", "specular cone from the G-buffer roughness", 0, 1}, &VctOptions::specular)
           .add({"temporal-blend", "fraction of last frame's voxel radiance kept (0: none)", 0, 0.95}, &VctOptions::temporalBlend)
@@ -28,8 +29,6 @@ const OptionTable<VctOptions>& VctOptions::table() {
 }
 
 namespace {
-
-constexpr uint32_t kMaxBudgetTraceScale = 4;  // a GI budget traces at least one pixel in 4 x 4
 
 class VctTechnique final : public Technique {
  public:
@@ -48,19 +47,18 @@ class VctTechnique final : public Technique {
     return true;
   }
   std::vector<const char*> timedSections() const override { return VoxelConeTracing::timedSections(); }
-  // The fraction of pixels traced (1 / traceScale^2): the cone trace is most of the cost and scales with
-  // it; the upsample fills the rest. From the options' scale to one pixel in 4 x 4.
+  // The fraction of its pixels the trace keeps (1, 1/4, 1/16: the trace scale times 1, 2, 4): the cone
+  // trace is most of the cost and scales with it; the upsample fills the rest.
   std::vector<QualityKnob> qualityKnobs() override {
-    std::vector<double> levels;
-    for (uint32_t s = std::max(feature_.settings().traceScale, 1u); s <= kMaxBudgetTraceScale; s *= 2) levels.push_back(1.0 / double(s * s));
-    return {{"traced_fraction", levels,
-             [this](double v) { feature_.setTraceScale(uint32_t(std::lround(1.0 / std::sqrt(std::max(v, 1e-6))))); }}};
+    return {{"trace_fraction", {1.0, 0.25, 0.0625},
+             [this](double v) { feature_.setBudgetScaleFactor(uint32_t(std::lround(1.0 / std::sqrt(std::max(v, 1e-6))))); }}};
   }
   std::map<std::string, std::map<std::string, double>> statsSections() const override {
     const VctFrameStats& s = feature_.stats();
     return {{"vct",
              {{"trace_width", s.traceWidth}, {"trace_height", s.traceHeight}, {"volume_mib", double(s.volumeBytes) / (1 << 20)},
-              {"trace_scale", feature_.traceScale()}, {"traced_fraction", 1.0 / double(feature_.traceScale() * feature_.traceScale())}}}};
+              {"trace_scale", feature_.traceScale()},
+              {"trace_fraction", 1.0 / double(feature_.budgetScaleFactor() * feature_.budgetScaleFactor())}}}};
   }
 
  private:

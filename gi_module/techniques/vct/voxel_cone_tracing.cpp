@@ -167,7 +167,18 @@ void VoxelConeTracing::ensureVolumes(uint32_t res) {
   stats_.volumeBytes = volumeBytes(radiance_) + volumeBytes(aniso_) + volumeBytes(direct_[0]) * 2 + volumeBytes(bounced_);
 }
 
+uint32_t VoxelConeTracing::traceScale() const {
+  uint32_t base = options_.traceScale;
+  if (base == 0) {
+    base = 1;
+    while (base < kMaxTraceScale && uint64_t(width_ / base) * (height_ / base) > kAutoTracePixels) base *= 2;
+  }
+  return std::min(base * budgetFactor_, kMaxTraceScale);
+}
+
 void VoxelConeTracing::ensureTraceTargets(uint32_t width, uint32_t height) {
+  width_ = width;
+  height_ = height;
   const uint32_t s = traceScale();
   const uint32_t w = std::max((width + s - 1) / s, 1u), h = std::max((height + s - 1) / s, 1u);
   if (lowDiffuse_.valid() && lowDiffuse_.desc().width == w && lowDiffuse_.desc().height == h) return;

@@ -17,8 +17,10 @@ struct VctOptions {
   // more is a cone-tracing pass over the occupied voxels into a second volume.
   uint32_t bounces = 1;
   // Cones are traced for one pixel in traceScale x traceScale and upsampled with a depth- and
-  // normal-aware filter (1: every pixel). The GI budget's knob.
-  uint32_t traceScale = 2;
+  // normal-aware filter (1: every pixel). 0: the smallest power of two that traces at most 192 x 192
+  // pixels (2 at 256^2, 4 at 512^2 and 768^2): the trace is most of the cost, and diffuse light is smooth.
+  // A GI budget raises it further.
+  uint32_t traceScale = 0;
   // Opacity and radiance of the mip chain per direction (6 volumes of half resolution, composited front
   // to back along each axis): a thin wall stays opaque at coarse mips, so less light leaks through it.
   bool anisotropic = true;

@@ -6,6 +6,7 @@
 // screen traces diffuse cones (indirect light and ambient occlusion) and a specular cone per pixel,
 // upsampled with a depth- and normal-aware filter. Writes targets.indirect and targets.specular.
 // Stages: inject, mips, bounce, trace, upsample (plus the voxel scene's voxelize and svo_build).
+#include <algorithm>
 #include <vector>
 
 #include "dyngi/engine/render/pipeline.h"
@@ -34,9 +35,13 @@ class VoxelConeTracing final : public render::RenderFeature {
 
   VctOptions& settings() { return options_; }
   const VctFrameStats& stats() const { return stats_; }
-  // The trace resolution divisor in use: the options' unless a GI budget raised it (0 gives it back).
-  uint32_t traceScale() const { return budgetScale_ ? budgetScale_ : options_.traceScale; }
-  void setTraceScale(uint32_t scale) { budgetScale_ = scale; }
+  // The trace resolution divisor in use: the options' (or the automatic one for the render size) times a
+  // GI budget's factor, at most kMaxTraceScale.
+  uint32_t traceScale() const;
+  void setBudgetScaleFactor(uint32_t factor) { budgetFactor_ = std::max(factor, 1u); }
+  uint32_t budgetScaleFactor() const { return budgetFactor_; }
+  static constexpr uint32_t kMaxTraceScale = 8;
+  static constexpr uint32_t kAutoTracePixels = 192 * 192;  // traceScale 0: the most pixels traced
 
   // For tests and tools: level 0 with its isotropic mip chain, the six-direction atlas (anisotropic),
   // this frame's injected direct radiance. Valid after the first frame.
@@ -59,7 +64,8 @@ class VoxelConeTracing final : public render::RenderFeature {
   render::VulkanContext& ctx_;
   VoxelScene& voxels_;
   VctOptions options_;
-  uint32_t budgetScale_ = 0;
+  uint32_t budgetFactor_ = 1;
+  uint32_t width_ = 0, height_ = 0;  // the render size the trace scale was chosen for
   uint32_t res_ = 0;
   uint32_t current_ = 0;
   uint64_t frames_ = 0;
