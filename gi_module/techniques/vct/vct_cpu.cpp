@@ -34,6 +34,28 @@ VolumeLevel vctBoxDownsample(const VolumeLevel& s) {
   return out;
 }
 
+VolumeLevel vctOpaqueAxisDownsample(const VolumeLevel& s) {
+  VolumeLevel out{std::max(s.w / 2, 1u), std::max(s.h / 2, 1u), std::max(s.d / 2, 1u), {}};
+  out.texels.resize(size_t(out.w) * out.h * out.d);
+  for (uint32_t z = 0; z < out.d; ++z)
+    for (uint32_t y = 0; y < out.h; ++y)
+      for (uint32_t x = 0; x < out.w; ++x) {
+        glm::vec4 c[8];
+        for (int i = 0; i < 8; ++i) c[i] = s.at(2 * x + (i & 1), 2 * y + ((i >> 1) & 1), 2 * z + (i >> 2));
+        glm::vec4 best(0.0f);
+        for (int axis = 0; axis < 3; ++axis) {
+          const int step = 1 << axis;
+          glm::vec4 sum(0.0f);
+          for (int i = 0; i < 8; ++i)
+            if ((i & step) == 0) sum += 0.5f * (over(c[i], c[i | step]) + over(c[i | step], c[i]));
+          sum *= 0.25f;
+          if (sum.a > best.a) best = sum;
+        }
+        out.texels[(size_t(z) * out.h + y) * out.w + x] = best;
+      }
+  return out;
+}
+
 VolumeLevel vctAnisoDownsample(const VolumeLevel& s, uint32_t sourceSlabWidth, uint32_t destSlabWidth) {
   VolumeLevel out{kSlabs * destSlabWidth, destSlabWidth, destSlabWidth, {}};
   out.texels.resize(size_t(out.w) * out.h * out.d);

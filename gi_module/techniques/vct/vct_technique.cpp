@@ -16,6 +16,8 @@ const OptionTable<VctOptions>& VctOptions::table() {
           .add({"trace-scale", "trace one pixel in NxN and upsample (1: every pixel; 0: at most 192^2 traced)", 0, 8},
                &VctOptions::traceScale)
           .add({"anisotropic", "mip chain per direction (less light leaks through thin walls)", 0, 1}, &VctOptions::anisotropic)
+          .add({"opaque-axis-mips", "isotropic mips take their most opaque axis' opacity, not the mean (thin walls stay opaque)", 0, 1},
+               &VctOptions::opaqueAxisMips)
           .add({"specular", "specular cone from the G-buffer roughness", 0, 1}, &VctOptions::specular)
           .add({"temporal-blend", "fraction of last frame's voxel radiance kept (0: none)", 0, 0.95}, &VctOptions::temporalBlend)
           .add({"temporal-response", "relative change above which a voxel takes the new radiance at once", 0.01, 10},

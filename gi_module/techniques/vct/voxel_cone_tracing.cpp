@@ -107,7 +107,8 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
   // for the trace, with the specular cone or without.
   for (uint32_t aniso : {0u, 1u}) {
     const uint32_t spec[] = {aniso};
-    mips_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", spec);
+    const uint32_t mipsSpec[] = {aniso, 0u};
+    mips_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", mipsSpec);
     bounce_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_bounce_comp), bounceB, sizeof(gpu::VctBouncePush), "vct_bounce", spec);
     debug_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_debug_comp), debugB, sizeof(gpu::VctDebugPush), "vct_debug", spec);
     probe_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_cone_probe_comp), probeB, sizeof(gpu::VctProbePush), "vct_cone_probe", spec);
@@ -117,6 +118,8 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
           Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_trace_comp), traceB, sizeof(gpu::VctTracePush), "vct_trace", traceSpec);
     }
   }
+  const uint32_t opaqueAxisSpec[] = {0u, 1u};
+  mips_[2] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", opaqueAxisSpec);
   const Binding upB[] = {{DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL, kStorageImage, kCS},
                          {DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR, kStorageImage, kCS},
                          {DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, kStorageImage, kCS},
@@ -226,7 +229,7 @@ static_assert(DYNGI_VCT_INJECT_BINDING_NODES == DYNGI_VCT_BOUNCE_BINDING_NODES &
 
 void VoxelConeTracing::recordMips(VkCommandBuffer cmd) {
   const bool aniso = options_.anisotropic;
-  const Pipeline& p = mips_[aniso ? 1 : 0];
+  const Pipeline& p = mips_[aniso ? 1 : (options_.opaqueAxisMips ? 2 : 0)];
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
   auto level = [&](VkImageView source, VkImageView dest, uint32_t w, uint32_t h, uint32_t d, gpu::VctMipsPush pc) {
     DescriptorWrites().storageImage(DYNGI_VCT_MIPS_BINDING_SOURCE, source).storageImage(DYNGI_VCT_MIPS_BINDING_DEST, dest).push(ctx_, cmd, p);

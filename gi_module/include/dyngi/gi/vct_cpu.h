@@ -19,6 +19,8 @@ struct VolumeLevel {
 
 // The isotropic next level: the mean of each texel's 8 children (vct_mips.comp, not anisotropic).
 VolumeLevel vctBoxDownsample(const VolumeLevel& source);
+// The isotropic next level with each texel's opacity from its most opaque axis (opaqueAxisMips).
+VolumeLevel vctOpaqueAxisDownsample(const VolumeLevel& source);
 // The next level of the six-direction atlas (vct_mips.comp, anisotropic): from one isotropic source
 // (sourceSlabWidth 0) or from the atlas level below.
 VolumeLevel vctAnisoDownsample(const VolumeLevel& source, uint32_t sourceSlabWidth, uint32_t destSlabWidth);

@@ -24,6 +24,9 @@ struct VctOptions {
   // Opacity and radiance of the mip chain per direction (6 volumes of half resolution, composited front
   // to back along each axis): a thin wall stays opaque at coarse mips, so less light leaks through it.
   bool anisotropic = true;
+  // Isotropic volumes only: a coarse texel takes the opacity of its most opaque axis (its children
+  // composited front to back along it) instead of their mean, so thin walls and floors stay opaque.
+  bool opaqueAxisMips = true;
   // The specular cone (aperture from the G-buffer roughness), weighted by the lighting pass with the
   // specular colour (4 percent for dielectrics, the base colour for metals).
   bool specular = true;

@@ -76,7 +76,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   render::Image bounced_;      // res^3: a bounce's output before it is committed to radiance_ level 0
   render::Image lowDiffuse_, lowSpecular_;  // the traced pixels
   VkSampler sampler_ = VK_NULL_HANDLE;
-  render::Pipeline inject_, mips_[2], bounce_[2], commit_, trace_[4], upsample_, debug_[2], probe_[2];
+  render::Pipeline inject_, mips_[3], bounce_[2], commit_, trace_[4], upsample_, debug_[2], probe_[2];
   VctFrameStats stats_;
 };
 

@@ -9,6 +9,10 @@
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(constant_id = 0) const bool kAnisotropic = false;
+// Isotropic only: each texel's opacity is that of its most opaque axis (the children composited front to
+// back along it, averaged over the 4 columns), its radiance that axis' mean composite: a wall one voxel
+// thick stays opaque at every level, as in the anisotropic atlas, for one fetch per sample.
+layout(constant_id = 1) const bool kOpaqueAxis = false;
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_SOURCE, rgba16f) uniform readonly image3D source;
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_DEST, rgba16f) uniform writeonly image3D dest;
 layout(push_constant) uniform Push { DYNGI_VCT_MIPS_PUSH };
@@ -25,11 +29,30 @@ void main() {
   ivec3 size = imageSize(dest);
   ivec3 p = ivec3(gl_GlobalInvocationID);
   if (any(greaterThanEqual(p, size))) return;
-  if (!kAnisotropic) {
+  if (!kAnisotropic && !kOpaqueAxis) {
     ivec3 base = 2 * p;
     vec4 sum = vec4(0.0);
     for (int i = 0; i < 8; ++i) sum += imageLoad(source, base + ivec3(i & 1, (i >> 1) & 1, i >> 2));
     imageStore(dest, p, sum * 0.125);
+    return;
+  }
+  if (!kAnisotropic) {
+    ivec3 base = 2 * p;
+    vec4 c[8];
+    for (int i = 0; i < 8; ++i) c[i] = imageLoad(source, base + ivec3(i & 1, (i >> 1) & 1, i >> 2));
+    vec4 best = vec4(0.0);
+    for (int axis = 0; axis < 3; ++axis) {
+      int step = 1 << axis;  // the child index bit of this axis
+      vec4 sum = vec4(0.0);
+      for (int i = 0; i < 8; ++i) {
+        if ((i & step) != 0) continue;
+        vec4 lo = c[i], hi = c[i | step];
+        sum += 0.5 * (over(lo, hi) + over(hi, lo));  // both directions along the axis: the same opacity
+      }
+      sum *= 0.25;
+      if (sum.a > best.a) best = sum;
+    }
+    imageStore(dest, p, best);
     return;
   }
   uint slab = uint(p.x) / destSlabWidth;
