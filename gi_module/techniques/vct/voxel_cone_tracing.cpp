@@ -259,8 +259,10 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   options_.bounces = std::clamp(options_.bounces, 1u, 3u);
   ensureVolumes(voxels_.volume().resolution);
   ensureTraceTargets(frame.targets.width, frame.targets.height);
+  // Back to GENERAL after a read-back (tests); the frames before finished at the renderer's fence, and
+  // the passes below order themselves with global barriers.
   for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_, &lowDiffuse_, &lowSpecular_})
-    if (img->valid()) img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, kComputeAndTransfer, kReadWrite);
+    if (img->valid() && img->layout() != VK_IMAGE_LAYOUT_GENERAL) img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, kComputeAndTransfer, kReadWrite);
   frame.lights.shadowMaps->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   render::RenderTargets& t = frame.targets;
   for (Image* in : {&t.position, &t.normal})
@@ -271,6 +273,11 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   const uint32_t depth = voxels_.volume().depth();
   const bool aniso = options_.anisotropic;
   const VoxelVolume& vol = voxels_.volume();
+  // A volume moved or resized (VoxelScene::setVolume) makes last frame's radiance belong elsewhere: no
+  // blending with it.
+  if (vol.origin != historyOrigin_ || vol.voxelSize != historyVoxelSize_) frames_ = 0;
+  historyOrigin_ = vol.origin;
+  historyVoxelSize_ = vol.voxelSize;
   const uint32_t previous = current_;
   current_ ^= 1u;
   const bool rebuilt = voxels_.stats().rebuilt;

@@ -70,6 +70,8 @@ class VoxelConeTracing final : public render::RenderFeature {
   uint32_t current_ = 0;
   uint64_t frames_ = 0;
   bool rebuiltLastFrame_ = true;
+  glm::vec3 historyOrigin_{0.0f};  // the volume last frame's radiance was injected into
+  float historyVoxelSize_ = 0.0f;
   render::Image radiance_;     // res^3, full mip chain
   render::Image aniso_;        // 6 (res/2) x res/2 x res/2, mips (anisotropic only)
   render::Image direct_[2];    // res^3: the injected radiance this frame and last (temporal blending)
