@@ -10,6 +10,17 @@ constexpr uint32_t kSlabs = 6;
 constexpr int kMaxSteps = 160;  // vct_cone.glsl kVctMaxSteps
 constexpr float kSurfaceClearance = 1.0f / 2.0f;  // kVctSurfaceClearance
 glm::vec4 over(const glm::vec4& front, const glm::vec4& back) { return front + (1.0f - front.a) * back; }
+
+// A w x h x d level with each texel from texel(x, y, z).
+template <class Texel>
+VolumeLevel makeLevel(uint32_t w, uint32_t h, uint32_t d, Texel texel) {
+  VolumeLevel out{w, h, d, {}};
+  out.texels.resize(size_t(w) * h * d);
+  for (uint32_t z = 0; z < d; ++z)
+    for (uint32_t y = 0; y < h; ++y)
+      for (uint32_t x = 0; x < w; ++x) out.texels[(size_t(z) * h + y) * w + x] = texel(x, y, z);
+  return out;
+}
 }  // namespace
 
 glm::vec4 VolumeLevel::at(int x, int y, int z) const {
@@ -22,62 +33,47 @@ glm::vec4 VolumeLevel::clampedAt(int x, int y, int z) const {
 }
 
 VolumeLevel vctBoxDownsample(const VolumeLevel& s) {
-  VolumeLevel out{std::max(s.w / 2, 1u), std::max(s.h / 2, 1u), std::max(s.d / 2, 1u), {}};
-  out.texels.resize(size_t(out.w) * out.h * out.d);
-  for (uint32_t z = 0; z < out.d; ++z)
-    for (uint32_t y = 0; y < out.h; ++y)
-      for (uint32_t x = 0; x < out.w; ++x) {
-        glm::vec4 sum(0.0f);
-        for (int i = 0; i < 8; ++i) sum += s.at(2 * x + (i & 1), 2 * y + ((i >> 1) & 1), 2 * z + (i >> 2));
-        out.texels[(size_t(z) * out.h + y) * out.w + x] = sum * 0.125f;
-      }
-  return out;
+  return makeLevel(std::max(s.w / 2, 1u), std::max(s.h / 2, 1u), std::max(s.d / 2, 1u), [&](uint32_t x, uint32_t y, uint32_t z) {
+    glm::vec4 sum(0.0f);
+    for (int i = 0; i < 8; ++i) sum += s.at(2 * x + (i & 1), 2 * y + ((i >> 1) & 1), 2 * z + (i >> 2));
+    return sum * 0.125f;
+  });
 }
 
 VolumeLevel vctOpaqueAxisDownsample(const VolumeLevel& s) {
-  VolumeLevel out{std::max(s.w / 2, 1u), std::max(s.h / 2, 1u), std::max(s.d / 2, 1u), {}};
-  out.texels.resize(size_t(out.w) * out.h * out.d);
-  for (uint32_t z = 0; z < out.d; ++z)
-    for (uint32_t y = 0; y < out.h; ++y)
-      for (uint32_t x = 0; x < out.w; ++x) {
-        glm::vec4 c[8];
-        for (int i = 0; i < 8; ++i) c[i] = s.at(2 * x + (i & 1), 2 * y + ((i >> 1) & 1), 2 * z + (i >> 2));
-        glm::vec4 best(0.0f);
-        for (int axis = 0; axis < 3; ++axis) {
-          const int step = 1 << axis;
-          glm::vec4 sum(0.0f);
-          for (int i = 0; i < 8; ++i)
-            if ((i & step) == 0) sum += 0.5f * (over(c[i], c[i | step]) + over(c[i | step], c[i]));
-          sum *= 0.25f;
-          if (sum.a > best.a) best = sum;
-        }
-        out.texels[(size_t(z) * out.h + y) * out.w + x] = best;
-      }
-  return out;
+  return makeLevel(std::max(s.w / 2, 1u), std::max(s.h / 2, 1u), std::max(s.d / 2, 1u), [&](uint32_t x, uint32_t y, uint32_t z) {
+    glm::vec4 c[8];
+    for (int i = 0; i < 8; ++i) c[i] = s.at(2 * x + (i & 1), 2 * y + ((i >> 1) & 1), 2 * z + (i >> 2));
+    glm::vec4 best(0.0f);
+    for (int axis = 0; axis < 3; ++axis) {
+      const int step = 1 << axis;
+      glm::vec4 sum(0.0f);
+      for (int i = 0; i < 8; ++i)
+        if ((i & step) == 0) sum += 0.5f * (over(c[i], c[i | step]) + over(c[i | step], c[i]));
+      sum *= 0.25f;
+      if (sum.a > best.a) best = sum;
+    }
+    return best;
+  });
 }
 
 VolumeLevel vctAnisoDownsample(const VolumeLevel& s, uint32_t sourceSlabWidth, uint32_t destSlabWidth) {
-  VolumeLevel out{kSlabs * destSlabWidth, destSlabWidth, destSlabWidth, {}};
-  out.texels.resize(size_t(out.w) * out.h * out.d);
-  for (uint32_t z = 0; z < out.d; ++z)
-    for (uint32_t y = 0; y < out.h; ++y)
-      for (uint32_t x = 0; x < out.w; ++x) {
-        const uint32_t slab = x / destSlabWidth, axis = slab / 2;
-        const bool negative = (slab & 1u) != 0;
-        const glm::ivec3 base = 2 * glm::ivec3(x % destSlabWidth, y, z);
-        const int offsetX = int((sourceSlabWidth == 0 ? 0 : slab) * sourceSlabWidth);
-        const glm::ivec3 along = axis == 0 ? glm::ivec3(1, 0, 0) : (axis == 1 ? glm::ivec3(0, 1, 0) : glm::ivec3(0, 0, 1));
-        const glm::ivec3 u = axis == 0 ? glm::ivec3(0, 1, 0) : glm::ivec3(1, 0, 0);
-        const glm::ivec3 v = axis == 2 ? glm::ivec3(0, 1, 0) : glm::ivec3(0, 0, 1);
-        glm::vec4 sum(0.0f);
-        for (int j = 0; j < 4; ++j) {
-          const glm::ivec3 c = base + (j & 1) * u + (j >> 1) * v;
-          const glm::vec4 lo = s.at(c.x + offsetX, c.y, c.z), hi = s.at(c.x + along.x + offsetX, c.y + along.y, c.z + along.z);
-          sum += negative ? over(hi, lo) : over(lo, hi);
-        }
-        out.texels[(size_t(z) * out.h + y) * out.w + x] = sum * 0.25f;
-      }
-  return out;
+  return makeLevel(kSlabs * destSlabWidth, destSlabWidth, destSlabWidth, [&](uint32_t x, uint32_t y, uint32_t z) {
+    const uint32_t slab = x / destSlabWidth, axis = slab / 2;
+    const bool negative = (slab & 1u) != 0;
+    const glm::ivec3 base = 2 * glm::ivec3(x % destSlabWidth, y, z);
+    const int offsetX = int((sourceSlabWidth == 0 ? 0 : slab) * sourceSlabWidth);
+    const glm::ivec3 along = axis == 0 ? glm::ivec3(1, 0, 0) : (axis == 1 ? glm::ivec3(0, 1, 0) : glm::ivec3(0, 0, 1));
+    const glm::ivec3 u = axis == 0 ? glm::ivec3(0, 1, 0) : glm::ivec3(1, 0, 0);
+    const glm::ivec3 v = axis == 2 ? glm::ivec3(0, 1, 0) : glm::ivec3(0, 0, 1);
+    glm::vec4 sum(0.0f);
+    for (int j = 0; j < 4; ++j) {
+      const glm::ivec3 c = base + (j & 1) * u + (j >> 1) * v;
+      const glm::vec4 lo = s.at(c.x + offsetX, c.y, c.z), hi = s.at(c.x + along.x + offsetX, c.y + along.y, c.z + along.z);
+      sum += negative ? over(hi, lo) : over(lo, hi);
+    }
+    return sum * 0.25f;
+  });
 }
 
 namespace {
