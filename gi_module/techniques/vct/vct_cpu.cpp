@@ -135,14 +135,15 @@ glm::vec4 vctConeCpu(const std::vector<VolumeLevel>& radiance, const std::vector
   for (int i = 0; i < kMaxSteps; ++i) {
     const float diameter = std::max(1.0f, std::min(2.0f * tanHalf * t, kSurfaceClearance * (p.coneOffset + rise * t)));
     const glm::vec3 pos = origin + t * dir;
-    const glm::vec4 s = sampleCpu(radiance, aniso, p, pos, std::log2(diameter), dir);
+    const glm::vec3 beyond = glm::max(glm::max(-pos, pos - glm::vec3(p.res)), glm::vec3(0.0f));
+    const float inside = std::clamp(1.0f - std::max(beyond.x, std::max(beyond.y, beyond.z)) / diameter, 0.0f, 1.0f);
+    const glm::vec4 s = inside * sampleCpu(radiance, aniso, p, pos, std::log2(diameter), dir);
     const float a = 1.0f - std::pow(std::max(1.0f - s.a, 0.0f), p.stepScale);
     const glm::vec3 c = s.a > 1e-6f ? glm::vec3(s) * (a / s.a) : glm::vec3(0.0f);
     colour += (1.0f - alpha) * c;
     alpha += (1.0f - alpha) * a;
     t += p.stepScale * diameter;
-    const bool outside = glm::any(glm::lessThan(pos, glm::vec3(0.0f))) || glm::any(glm::greaterThan(pos, glm::vec3(p.res)));
-    if (alpha >= 0.99f || t > p.maxDistance || outside) break;
+    if (alpha >= 0.99f || t > p.maxDistance || inside <= 0.0f) break;
   }
   return glm::vec4(colour, alpha);
 }

@@ -53,6 +53,14 @@ vec4 vctSample(vec3 p, float mip, vec3 dir) {
   return mix(fine, vctSampleCoarse(p, mip, dir), clamp(mip, 0.0, 1.0));
 }
 
+// How much of a sample at p (footprint `diameter`) counts: 1 inside the volume, fading to 0 a footprint
+// beyond its side. A cone leaving the volume then fades out instead of stopping at whichever sample
+// happened to fall outside first, which made neighbouring pixels' cones end a step apart: bands.
+float vctInside(vec3 p, float diameter) {
+  vec3 beyond = max(max(-p, p - vec3(res)), vec3(0.0));
+  return clamp(1.0 - max(beyond.x, max(beyond.y, beyond.z)) / diameter, 0.0, 1.0);
+}
+
 // One step of the front-to-back accumulation with sample s over stepScale footprints: opacity
 // 1 - (1 - a)^stepScale, the colour scaled alike; occlusion (AO) weighted by 1 - t / aoDistance.
 void vctAccumulate(vec4 s, float t, inout vec3 colour, inout float alpha, inout float occlusion) {
@@ -86,10 +94,10 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, out 
     float diameter = max(1.0, min(2.0 * tanHalf * t, kVctSurfaceClearance * (coneOffset + rise * t)));
     if (diameter >= 2.0) break;
     vec3 p = origin + t * dir;
-    vctAccumulate(vctSample(p, log2(diameter), dir), t, colour, alpha, occlusion);
+    float inside = vctInside(p, diameter);
+    vctAccumulate(inside * vctSample(p, log2(diameter), dir), t, colour, alpha, occlusion);
     t += stepScale * diameter;
-    bool outside = any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(res)));
-    if (alpha >= 0.99 || t > reach || outside) {
+    if (alpha >= 0.99 || t > reach || inside <= 0.0) {
       done = true;
       break;
     }
@@ -97,10 +105,10 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, out 
   for (; !done && i < kVctMaxSteps; ++i) {
     float diameter = min(2.0 * tanHalf * t, kVctSurfaceClearance * (coneOffset + rise * t));
     vec3 p = origin + t * dir;
-    vctAccumulate(vctSampleCoarse(p, log2(diameter), dir), t, colour, alpha, occlusion);
+    float inside = vctInside(p, diameter);
+    vctAccumulate(inside * vctSampleCoarse(p, log2(diameter), dir), t, colour, alpha, occlusion);
     t += stepScale * diameter;
-    bool outside = any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(res)));
-    if (alpha >= 0.99 || t > reach || outside) break;
+    if (alpha >= 0.99 || t > reach || inside <= 0.0) break;
   }
   return vec4(colour, alpha);
 }
