@@ -63,7 +63,7 @@ const render::ImageRgba& cornellReference(GiRun& run, uint32_t bounces) {
   static std::map<uint32_t, render::ImageRgba> cache;
   auto it = cache.find(bounces);
   if (it != cache.end()) return it->second;
-  return cache[bounces] = run.pathTraced(512, bounces);
+  return cache[bounces] = run.pathTraced(bounces == 1 ? 512 : 256, bounces);  // the 2-bounce reference only ranks two images
 }
 }  // namespace
 
@@ -254,11 +254,14 @@ double roomBMean(render::VulkanContext& ctx, const gi::GiSettings& s, const std:
 
 // Light leaking through the two-room scene's wall (0.05 m: 1.5 voxels at 128^3, 2.9 at 256^3), room B
 // (no light) closed against room B with a doorway, for the three mip chains: isotropic mean, isotropic
-// with each texel's most opaque axis, anisotropic (six directions).
+// with each texel's most opaque axis, anisotropic (six directions). At 128^3; DYNGI_VCT_LEAK_256=1 adds
+// 256^3 (a minute more under the sanitizers; docs/QUALITY.md has its figures).
 TEST_F(RenderTest, VctLeakThroughAThinWallPerMipChain) {
   const char* names[] = {"isotropic mean", "isotropic opaque axis", "anisotropic"};
   std::map<std::pair<uint32_t, int>, double> leak;
-  for (uint32_t res : {128u, 256u})
+  std::vector<uint32_t> resolutions = {128u};
+  if (std::getenv("DYNGI_VCT_LEAK_256")) resolutions.push_back(256u);
+  for (uint32_t res : resolutions)
     for (int mode : {0, 1, 2}) {
       gi::GiSettings s = vctSettings();
       s.voxels.resolution = res;
@@ -275,7 +278,7 @@ TEST_F(RenderTest, VctLeakThroughAThinWallPerMipChain) {
   // its normal, but room A's lit floor runs under the wall and a texel straddling the wall shows it to a
   // room-B cone travelling down and towards the wall through the -y slab: about 10 percent at both
   // resolutions. Bounds hold today's figures.
-  for (uint32_t res : {128u, 256u}) {
+  for (uint32_t res : resolutions) {
     const double mean = leak[{res, 0}], opaqueAxis = leak[{res, 1}], aniso = leak[{res, 2}];
     EXPECT_LT(opaqueAxis, 0.05) << res;
     EXPECT_LT(opaqueAxis, mean) << res;
