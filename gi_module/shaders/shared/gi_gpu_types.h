@@ -245,6 +245,10 @@ struct RsmPush {
 #define DYNGI_VCT_PROBE_BINDING_RESULTS 3
 // The six directions of the anisotropic atlas, in slab order: a cone travelling along +x reads slab 0.
 #define DYNGI_VCT_SLABS 6u
+// The cone march (vct_cone.glsl and its C++ twin, vct_cpu.cpp): most steps a cone takes, and its
+// footprint's largest fraction of its distance from the surface it left.
+#define DYNGI_VCT_MAX_STEPS 160
+#define DYNGI_VCT_SURFACE_CLEARANCE 0.5
 
 // Bindings of the shared indirect gather (gather.glsl); a technique's gather variant adds its own after
 // them (temporal_gather.comp).

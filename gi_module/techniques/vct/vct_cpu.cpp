@@ -1,14 +1,16 @@
 #include "dyngi/gi/vct_cpu.h"
 
+#include "shaders/shared/gi_gpu_types.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace dyngi::gi {
 
 namespace {
-constexpr uint32_t kSlabs = 6;
-constexpr int kMaxSteps = 160;  // vct_cone.glsl kVctMaxSteps
-constexpr float kSurfaceClearance = 1.0f / 2.0f;  // kVctSurfaceClearance
+constexpr uint32_t kSlabs = DYNGI_VCT_SLABS;
+constexpr int kMaxSteps = DYNGI_VCT_MAX_STEPS;
+constexpr float kSurfaceClearance = float(DYNGI_VCT_SURFACE_CLEARANCE);
 glm::vec4 over(const glm::vec4& front, const glm::vec4& back) { return front + (1.0f - front.a) * back; }
 
 // A w x h x d level with each texel from texel(x, y, z).

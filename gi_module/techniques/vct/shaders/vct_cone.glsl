@@ -11,7 +11,7 @@
 #define DYNGI_VCT_CONE_GLSL
 
 const float kVctPi = 3.14159265358979;
-const int kVctMaxSteps = 160;
+const int kVctMaxSteps = DYNGI_VCT_MAX_STEPS;
 
 // The atlas slab for one axis of a direction: +x 0, -x 1, +y 2, -y 3, +z 4, -z 5.
 vec4 vctAnisoSlab(vec3 uvw, float lod, uint axis, bool negative, float clampHalf) {
@@ -80,7 +80,7 @@ void vctAccumulate(vec4 s, float t, inout vec3 colour, inout float alpha, inout 
 // self-illumination).
 // Returns the radiance arriving along the cone (rgb) and its opacity (a); `occlusion` is the opacity met
 // within aoDistance, each sample weighted by 1 - t / aoDistance.
-const float kVctSurfaceClearance = 1.0 / 2.0;
+const float kVctSurfaceClearance = DYNGI_VCT_SURFACE_CLEARANCE;
 vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, out float occlusion) {
   vec3 colour = vec3(0.0);
   float alpha = 0.0;
