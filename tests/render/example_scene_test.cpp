@@ -1,0 +1,45 @@
+// assets/cornell_box.gltf, the scene the embedding example (examples/minimal_host) renders: the file in
+// the tree is its generator's output, and it renders as the built-in Cornell box it was written from.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "dyngi/engine/scene/gltf_import.h"
+#include "render/gi_run.h"
+#include "support/example_scene.h"
+
+using namespace dyngi;
+using namespace dyngi::test;
+
+TEST(ExampleScene, CommittedGltfIsItsGeneratorsOutput) {
+  std::ifstream f(DYNGI_ASSETS_DIR "/cornell_box.gltf", std::ios::binary);
+  ASSERT_TRUE(f) << "assets/cornell_box.gltf is missing";
+  std::stringstream text;
+  text << f.rdbuf();
+  // Compared whole, reported briefly (the file is 7 kB of one line).
+  EXPECT_TRUE(text.str() == cornellBoxGltf()) << "assets/cornell_box.gltf differs from its generator: regenerate it with build/bin/dyngi_make_example_scene";
+}
+
+// The same technique over both worlds gives the same image: geometry, materials, light units, the spot's
+// orientation and the camera all survive the trip through glTF.
+TEST_F(RenderTest, ExampleGltfRendersAsTheBuiltinCornellBox) {
+  gi::GiSettings s;
+  s.technique = "many_lights";  // no history: one frame is its image
+  GiRun builtin(context(), s, "cornell", 96, 96);
+  GiRun imported(
+      context(), s,
+      [](ecs::World& w, scene::AssetStore& a) {
+        const std::string err = scene::importGltf(DYNGI_ASSETS_DIR "/cornell_box.gltf", w, a);
+        ASSERT_TRUE(err.empty()) << err;
+      },
+      96, 96);
+  builtin.step(2);
+  imported.step(2);
+  const render::ImageRgba a = builtin.hdr(), b = imported.hdr();
+  const glm::dvec3 mean = render::meanOver(a);
+  ASSERT_GT(mean.r + mean.g + mean.b, 0.01) << "the built-in scene is lit";
+  EXPECT_LT(render::relativeMse(b, a), 1e-4);
+  const render::ImageRgba ia = builtin.indirect(), ib = imported.indirect();
+  EXPECT_LT(render::relativeMse(ib, ia), 1e-4) << "the same indirect light";
+}
