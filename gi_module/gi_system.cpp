@@ -22,36 +22,72 @@ class GiFrameUpdate final : public render::RenderFeature {
   GiSystem& gi_;
 };
 
-GiSystem::GiSystem(render::VulkanContext& ctx, const scene::AssetStore& assets, const GiSettings& s) : assets_(assets), settings_(s) {
-  entry_ = findTechnique(s.technique);
-  if (!entry_) throw std::invalid_argument("unknown GI technique '" + s.technique + "'");
+GiSystem::GiSystem(render::VulkanContext& ctx, const scene::AssetStore& assets, const GiSettings& s) : ctx_(ctx), assets_(assets) {
+  build(s);
+}
+
+GiSystem::~GiSystem() = default;
+
+void GiSystem::build(const GiSettings& s) {
+  const TechniqueEntry* entry = findTechnique(s.technique);
+  if (!entry) throw std::invalid_argument("unknown GI technique '" + s.technique + "'");
+  // The old parts go first, users before what they use (the technique holds the BVH and voxel scene).
+  budget_.reset();
+  frameUpdate_.reset();
+  technique_.reset();
+  voxelSync_.reset();
+  voxels_.reset();
+  bvh_.reset();
+  entry_ = entry;
+  settings_ = s;
+  changes_ = ChangeTracker{};
+  pending_ = ChangeSet{};
+  giMs_ = -1;
   bvh_ = std::make_unique<EmbreeScene>();
   if (entry_->needsVoxels(s)) {
     // The VPL techniques march the nodes only; the voxel debug view turns attributes on when asked.
     VoxelSettings vs = s.voxels;
     vs.leafAttributes = false;
-    voxels_ = std::make_unique<VoxelScene>(ctx, vs);
-    voxelSync_ = std::make_unique<VoxelSyncSystem>(*voxels_, assets);
+    voxels_ = std::make_unique<VoxelScene>(ctx_, vs);
+    voxelSync_ = std::make_unique<VoxelSyncSystem>(*voxels_, assets_);
   }
-  technique_ = entry_->create(TechniqueServices{ctx, assets, *bvh_, voxels_.get()}, s);
+  technique_ = entry_->create(TechniqueServices{ctx_, assets_, *bvh_, voxels_.get()}, s);
   frameUpdate_ = std::make_unique<GiFrameUpdate>(*this);
   if (s.budget.budgetMs > 0.0f) budget_ = std::make_unique<BudgetController>(s.budget.budgetMs, technique_->qualityKnobs());
 }
 
-GiSystem::~GiSystem() = default;
-
 void GiSystem::attach(render::Renderer& renderer) {
   renderer_ = &renderer;
+  addFeaturesTo(renderer);
+}
+
+void GiSystem::addFeaturesTo(render::Renderer& renderer) {
   renderer.addFeature(frameUpdate_.get());
   if (voxels_) renderer.addFeature(voxels_.get());
   for (render::RenderFeature* f : technique_->features()) renderer.addFeature(f);
+}
+
+void GiSystem::removeFeaturesFrom(render::Renderer& renderer) {
+  renderer.removeFeature(frameUpdate_.get());
+  if (voxels_) renderer.removeFeature(voxels_.get());
+  for (render::RenderFeature* f : technique_->features()) renderer.removeFeature(f);
+}
+
+void GiSystem::reset(const GiSettings& settings) {
+  if (!findTechnique(settings.technique)) throw std::invalid_argument("unknown GI technique '" + settings.technique + "'");
+  if (renderer_) removeFeaturesFrom(*renderer_);
+  build(settings);
+  if (renderer_) addFeaturesTo(*renderer_);
+  startOver_ = true;
 }
 
 void GiSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {
   auto t0 = std::chrono::steady_clock::now();
   // 1. What changed since the last run, once, from the change ticks (no scan of the world); every
   //    consumer below reads this one set.
-  const ChangeSet changes = changes_.compute(world, assets_, ctx.lastRun);
+  //    After reset() the new parts start from an empty world: everything is new (tick 0), as on a first run.
+  const ChangeSet changes = changes_.compute(world, assets_, startOver_ ? 0 : ctx.lastRun);
+  startOver_ = false;
   // 2. BVH: instance transforms, refits, added/removed.
   bvh_->sync(world, assets_, changes);
   // 3. Voxels: mark what must be re-voxelized (the GPU work is recorded by the VoxelScene feature).

@@ -48,6 +48,11 @@ class GiSystem final : public ecs::System {
   void run(ecs::World& world, const ecs::SystemContext& ctx) override;
   // Adds the render features (voxel scene, then the technique's) to the renderer.
   void attach(render::Renderer& renderer);
+  // Switches the technique or any setting at run time (between frames): the GI starts over as if it had
+  // been made with `settings`. Its BVH, voxel scene and technique are rebuilt from the whole world on the
+  // next run, and its features in the attached renderer are replaced. Throws std::invalid_argument for
+  // an unknown technique; nothing changes then.
+  void reset(const GiSettings& settings);
 
   const GiSettings& settings() const { return settings_; }
   Technique& technique() { return *technique_; }
@@ -82,15 +87,22 @@ class GiSystem final : public ecs::System {
   void frameTimed();
   double measureLastFrame() const;  // the GI's cost in the renderer's last timed frame, or -1
 
+  // Makes the BVH, voxel scene, technique and budget for `settings` (the constructor and reset()).
+  void build(const GiSettings& settings);
+  void addFeaturesTo(render::Renderer& renderer);
+  void removeFeaturesFrom(render::Renderer& renderer);
+
+  render::VulkanContext& ctx_;
   const scene::AssetStore& assets_;
   GiSettings settings_;
+  bool startOver_ = false;  // reset(): the next run sees the whole world as new
   const TechniqueEntry* entry_ = nullptr;
   std::unique_ptr<EmbreeScene> bvh_;
   std::unique_ptr<VoxelScene> voxels_;
   std::unique_ptr<VoxelSyncSystem> voxelSync_;
   std::unique_ptr<Technique> technique_;
   std::unique_ptr<render::RenderFeature> frameUpdate_;  // attached first: calls updateTechnique
-  const render::Renderer* renderer_ = nullptr;           // whose timings the budget reads (attach)
+  render::Renderer* renderer_ = nullptr;                 // whose timings the budget reads; reset() swaps features in it
   std::unique_ptr<BudgetController> budget_;
   double giMs_ = -1;
   ChangeTracker changes_;  // the one change set per frame

@@ -61,6 +61,9 @@ class Renderer {
     features_.push_back(feature);
     if (targets_.width) feature->resize(ctx_, targets_.width, targets_.height);
   }
+  // Takes a feature out (a subsystem switching what it records). Between frames only: render() has
+  // waited for its fence, so nothing the feature recorded is still in flight.
+  void removeFeature(RenderFeature* feature) { std::erase(features_, feature); }
 
   // Renders one frame; when `swapchain` is given (and valid) the result is presented to it.
   const FrameStats& render(const RenderSnapshot& snapshot, Swapchain* swapchain = nullptr);
