@@ -57,8 +57,20 @@ void GiSystem::build(const GiSettings& s) {
 }
 
 void GiSystem::attach(render::Renderer& renderer) {
+  if (detached_) {  // it missed every change while detached
+    build(settings_);
+    startOver_ = true;
+    detached_ = false;
+  }
   renderer_ = &renderer;
   addFeaturesTo(renderer);
+}
+
+void GiSystem::detach() {
+  if (!renderer_) return;
+  removeFeaturesFrom(*renderer_);
+  renderer_ = nullptr;
+  detached_ = true;
 }
 
 void GiSystem::addFeaturesTo(render::Renderer& renderer) {
@@ -82,6 +94,7 @@ void GiSystem::reset(const GiSettings& settings) {
 }
 
 void GiSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {
+  if (detached_) return;
   auto t0 = std::chrono::steady_clock::now();
   // 1. What changed since the last run, once, from the change ticks (no scan of the world); every
   //    consumer below reads this one set.

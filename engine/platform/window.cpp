@@ -31,6 +31,10 @@ std::unique_ptr<Window> Window::create(uint32_t width, uint32_t height, const st
     if (whyNot) *whyNot = "glfwCreateWindow failed (" + gLastGlfwError + ")";
     return nullptr;
   }
+  glfwSetWindowUserPointer(w->window_, w.get());
+  glfwSetScrollCallback(w->window_, [](GLFWwindow* gw, double, double y) {
+    static_cast<Window*>(glfwGetWindowUserPointer(gw))->scrollPending_ += y;
+  });
   return w;
 }
 
@@ -63,6 +67,17 @@ void Window::pollEvents() {
   lastX_ = x;
   lastY_ = y;
   haveCursor_ = true;
+  scroll_ = scrollPending_;
+  scrollPending_ = 0;
+}
+
+void Window::cursorPosition(double& x, double& y) const {
+  // GLFW reports the cursor in window coordinates; the framebuffer may have more pixels (HiDPI).
+  int ww = 0, wh = 0, fw = 0, fh = 0;
+  glfwGetWindowSize(window_, &ww, &wh);
+  glfwGetFramebufferSize(window_, &fw, &fh);
+  x = ww > 0 ? lastX_ * fw / ww : lastX_;
+  y = wh > 0 ? lastY_ * fh / wh : lastY_;
 }
 void Window::waitEvents() { glfwWaitEventsTimeout(0.1); }
 

@@ -212,6 +212,7 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
     lighting_->execute(frame, *shadow_, indirectWritten, frame.specularWritten);
     for (RenderFeature* f : features_) f->recordAfterLighting(frame);
     tonemap_->execute(frame);
+    for (RenderFeature* f : features_) f->recordOverlay(frame);
   }
 
   if (imageIndex != UINT32_MAX && !settings_.featuresOnly) {

@@ -107,5 +107,18 @@ TEST_F(RenderTest, SwitchingTechniqueAtRunTimeGivesTheImageOfStartingWithIt) {
   }
   EXPECT_THROW(switched.gi->reset([] { gi::GiSettings s; s.technique = "no_such"; return s; }()), std::invalid_argument);
   EXPECT_EQ(switched.gi->techniqueEntry().name, std::string("temporal")) << "a refused switch changes nothing";
+
+  // GI off at run time (detach) and on again (attach): no indirect light while off; on again, the image
+  // of a fresh start, though the world changed while the GI was not watching.
+  switched.gi->detach();
+  switched.world.write<scene::Transform>(switched.named("spot")).translation.x -= 0.3f;
   switched.step();
+  const glm::dvec3 off = render::meanOver(switched.indirect());
+  EXPECT_EQ(off.r + off.g + off.b, 0.0) << "no indirect light while detached";
+  switched.gi->attach(*switched.renderer);
+  switched.step(kFrames);
+  GiRun fresh(context(), order.back(), "cornell", kSize, kSize);
+  fresh.world.write<scene::Transform>(fresh.named("spot")).translation = switched.world.get<scene::Transform>(switched.named("spot")).translation;
+  fresh.step(kFrames);
+  EXPECT_LT(render::relativeMse(switched.indirect(), fresh.indirect()), 1e-6) << "attached again";
 }

@@ -48,6 +48,10 @@ class GiSystem final : public ecs::System {
   void run(ecs::World& world, const ecs::SystemContext& ctx) override;
   // Adds the render features (voxel scene, then the technique's) to the renderer.
   void attach(render::Renderer& renderer);
+  // Takes its features out of the renderer (GI off at run time: lighting then gets no indirect light)
+  // and stops following the world; attach() later starts over from the whole world.
+  void detach();
+  bool attached() const { return renderer_ != nullptr; }
   // Switches the technique or any setting at run time (between frames): the GI starts over as if it had
   // been made with `settings`. Its BVH, voxel scene and technique are rebuilt from the whole world on the
   // next run, and its features in the attached renderer are replaced. Throws std::invalid_argument for
@@ -96,6 +100,7 @@ class GiSystem final : public ecs::System {
   const scene::AssetStore& assets_;
   GiSettings settings_;
   bool startOver_ = false;  // reset(): the next run sees the whole world as new
+  bool detached_ = false;   // detach(): no features in any renderer, run() does nothing
   const TechniqueEntry* entry_ = nullptr;
   std::unique_ptr<EmbreeScene> bvh_;
   std::unique_ptr<VoxelScene> voxels_;

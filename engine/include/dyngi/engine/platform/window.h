@@ -30,12 +30,17 @@ class Window {
   bool mouseButtonDown(int button) const;
   // Cursor movement since the previous pollEvents().
   void mouseDelta(double& dx, double& dy) const { dx = dx_; dy = dy_; }
+  // The cursor in framebuffer pixels (top left 0,0) at the last pollEvents().
+  void cursorPosition(double& x, double& y) const;
+  // Scroll since the previous pollEvents() (wheel notches; y up).
+  double scrollDelta() const { return scroll_; }
   void setTitle(const std::string& title);
 
  private:
   Window() = default;
   GLFWwindow* window_ = nullptr;
   double lastX_ = 0, lastY_ = 0, dx_ = 0, dy_ = 0;
+  double scroll_ = 0, scrollPending_ = 0;
   bool haveCursor_ = false;
 };
 

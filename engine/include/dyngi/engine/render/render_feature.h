@@ -17,6 +17,10 @@ class RenderFeature {
   virtual bool record(FrameContext& frame) = 0;
   // Records after lighting, before tone mapping: debug views that replace targets.hdr.
   virtual void recordAfterLighting(FrameContext& /*frame*/) {}
+  // Records after tone mapping: draws over the display image (targets.ldr: RGBA8 UNORM holding
+  // sRGB-encoded values, GENERAL layout before and after), e.g. a user interface. What it draws is in
+  // the presented image and in readbackLdr().
+  virtual void recordOverlay(FrameContext& /*frame*/) {}
   // Called after the frame's fence: read back results, resolve queries.
   virtual void frameFinished(VulkanContext& /*ctx*/) {}
   // Called when the render targets are recreated (resize).
