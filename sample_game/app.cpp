@@ -5,12 +5,20 @@
 #include "dyngi/engine/ecs/world.h"
 #include "dyngi/engine/scene/assets.h"
 #include "outputs.h"
+#include "play/input.h"
 #include "runs.h"
 #include "scene_loading.h"
 
 namespace dyngi::sample {
 
 int runApp(const Options& o) {
+  if (!o.inputScript.empty()) {  // a bad script is bad input: refused before anything runs
+    std::string error;
+    if (!InputScript::load(o.inputScript, &error)) {
+      std::fprintf(stderr, "dyngi_sample: %s\n", error.c_str());
+      return 2;
+    }
+  }
   ecs::World world;
   scene::AssetStore assets;
   if (int status = loadScene(o, world, assets); status != 0) return status;

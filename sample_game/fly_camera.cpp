@@ -10,7 +10,6 @@
 namespace dyngi::sample {
 
 void FlyCameraSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {
-  if (window_.keyDown(GLFW_KEY_ESCAPE)) window_.requestClose();
   ecs::Entity cam{};
   world.each<scene::ActiveCamera, scene::Transform>([&](ecs::Entity e, const scene::ActiveCamera&, const scene::Transform&) { cam = e; });
   if (cam.isNull()) return;
@@ -21,23 +20,22 @@ void FlyCameraSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {
     pitch_ = std::asin(glm::clamp(fwd.y, -1.0f, 1.0f));
     initialised_ = true;
   }
-  double dx, dy;
-  window_.mouseDelta(dx, dy);
-  bool look = window_.mouseButtonDown(GLFW_MOUSE_BUTTON_RIGHT);
+  const double dx = input_.mouseDelta.x, dy = input_.mouseDelta.y;
+  const bool look = input_.down[kRight] && !uiHasMouse_;
   if (look) {
     yaw_ -= float(dx) * 0.003f;
     pitch_ = glm::clamp(pitch_ - float(dy) * 0.003f, -1.5f, 1.5f);
   }
   glm::quat rot = glm::angleAxis(yaw_, glm::vec3(0, 1, 0)) * glm::angleAxis(pitch_, glm::vec3(1, 0, 0));
   glm::vec3 move(0.0f);
-  if (window_.keyDown(GLFW_KEY_W)) move.z -= 1;
-  if (window_.keyDown(GLFW_KEY_S)) move.z += 1;
-  if (window_.keyDown(GLFW_KEY_A)) move.x -= 1;
-  if (window_.keyDown(GLFW_KEY_D)) move.x += 1;
-  if (window_.keyDown(GLFW_KEY_Q)) move.y -= 1;
-  if (window_.keyDown(GLFW_KEY_E)) move.y += 1;
+  if (input_.keyDown(GLFW_KEY_W)) move.z -= 1;
+  if (input_.keyDown(GLFW_KEY_S)) move.z += 1;
+  if (input_.keyDown(GLFW_KEY_A)) move.x -= 1;
+  if (input_.keyDown(GLFW_KEY_D)) move.x += 1;
+  if (input_.keyDown(GLFW_KEY_Q)) move.y -= 1;
+  if (input_.keyDown(GLFW_KEY_E)) move.y += 1;
   if (move == glm::vec3(0.0f) && !look) return;  // untouched: no write, no change tick
-  float speed = window_.keyDown(GLFW_KEY_LEFT_SHIFT) ? 4.0f : 1.5f;
+  float speed = input_.keyDown(GLFW_KEY_LEFT_SHIFT) ? 4.0f : 1.5f;
   scene::Transform& w = world.write<scene::Transform>(cam);
   w.rotation = rot;
   if (move != glm::vec3(0.0f)) w.translation += rot * glm::normalize(move) * speed * float(ctx.time.dt);

@@ -91,6 +91,10 @@ std::string usage() {
       "                                         e.g. T + 2 to time the steady state once every temporal set is filled)\n"
       "  --view NAME                            final | voxels | svo-steps | a technique's debug view (below)\n"
       "  --clip NAME                            glTF animation clip to play (default: the first)\n"
+      "  --ui on|off|auto                       the settings panel (default auto: in a window, not headless)\n"
+      "  --input-script FILE                    replay clicks and keys from FILE (format: sample_game/play/input.h);\n"
+      "                                         fixed time step, ends after its last event unless --frames\n"
+      "  --record DIR                           write every frame's displayed image to DIR/frame_NNNNN.png\n"
       "  --exposure X                           linear exposure multiplier (default 1)\n"
       "  --validation                           enable Vulkan validation layers\n"
       "  --help                                 this text\n";
@@ -144,6 +148,15 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
     else if (a == "--memory-log") { if (!value(o.memoryLog)) return std::nullopt; }
     else if (a == "--clip") { if (!value(o.clip)) return std::nullopt; }
     else if (a == "--view") { if (!value(o.view)) return std::nullopt; }
+    else if (a == "--input-script") { if (!value(o.inputScript)) return std::nullopt; }
+    else if (a == "--record") { if (!value(o.recordDir)) return std::nullopt; }
+    else if (a == "--ui") {
+      if (!value(o.ui)) return std::nullopt;
+      if (o.ui != "on" && o.ui != "off" && o.ui != "auto") {
+        error = "--ui wants on, off or auto, got '" + o.ui + "'";
+        return std::nullopt;
+      }
+    }
     else if (a == "--size") {
       if (!value(v)) return std::nullopt;
       auto x = v.find('x');
@@ -263,6 +276,9 @@ std::string checkOutputPaths(const Options& o) {
       return std::string(flag) + " " + *path + ": directory '" + dir.string() + "' does not exist (it is not created)";
     if (fs::is_directory(p, ec)) return std::string(flag) + " " + *path + ": is a directory, not a file";
   }
+  std::error_code ec;
+  if (!o.recordDir.empty() && !fs::is_directory(o.recordDir, ec))
+    return "--record " + o.recordDir + ": not a directory (it is not created)";
   return {};
 }
 

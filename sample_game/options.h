@@ -33,6 +33,9 @@ struct Options {
   std::string memoryLog;                    // TSV: every 100 frames, resident memory and live Vulkan allocations
   std::string view = "final";               // final | voxels | svo-steps | a technique's debug view
   std::string clip;                         // animation clip of a glTF scene (default: the first)
+  std::string inputScript;                  // --input-script: replayed clicks and keys (play/input.h), fixed time step
+  std::string recordDir;                    // --record: every frame's displayed image as DIR/frame_NNNNN.png
+  std::string ui = "auto";                  // on | off | auto (on in a window, off headless): the settings panel
   float exposure = 1.0f;
   bool validation = false;
   bool help = false;
@@ -42,6 +45,7 @@ struct Options {
   gi::GiSettings giSettings;
   gi::PathTracerSettings pathTracer;
   bool usesGiSystem() const { return gi == "svo" || gi == "bvh" || gi == "vct"; }
+  bool showsUi() const { return ui == "on" || (ui == "auto" && !headless); }
 };
 
 std::string usage();

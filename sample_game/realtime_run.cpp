@@ -16,6 +16,7 @@
 #include "dyngi/gi/voxel_scene.h"
 #include "fly_camera.h"
 #include "outputs.h"
+#include "play/play_session.h"
 #include "runs.h"
 
 namespace dyngi::sample {
@@ -115,7 +116,18 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
     if (!window) std::fprintf(stderr, "dyngi_sample: no window (%s); running headless\n", why.c_str());
   }
   const bool headless = !window;
-  const int frames = o.frames > 0 ? o.frames : (headless ? kHeadlessDefaultFrames : -1);
+  std::optional<InputScript> script;
+  if (!o.inputScript.empty()) {
+    std::string error;
+    script = InputScript::load(o.inputScript, &error);  // runApp checked it already
+    if (!script) {
+      std::fprintf(stderr, "dyngi_sample: %s\n", error.c_str());
+      return 2;
+    }
+  }
+  // A script runs to its last event (plus the frame that shows it) unless --frames says otherwise.
+  const int frames = o.frames > 0 ? o.frames : script ? int(script->lastFrame()) + 2 : (headless ? kHeadlessDefaultFrames : -1);
+  const bool fixedStep = headless || script;  // frame N is the same on every machine
 
   render::ContextOptions co;
 #ifndef NDEBUG
@@ -142,7 +154,8 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
 
   GiSetup gi = setUpGi(o, ctx, renderer, world, assets);
   ecs::Scheduler scheduler;
-  if (window) scheduler.add(ecs::Phase::Update, std::make_unique<FlyCameraSystem>(*window));
+  PlaySession session(o, ctx, renderer, scheduler, assets, gi.system, window.get(), std::move(script));
+  if (window || session.scripted()) scheduler.add(ecs::Phase::Update, std::make_unique<FlyCameraSystem>(session.input(), session.uiHasMouse()));
   scheduler.add(ecs::Phase::Update, std::make_unique<scene::ScriptedMotionSystem>());
   scheduler.add(ecs::Phase::Update, std::make_unique<scene::AnimationSystem>());
   scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
@@ -157,6 +170,8 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
   ecs::FrameTime time;
   auto start = Clock::now(), last = start;
   int rendered = 0;
+  double sceneTime = 0;      // scripted motion's clock in a window: stands still while paused (P)
+  uint64_t pausedFrames = 0;  // the same with a fixed step
   for (uint64_t frame = 0; frames < 0 || rendered < frames; ++frame) {
     auto t0 = Clock::now();
     if (window) {
@@ -173,14 +188,15 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
         if (!swapchain->recreate(fw, fh)) continue;
         renderer.resize(fw, fh);
       }
-      time.dt = std::chrono::duration<double>(t0 - last).count();
-      time.time = std::chrono::duration<double>(t0 - start).count();
-    } else {
-      time.dt = 1.0 / 60.0;  // fixed step: frame N is the same on every machine
-      time.time = double(frame) * time.dt;
     }
+    time.dt = fixedStep ? 1.0 / 60.0 : std::chrono::duration<double>(t0 - last).count();
+    // Fixed step: frame N's time is exactly (N - frames paused) / 60, as in every headless run before.
+    time.time = fixedStep ? double(frame - pausedFrames) / 60.0 : sceneTime;
+    if (session.paused()) ++pausedFrames;
+    else sceneTime += time.dt;
     last = t0;
     time.frame = frame;
+    session.beginFrame(frame, time.dt, world, assets, renderer.width(), renderer.height());
     scheduler.runFrame(world, time);
     auto tExtract = Clock::now();
     const render::RenderSnapshot snapshot = render::extractSnapshot(world, assets, frame);  // the frame's one snapshot
@@ -189,6 +205,8 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
     if (swapchain && !fs.presented) swapchain->recreate(renderer.width(), renderer.height());
     double frameMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     ++rendered;
+    const bool keepGoing = session.endFrame(frame, snapshot, fs, frameMs);
+    gi.system = session.gi().everMade();  // the panel may have made one
     memoryLog.frameRendered(rendered, ctx);
     if (rendered > stats.warmupFrames) {
       stats.frameMs.push(frameMs);
@@ -206,15 +224,18 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
         for (const auto& [name, ms] : gi.system->technique().cpuMs()) stats.cpuStageMs[name].push(ms);
       }
     }
+    if (!keepGoing) break;
   }
   stats.frames = rendered;
+  if (window || session.scripted())
+    stats.play = RunStats::Play{session.gi().mode(), entityLabel(world, session.play().selected), session.play().lastAction, session.scripted()};
   stats.width = renderer.width();
   stats.height = renderer.height();
   stats.scalars["draws"] = double(render::extractSnapshot(world, assets, 0).draws.size());
   stats.scalars["validation_errors"] = ctx.validationErrorCount();
   reportGi(o, gi, stats);
 
-  int status = 0;
+  int status = session.status();
   if (rendered > 0)
     status |= writeImages(
         o, renderer.width(), renderer.height(), [&] { return renderer.readbackLdr(); }, [&] { return renderer.readback(render::TargetId::Hdr); });

@@ -61,6 +61,7 @@ std::string RunStats::toJson() const {
     for (auto& [name, v] : values) o[name] = number(v);
     j[key] = o;
   }
+  if (play) j["play"] = {{"gi_mode", play->giMode}, {"selected", play->selected}, {"last_action", play->lastAction}, {"scripted", play->scripted}};
   if (!giMs.empty()) j["gi_ms"] = {{"median", number(giMs.percentile(0.5))}, {"p95", number(giMs.percentile(0.95))}};
   if (budget) {
     auto knobs = [](const std::vector<std::pair<std::string, double>>& values) {

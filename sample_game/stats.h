@@ -61,6 +61,13 @@ struct RunStats {
     std::vector<BudgetStep> trace;
   };
   std::optional<Budget> budget;
+  // The playable session at the end ("play" in the JSON; absent when neither a window nor a script ran
+  // it): the GI mode, the selection and the last action, so a scripted session can be checked.
+  struct Play {
+    std::string giMode, selected, lastAction;
+    bool scripted = false;
+  };
+  std::optional<Play> play;
 
   std::string toJson() const;
   std::string table() const;  // human-readable per-stage medians

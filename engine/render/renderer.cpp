@@ -99,7 +99,8 @@ bool Renderer::resize(uint32_t width, uint32_t height) {
   t.indirect = makeTarget(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "indirect");
   t.specular = makeTarget(ctx_, width, height, VK_FORMAT_R16G16B16A16_SFLOAT, storage, "indirect specular");
   t.hdr = makeTarget(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "hdr");
-  t.ldr = makeTarget(ctx_, width, height, VK_FORMAT_R8G8B8A8_UNORM, storage, "ldr");
+  // The display image is also a colour attachment: overlays (RenderFeature::recordOverlay) draw on it.
+  t.ldr = makeTarget(ctx_, width, height, VK_FORMAT_R8G8B8A8_UNORM, storage | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, "ldr");
   for (RenderFeature* f : features_) f->resize(ctx_, width, height);
   return true;
 }

@@ -1,0 +1,58 @@
+#include "play/gi_control.h"
+
+namespace dyngi::sample {
+
+GiControl::GiControl(render::VulkanContext& ctx, render::Renderer& renderer, ecs::Scheduler& scheduler, const scene::AssetStore& assets,
+                     gi::GiSystem* existing, const gi::GiSettings& settings, std::string mode)
+    : ctx_(ctx), renderer_(renderer), scheduler_(scheduler), assets_(assets), system_(existing), settings_(settings), mode_(std::move(mode)) {}
+
+const std::vector<std::string>& GiControl::modes() {
+  static const std::vector<std::string> m = {"off", "svo", "bvh", "rsm", "vct"};
+  return m;
+}
+
+std::string GiControl::modeOf(const std::string& gi, const std::string& vplSource) {
+  if (gi == "svo" && vplSource == "rsm") return "rsm";
+  if (gi == "svo" || gi == "bvh" || gi == "vct") return gi;
+  return "off";
+}
+
+void GiControl::setMode(const std::string& mode) {
+  if (mode == mode_) return;
+  mode_ = mode;
+  if (mode == "off") {
+    if (system_) system_->detach();
+    return;
+  }
+  if (mode == "vct") settings_.technique = "vct";
+  else if (mode == "rsm") settings_.technique = "many_lights";
+  else {
+    settings_.technique = "temporal";
+    settings_.temporal.visibility = mode == "bvh" ? gi::VisibilityBackend::Bvh : gi::VisibilityBackend::Svo;
+  }
+  view_ = "final";  // another technique's views are not this one's
+  if (!system_) {
+    auto made = std::make_unique<gi::GiSystem>(ctx_, assets_, settings_);
+    system_ = made.get();
+    system_->attach(renderer_);
+    scheduler_.add(ecs::Phase::PostUpdate, std::move(made));  // after transforms and skinning, as at start-up
+    return;
+  }
+  if (!system_->attached()) system_->attach(renderer_);
+  system_->reset(settings_);
+}
+
+void GiControl::apply() {
+  if (system_ && system_->attached()) {
+    system_->reset(settings_);
+    system_->technique().setDebugView(view_);
+  }
+}
+
+bool GiControl::setView(const std::string& view) {
+  if (!system() || !system_->technique().setDebugView(view)) return false;
+  view_ = view;
+  return true;
+}
+
+}  // namespace dyngi::sample

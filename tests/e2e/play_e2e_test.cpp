@@ -1,0 +1,220 @@
+// The playable sample end to end: a scripted session (--input-script) in a real window under Xvfb
+// selects the short box with a click at its projected centre, drags it, switches the GI to voxel cone
+// tracing by clicking the panel's radio button, and takes a screenshot. The same script replayed
+// headless (--ui on) must give the same 3D view; the X server's own capture of the window must show
+// what the sample says it presented; the panel must be there; no validation errors.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <stb_image.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include <glm/glm.hpp>
+
+#include "support/sample_run.h"
+#include "support/shared_scenes.h"
+#include "support/temp_dir.h"
+
+using dyngi::test::SampleRun;
+using dyngi::test::TempDir;
+
+namespace {
+
+constexpr int kSize = 768;
+constexpr int kPanelRight = 310;  // the panel is 300 px wide at x = 8; the 3D view is compared right of it
+
+struct Png {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;
+  bool ok() const { return width > 0; }
+  const unsigned char* at(int x, int y) const { return &rgb[3 * (size_t(y) * size_t(width) + size_t(x))]; }
+};
+
+Png readPng(const std::string& path) {
+  Png p;
+  int n = 0;
+  unsigned char* data = stbi_load(path.c_str(), &p.width, &p.height, &n, 3);
+  if (!data) return Png{};
+  p.rgb.assign(data, data + size_t(p.width) * size_t(p.height) * 3);
+  stbi_image_free(data);
+  return p;
+}
+
+// Mean and 99th percentile of |a - b| (0..255, per channel) over x in [x0, x1) of both images' top-left
+// kSize x kSize.
+std::pair<double, double> difference(const Png& a, const Png& b, int x0, int x1) {
+  std::vector<int> d;
+  double sum = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = x0; x < x1; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const int v = std::abs(int(a.at(x, y)[c]) - int(b.at(x, y)[c]));
+        d.push_back(v);
+        sum += v;
+      }
+  std::sort(d.begin(), d.end());
+  return {sum / double(d.size()), double(d[d.size() * 99 / 100])};
+}
+
+nlohmann::json readJson(const std::string& path) {
+  std::ifstream f(path);
+  return nlohmann::json::parse(f, nullptr, false);
+}
+
+// An Xvfb server on a free display for the test's lifetime.
+class VirtualDisplay {
+ public:
+  VirtualDisplay() {
+    for (int n = 71; n < 99; ++n) {
+      if (std::filesystem::exists("/tmp/.X" + std::to_string(n) + "-lock")) continue;
+      const std::string pidFile = dir_.file("xvfb.pid");
+      const std::string cmd = "Xvfb :" + std::to_string(n) + " -screen 0 1024x800x24 -nolisten tcp >/dev/null 2>&1 & echo $! > " + pidFile;
+      if (std::system(cmd.c_str()) != 0) return;
+      std::ifstream(pidFile) >> pid_;
+      for (int i = 0; i < 100 && !std::filesystem::exists("/tmp/.X11-unix/X" + std::to_string(n)); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      if (std::filesystem::exists("/tmp/.X11-unix/X" + std::to_string(n))) display_ = ":" + std::to_string(n);
+      return;
+    }
+  }
+  ~VirtualDisplay() {
+    if (pid_ > 0) kill(pid_, SIGTERM);
+  }
+  const std::string& display() const { return display_; }
+
+ private:
+  TempDir dir_;
+  int pid_ = 0;
+  std::string display_;
+};
+
+bool haveProgram(const char* name) { return std::system((std::string("command -v ") + name + " >/dev/null 2>&1").c_str()) == 0; }
+
+// The session: the short box's projected centre at 768^2 (the built-in Cornell camera) is (486, 590).
+std::string script(const std::string& screenshot, int quitAt) {
+  return "# select the short box, drag it, switch to VCT in the panel, take a screenshot\n"
+         "5 click 486 590\n"
+         "8 drag 486 590 600 560 10\n"
+         "25 ui vct\n"
+         "44 screenshot " + screenshot + "\n" +
+         (quitAt > 0 ? std::to_string(quitAt) + " quit\n" : std::string());
+}
+
+}  // namespace
+
+TEST(SamplePlay, ScriptedWindowSessionSelectsDragsSwitchesAndMatchesItsHeadlessReplay) {
+  if (!haveProgram("Xvfb") || !haveProgram("import")) {
+    if (dyngi::test::runningInCi()) FAIL() << "CI=true but Xvfb or ImageMagick's import is missing (scripts/setup.sh installs them)";
+    GTEST_SKIP() << "no Xvfb or import";
+  }
+  VirtualDisplay xvfb;
+  ASSERT_FALSE(xvfb.display().empty()) << "Xvfb did not start";
+  TempDir dir;
+  const std::string windowShot = dir.file("window.png"), headlessShot = dir.file("headless.png"), screen = dir.file("screen.png");
+  std::ofstream(dir.file("window.txt")) << script(windowShot, 90);
+  std::ofstream(dir.file("headless.txt")) << script(headlessShot, 0);
+  const std::string common = " --scene cornell --gi svo --size 768x768 --validation";
+
+  // The window: started in the background; once its screenshot exists (frame 44), the X server's view of
+  // the screen is captured while the session keeps running (it quits at frame 90).
+  const std::string run = "DISPLAY=" + xvfb.display() + " timeout -s KILL 400 " DYNGI_SAMPLE_EXE + common + " --input-script " +
+                          dir.file("window.txt") + " --stats " + dir.file("window.json") + " >" + dir.file("window.log") + " 2>&1; echo $? > " +
+                          dir.file("window.rc");
+  std::ofstream(dir.file("session.sh")) << "(" << run << ") &\n"
+                                        << "for i in $(seq 1 3000); do [ -f " << windowShot << " ] && break; sleep 0.1; done\n"
+                                        << "sleep 0.3\nDISPLAY=" << xvfb.display() << " import -window root " << screen << "\nwait\n";
+  ASSERT_EQ(std::system(("bash " + dir.file("session.sh")).c_str()), 0);
+  std::string rc;
+  std::ifstream(dir.file("window.rc")) >> rc;
+  std::stringstream log;
+  log << std::ifstream(dir.file("window.log")).rdbuf();
+  ASSERT_EQ(rc, "0") << log.str();
+
+  const SampleRun headless =
+      dyngi::test::runSample(DYNGI_SAMPLE_EXE, "--headless --ui on" + common + " --input-script " + dir.file("headless.txt") + " --stats " +
+                                                   dir.file("headless.json"),
+                             dir, 400);
+  ASSERT_EQ(headless.exitCode, 0) << headless.err;
+
+  // What the session did, from each run's stats.
+  for (const char* which : {"window.json", "headless.json"}) {
+    SCOPED_TRACE(which);
+    const nlohmann::json s = readJson(dir.file(which));
+    ASSERT_TRUE(s.contains("play")) << s.dump();
+    EXPECT_EQ(s["play"]["gi_mode"], "vct") << "the panel's radio button switched the GI";
+    EXPECT_EQ(s["play"]["selected"], "short_box") << "the click at its projected centre selected it";
+    EXPECT_EQ(s["play"]["last_action"], "moved short_box") << "the drag moved it";
+    EXPECT_EQ(s["counts"]["validation_errors"], 0);
+    EXPECT_TRUE(s["stages_ms"].contains("inject") && s["stages_ms"].contains("trace")) << "voxel cone tracing ran";
+    EXPECT_TRUE(s["stages_ms"].contains("ui")) << "the panel was drawn";
+  }
+
+  const Png window = readPng(windowShot), replay = readPng(headlessShot), captured = readPng(screen);
+  ASSERT_TRUE(window.ok() && replay.ok() && captured.ok());
+  ASSERT_EQ(window.width, kSize);
+  ASSERT_GE(captured.width, kSize);
+  ASSERT_GE(captured.height, kSize);
+  // The 3D view in the window is the headless replay's: same input, same fixed time step.
+  const auto [meanReplay, p99Replay] = difference(window, replay, kPanelRight, kSize);
+  std::printf("window vs headless replay (3D view): mean %.3f, p99 %.1f of 255\n", meanReplay, p99Replay);
+  EXPECT_LT(meanReplay, 0.5);
+  EXPECT_LE(p99Replay, 2.0);
+  // The X server shows the window at the screen's top left with what the sample presented (a few frames
+  // later: the voxel blend is still settling, and the panel's frame time changes).
+  const auto [meanScreen, p99Screen] = difference(window, captured, kPanelRight, kSize);
+  std::printf("window screenshot vs X capture (3D view): mean %.3f, p99 %.1f of 255\n", meanScreen, p99Screen);
+  EXPECT_LT(meanScreen, 3.0);
+  // The panel is there: its title bar is ImGui's blue, its body dark grey, and the 3D view is not.
+  auto meanRgb = [](const Png& p, int x0, int y0, int x1, int y1) {
+    glm::dvec3 m(0.0);
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) m += glm::dvec3(p.at(x, y)[0], p.at(x, y)[1], p.at(x, y)[2]);
+    return m / double((x1 - x0) * (y1 - y0));
+  };
+  for (const Png* p : {&window, &captured}) {
+    const glm::dvec3 title = meanRgb(*p, 60, 10, 290, 24);
+    EXPECT_GT(title.b, title.r + 25) << "the panel's title bar (" << title.r << ", " << title.g << ", " << title.b << ")";
+  }
+}
+
+// A script that cannot be replayed is bad input: one line, exit 2, before any window or device.
+TEST(SamplePlay, BadInputScriptsExitWithCode2AndOneLine) {
+  TempDir dir;
+  const char* bad[] = {"5 klick 10 10\n", "x move 1 2\n", "3 move 1\n", "4 drag 0 0 10 10 0\n", "5 key NOSUCHKEY\n", "6 press thumb\n",
+                       "7 ui\n", "8 move 1 2 3\n", "-1 quit\n", "99999999999 quit\n", "9 move 1e300 5\n"};
+  int i = 0;
+  for (const char* text : bad) {
+    const std::string path = dir.file("bad" + std::to_string(i++) + ".txt");
+    std::ofstream(path) << text;
+    const SampleRun r = dyngi::test::runSample(DYNGI_SAMPLE_EXE, "--headless --frames 2 --input-script " + path, dir, 60);
+    EXPECT_EQ(r.exitCode, 2) << text << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << text << r.err;
+    EXPECT_NE(r.err.find(":1:"), std::string::npos) << "names the line: " << r.err;
+  }
+  const SampleRun missing = dyngi::test::runSample(DYNGI_SAMPLE_EXE, "--headless --input-script /nonexistent/script.txt", dir, 60);
+  EXPECT_EQ(missing.exitCode, 2) << missing.err;
+  const SampleRun record = dyngi::test::runSample(DYNGI_SAMPLE_EXE, "--headless --record /nonexistent/dir", dir, 60);
+  EXPECT_EQ(record.exitCode, 2) << record.err;
+  const SampleRun ui = dyngi::test::runSample(DYNGI_SAMPLE_EXE, "--headless --ui maybe", dir, 60);
+  EXPECT_EQ(ui.exitCode, 2) << ui.err;
+}
+
+// --record writes every frame's displayed image, numbered.
+TEST(SamplePlay, RecordWritesNumberedFrames) {
+  TempDir dir;
+  std::filesystem::create_directory(dir.file("frames"));
+  const SampleRun r = dyngi::test::runSample(DYNGI_SAMPLE_EXE, "--headless --size 64x64 --frames 3 --record " + dir.file("frames"), dir, 120);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (const char* f : {"frame_00000.png", "frame_00001.png", "frame_00002.png"}) {
+    const Png p = readPng(dir.file(std::string("frames/") + f));
+    EXPECT_EQ(p.width, 64) << f;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("frames/frame_00003.png")));
+}
