@@ -26,10 +26,9 @@ int runApp(const Options& o) {
   stats.scene = sceneLabel(o);
   stats.gi = o.gi;
   int status = 0;
-  if (o.gi == "path") {
-    if (!o.headless) std::fprintf(stderr, "dyngi_sample: the path tracer renders offscreen; running headless\n");
+  if (o.gi == "path" && o.headless) {
     status = runPathTracer(o, world, assets, stats);
-  } else {
+  } else {  // --gi path in a window: the progressive preview (runRealtime falls back to the above headless)
     status = runRealtime(o, world, assets, stats);
   }
   // The stats and the table come after the images, and before a validation-error exit (their order on

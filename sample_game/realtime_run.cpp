@@ -12,10 +12,12 @@
 #include "dyngi/engine/scene/animation.h"
 #include "dyngi/engine/scene/scripted_motion.h"
 #include "dyngi/engine/scene/transform_system.h"
+#include "dyngi/gi/bvh_sync.h"
 #include "dyngi/gi/gi_system.h"
 #include "dyngi/gi/voxel_scene.h"
 #include "fly_camera.h"
 #include "outputs.h"
+#include "play/path_preview.h"
 #include "play/play_session.h"
 #include "runs.h"
 
@@ -116,6 +118,10 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
     if (!window) std::fprintf(stderr, "dyngi_sample: no window (%s); running headless\n", why.c_str());
   }
   const bool headless = !window;
+  if (headless && o.gi == "path") {
+    std::fprintf(stderr, "dyngi_sample: the path tracer's preview needs a window; path tracing headless\n");
+    return runPathTracer(o, world, assets, stats);
+  }
   std::optional<InputScript> script;
   if (!o.inputScript.empty()) {
     std::string error;
@@ -160,6 +166,15 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
   scheduler.add(ecs::Phase::Update, std::make_unique<scene::AnimationSystem>());
   scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
   scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::SkinningSystem>(assets));
+  // --gi path in a window: the progressive path-traced preview, on a BVH that follows the world.
+  std::unique_ptr<gi::EmbreeScene> previewBvh;
+  std::unique_ptr<PathPreview> preview;
+  if (o.gi == "path") {
+    previewBvh = std::make_unique<gi::EmbreeScene>();
+    preview = std::make_unique<PathPreview>(*previewBvh, assets, o.pathTracer);
+    renderer.addFeature(preview.get());
+    scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::BvhSyncSystem>(*previewBvh, assets));
+  }
   if (gi.systemOwned) scheduler.add(ecs::Phase::PostUpdate, std::move(gi.systemOwned));
   else if (gi.standaloneVoxels) scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(*gi.standaloneVoxels, assets));
 
@@ -233,6 +248,7 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
   stats.height = renderer.height();
   stats.scalars["draws"] = double(render::extractSnapshot(world, assets, 0).draws.size());
   stats.scalars["validation_errors"] = ctx.validationErrorCount();
+  if (preview) stats.scalars["path_preview_spp"] = preview->samplesPerPixel();
   reportGi(o, gi, stats);
 
   int status = session.status();

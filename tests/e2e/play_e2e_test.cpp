@@ -18,6 +18,8 @@
 
 #include <glm/glm.hpp>
 
+#include "dyngi/engine/render/image_io.h"
+#include "dyngi/engine/render/image_metrics.h"
 #include "support/sample_run.h"
 #include "support/shared_scenes.h"
 #include "support/temp_dir.h"
@@ -217,4 +219,48 @@ TEST(SamplePlay, RecordWritesNumberedFrames) {
     EXPECT_EQ(p.width, 64) << f;
   }
   EXPECT_FALSE(std::filesystem::exists(dir.file("frames/frame_00003.png")));
+}
+
+// --gi path in a window: the progressive preview's mean after N frames is the path tracer's image at N
+// samples per pixel, within the path tracer's own seed-to-seed noise at that count.
+TEST(SamplePlay, PathTracedPreviewInAWindowConvergesToThePathTracer) {
+  if (!haveProgram("Xvfb")) {
+    if (dyngi::test::runningInCi()) FAIL() << "CI=true but Xvfb is missing (scripts/setup.sh installs it)";
+    GTEST_SKIP() << "no Xvfb";
+  }
+  VirtualDisplay xvfb;
+  ASSERT_FALSE(xvfb.display().empty()) << "Xvfb did not start";
+  TempDir dir;
+  constexpr int kFrames = 32;
+  std::ofstream(dir.file("quit.txt")) << kFrames - 1 << " quit\n";
+  const std::string common = " --gi path --scene cornell --size 96x96 --ui off";
+  const SampleRun window = dyngi::test::runSample(
+      "env DISPLAY=" + xvfb.display() + " " DYNGI_SAMPLE_EXE,
+      common + " --validation --input-script " + dir.file("quit.txt") + " --hdr-out " + dir.file("preview.exr") + " --stats " + dir.file("preview.json"),
+      dir, 300);
+  ASSERT_EQ(window.exitCode, 0) << window.err;
+  const nlohmann::json s = readJson(dir.file("preview.json"));
+  EXPECT_EQ(s["counts"]["path_preview_spp"], kFrames) << "a sample per pixel a frame, never restarted in a still scene";
+  EXPECT_EQ(s["counts"]["validation_errors"], 0);
+  auto reference = [&](int seed) {
+    const std::string out = dir.file("path" + std::to_string(seed) + ".exr");
+    const SampleRun r = dyngi::test::runSample(DYNGI_SAMPLE_EXE, "--headless" + common + " --spp " + std::to_string(kFrames) + " --seed " +
+                                                                     std::to_string(seed) + " --hdr-out " + out,
+                                               dir, 300);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    dyngi::render::ImageRgba img;
+    uint32_t w = 0, h = 0;
+    EXPECT_EQ(dyngi::render::readExr(out, w, h, img), "");
+    return img;
+  };
+  dyngi::render::ImageRgba preview;
+  uint32_t w = 0, h = 0;
+  ASSERT_EQ(dyngi::render::readExr(dir.file("preview.exr"), w, h, preview), "");
+  const dyngi::render::ImageRgba a = reference(11), b = reference(12);
+  ASSERT_EQ(preview.size(), a.size());
+  const double noise = dyngi::render::relativeMse(b, a), error = dyngi::render::relativeMse(preview, a);
+  const glm::dvec3 mp = dyngi::render::meanOver(preview), ma = dyngi::render::meanOver(a);
+  std::printf("preview vs path tracer: relMSE %.4f (seed to seed %.4f), mean ratio %.4f\n", error, noise, (mp.r + mp.g + mp.b) / (ma.r + ma.g + ma.b));
+  EXPECT_LT(error, 1.5 * noise) << "the preview is the path tracer's image, up to its noise";
+  EXPECT_NEAR((mp.r + mp.g + mp.b) / (ma.r + ma.g + ma.b), 1.0, 0.03);
 }
