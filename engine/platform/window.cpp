@@ -90,5 +90,6 @@ void Window::framebufferSize(uint32_t& width, uint32_t& height) const {
 bool Window::keyDown(int key) const { return glfwGetKey(window_, key) == GLFW_PRESS; }
 bool Window::mouseButtonDown(int button) const { return glfwGetMouseButton(window_, button) == GLFW_PRESS; }
 void Window::setTitle(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
+void Window::requestSize(uint32_t width, uint32_t height) { glfwSetWindowSize(window_, int(width), int(height)); }
 
 }  // namespace dyngi::platform

@@ -128,11 +128,16 @@ std::optional<InputScript> InputScript::parse(const std::string& text, const std
       if (!(in >> word)) return fail("screenshot FILE.png");
       s.commands_.push_back({frame, {ScriptCommand::Screenshot, word}});
       s.lastFrame_ = std::max(s.lastFrame_, frame);
+    } else if (verb == "resize") {
+      uint32_t w = 0, h = 0;
+      if (!(in >> w >> h) || w < 1 || h < 1 || w > 8192 || h > 8192) return fail("resize W H (1..8192 each)");
+      s.commands_.push_back({frame, {ScriptCommand::Resize, {}, {w, h}}});
+      s.lastFrame_ = std::max(s.lastFrame_, frame);
     } else if (verb == "quit") {
       s.commands_.push_back({frame, {ScriptCommand::Quit, {}}});
       s.lastFrame_ = std::max(s.lastFrame_, frame);
     } else {
-      return fail("unknown event '" + verb + "' (move, press, release, click, drag, key, hold, unhold, ui, screenshot, quit)");
+      return fail("unknown event '" + verb + "' (move, press, release, click, drag, key, hold, unhold, ui, screenshot, resize, quit)");
     }
     if (in >> word) return fail("unexpected '" + word + "' at the end of the line");
   }

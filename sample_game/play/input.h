@@ -14,6 +14,7 @@
 //   FRAME hold NAME | unhold NAME   a key held down from this frame / released
 //   FRAME ui LABEL                  a click on the panel widget labelled LABEL (rest of the line)
 //   FRAME screenshot FILE.png       after this frame renders, the displayed image (panel included)
+//   FRAME resize W H                the window's size (headless: the render size) from the next frame
 //   FRAME quit
 #include <cstdint>
 #include <map>
@@ -47,8 +48,9 @@ struct InputFrame {
 
 // What a script asks for beside input.
 struct ScriptCommand {
-  enum Kind { Screenshot, Quit } kind;
+  enum Kind { Screenshot, Resize, Quit } kind;
   std::string path;
+  glm::uvec2 size{0};  // Resize
 };
 
 class InputScript {

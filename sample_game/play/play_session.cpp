@@ -69,6 +69,12 @@ bool PlaySession::endFrame(uint64_t frame, const render::RenderSnapshot& snapsho
     for (const ScriptCommand& c : script_->commandsAt(frame)) {
       if (c.kind == ScriptCommand::Screenshot) screenshot(c.path);
       if (c.kind == ScriptCommand::Quit) keepGoing = false;
+      // A window resizes through the window system (the frame loop then recreates the swapchain and the
+      // targets, as for a user's drag); headless, the targets are resized here.
+      if (c.kind == ScriptCommand::Resize) {
+        if (window_) window_->requestSize(c.size.x, c.size.y);
+        else renderer_.resize(c.size.x, c.size.y);
+      }
     }
   return keepGoing;
 }

@@ -190,7 +190,7 @@ TEST(SamplePlay, ScriptedWindowSessionSelectsDragsSwitchesAndMatchesItsHeadlessR
 TEST(SamplePlay, BadInputScriptsExitWithCode2AndOneLine) {
   TempDir dir;
   const char* bad[] = {"5 klick 10 10\n", "x move 1 2\n", "3 move 1\n", "4 drag 0 0 10 10 0\n", "5 key NOSUCHKEY\n", "6 press thumb\n",
-                       "7 ui\n", "8 move 1 2 3\n", "-1 quit\n", "99999999999 quit\n", "9 move 1e300 5\n"};
+                       "7 ui\n", "8 move 1 2 3\n", "-1 quit\n", "99999999999 quit\n", "9 move 1e300 5\n", "3 resize 0 5\n"};
   int i = 0;
   for (const char* text : bad) {
     const std::string path = dir.file("bad" + std::to_string(i++) + ".txt");
@@ -263,4 +263,37 @@ TEST(SamplePlay, PathTracedPreviewInAWindowConvergesToThePathTracer) {
   std::printf("preview vs path tracer: relMSE %.4f (seed to seed %.4f), mean ratio %.4f\n", error, noise, (mp.r + mp.g + mp.b) / (ma.r + ma.g + ma.b));
   EXPECT_LT(error, 1.5 * noise) << "the preview is the path tracer's image, up to its noise";
   EXPECT_NEAR((mp.r + mp.g + mp.b) / (ma.r + ma.g + ma.b), 1.0, 0.03);
+}
+
+// A resize mid-session (the window system's, as a user's drag would do it): the swapchain, the targets and
+// the panel's framebuffer follow, and the frame after it is whole: lit, panel drawn, no validation error.
+TEST(SamplePlay, ResizeMidSessionKeepsTheSceneAndThePanel) {
+  if (!haveProgram("Xvfb")) {
+    if (dyngi::test::runningInCi()) FAIL() << "CI=true but Xvfb is missing (scripts/setup.sh installs it)";
+    GTEST_SKIP() << "no Xvfb";
+  }
+  VirtualDisplay xvfb;
+  ASSERT_FALSE(xvfb.display().empty()) << "Xvfb did not start";
+  TempDir dir;
+  for (const bool window : {true, false}) {
+    SCOPED_TRACE(window ? "window" : "headless");
+    const std::string shot = dir.file(window ? "window.png" : "headless.png");
+    std::ofstream(dir.file("resize.txt")) << "3 resize 640 400\n8 screenshot " << shot << "\n9 quit\n";
+    const SampleRun r = dyngi::test::runSample(
+        (window ? "env DISPLAY=" + xvfb.display() + " " : std::string()) + DYNGI_SAMPLE_EXE,
+        std::string(window ? "" : "--headless --ui on") + " --scene cornell --gi svo --size 320x320 --validation --input-script " + dir.file("resize.txt"),
+        dir, 300);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Png p = readPng(shot);
+    ASSERT_EQ(p.width, 640);
+    ASSERT_EQ(p.height, 400);
+    double scene = 0;
+    for (int y = 0; y < 400; ++y)
+      for (int x = 320; x < 640; ++x) scene += p.at(x, y)[0] + p.at(x, y)[1] + p.at(x, y)[2];
+    EXPECT_GT(scene / (3.0 * 320 * 400), 10.0) << "the scene is drawn at the new size";
+    double r0 = 0, b0 = 0;
+    for (int y = 10; y < 24; ++y)
+      for (int x = 60; x < 290; ++x) r0 += p.at(x, y)[0], b0 += p.at(x, y)[2];
+    EXPECT_GT(b0, r0 * 1.3) << "the panel's title bar";
+  }
 }

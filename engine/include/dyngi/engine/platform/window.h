@@ -35,6 +35,8 @@ class Window {
   // Scroll since the previous pollEvents() (wheel notches; y up).
   double scrollDelta() const { return scroll_; }
   void setTitle(const std::string& title);
+  // Asks for a new client size (the framebuffer follows at the next pollEvents; a window manager may refuse).
+  void requestSize(uint32_t width, uint32_t height);
 
  private:
   Window() = default;
