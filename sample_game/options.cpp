@@ -72,6 +72,7 @@ std::string usage() {
   std::string u =
       "usage: dyngi_sample [options]\n"
       "  --scene PATH|NAME                      a .gltf/.glb file or a built-in scene: cornell, cornell-dynamic (default),\n"
+      "                                         showcase (the main job's: an uplight, so mostly bounce light),\n"
       "                                         two-rooms, two-rooms-door (a thin wall between two rooms: the leak test)\n"
       "  --headless                             render offscreen, no window\n"
       "  --size WxH                             render size (default 768x768)\n"

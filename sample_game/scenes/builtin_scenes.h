@@ -19,6 +19,17 @@ struct CornellLayout {
   static constexpr float kWhite = 0.75f;
 };
 
+// "showcase" (the main job's scene): the Cornell box of "cornell-dynamic" (a box sliding, a box turning)
+// with the spot turned into an uplight at the front, sliding from side to side: it lights the ceiling,
+// and the ceiling the room, so most of the light on screen is bounce light.
+struct ShowcaseLayout {
+  static constexpr glm::vec3 kUplight{-0.5f, 0.05f, 0.5f};  // front left, clear of the sliding box
+  static constexpr float kUplightSway = 0.35f;               // m, along x
+  static constexpr float kUplightIntensity = 20.0f;  // W/sr
+  static constexpr float kUplightOuterDeg = 25.0f;  // the ceiling only
+  static constexpr float kUplightInnerDeg = 15.0f;
+};
+
 // Two rooms, x in [-2, 0] and [0, 2], y in [0, 2], z in [-1, 1], with a shared wall at x = 0 thinner
 // than two voxels at the default resolution; the spot in room A, the camera in room B facing the wall.
 // "two-rooms" is closed, "two-rooms-door" has a doorway: the leak test (docs/QUALITY.md).
@@ -31,7 +42,7 @@ bool isBuiltinScene(const std::string& name);
 // static or dynamic tag.
 scene::Entity addSceneMesh(ecs::World& world, scene::AssetStore& assets, scene::MeshData mesh, const glm::vec3& albedo,
                            const scene::Transform& transform, bool dynamic, const char* name);
-// Builds `name` ("cornell", "cornell-dynamic", "two-rooms", "two-rooms-door") into the world; adds a camera.
+// Builds `name` ("cornell", "cornell-dynamic", "showcase", "two-rooms", "two-rooms-door") into the world; adds a camera.
 void buildBuiltinScene(const std::string& name, ecs::World& world, scene::AssetStore& assets);
 
 void buildTwoRooms(bool doorway, ecs::World& world, scene::AssetStore& assets);

@@ -24,7 +24,7 @@ Light cornellSpot(glm::vec3 color) {
 }  // namespace
 
 bool isBuiltinScene(const std::string& name) {
-  return name == "cornell" || name == "cornell-dynamic" || name == "two-rooms" || name == "two-rooms-door";
+  return name == "cornell" || name == "cornell-dynamic" || name == "showcase" || name == "two-rooms" || name == "two-rooms-door";
 }
 
 Entity addSceneMesh(ecs::World& w, AssetStore& assets, MeshData mesh, const glm::vec3& albedo, const Transform& t, bool dynamic,
@@ -45,7 +45,7 @@ Entity addSceneMesh(ecs::World& w, AssetStore& assets, MeshData mesh, const glm:
 
 void buildBuiltinScene(const std::string& name, ecs::World& w, AssetStore& assets) {
   if (name == "two-rooms" || name == "two-rooms-door") return buildTwoRooms(name == "two-rooms-door", w, assets);
-  const bool dynamic = name == "cornell-dynamic";
+  const bool dynamic = name == "cornell-dynamic" || name == "showcase";
   const glm::vec3 white(CornellLayout::kWhite), red(0.63f, 0.065f, 0.05f), green(0.14f, 0.45f, 0.091f);
   // Walls: quads whose normal (U x V) faces into the room.
   addSceneMesh(w, assets, makeQuad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}), white, {}, false, "floor");
@@ -72,7 +72,22 @@ void buildBuiltinScene(const std::string& name, ecs::World& w, AssetStore& asset
   w.add(spot, cornellSpot({1.0f, 1.0f, 1.0f}));
   w.add(spot, Name{"spot"});
 
-  if (dynamic) {
+  if (name == "showcase") {
+    // An uplight at the front of the room, sliding from side to side: it lights the ceiling and little
+    // else directly, so most of what the room shows is bounce light, red and green included.
+    Transform& up = w.write<Transform>(spot);
+    up.translation = ShowcaseLayout::kUplight;
+    up.rotation = glm::angleAxis(glm::radians(90.0f), glm::vec3(1, 0, 0));  // local -Z -> world +Y
+    w.write<Light>(spot).intensity = ShowcaseLayout::kUplightIntensity;
+    w.write<Light>(spot).outerConeAngle = glm::radians(ShowcaseLayout::kUplightOuterDeg);
+    w.write<Light>(spot).innerConeAngle = glm::radians(ShowcaseLayout::kUplightInnerDeg);
+    ScriptedMotion sway;
+    sway.origin = up.translation;
+    sway.baseRotation = up.rotation;
+    sway.oscillation = {ShowcaseLayout::kUplightSway, 0.0f, 0.0f};
+    sway.oscillationHz = 0.15f;
+    w.add(spot, sway);
+  } else if (dynamic) {
     ScriptedMotion lightPath;
     lightPath.origin = st.translation;
     lightPath.baseRotation = st.rotation;
@@ -80,6 +95,8 @@ void buildBuiltinScene(const std::string& name, ecs::World& w, AssetStore& asset
     lightPath.orbitSpeed = 0.9f;
     lightPath.phase = 3.14159265f / 0.9f;  // start on the camera side of the room (z > 0)
     w.add(spot, lightPath);
+  }
+  if (dynamic) {
     ScriptedMotion slide;
     slide.origin = shortBox.translation;
     slide.baseRotation = shortBox.rotation;

@@ -43,3 +43,29 @@ TEST_F(RenderTest, ExampleGltfRendersAsTheBuiltinCornellBox) {
   const render::ImageRgba ia = builtin.indirect(), ib = imported.indirect();
   EXPECT_LT(render::relativeMse(ib, ia), 1e-4) << "the same indirect light";
 }
+
+// The showcase scene (an uplight on the ceiling, builtin_scenes.h) is there to show bounce light first:
+// most of what is lit on screen gets more light from the GI than from the lamp.
+TEST_F(RenderTest, ShowcaseSceneIsLitMostlyByBounceLight) {
+  gi::GiSettings s;
+  s.technique = "many_lights";
+  for (const char* scene : {"showcase", "cornell-dynamic"}) {
+    GiRun run(context(), s, scene, 96, 96);
+    run.step(2);
+    const render::ImageRgba hdr = run.hdr(), indirect = run.indirect(), albedo = run.renderer->readback(render::TargetId::Albedo);
+    auto lum = [](const glm::vec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
+    size_t lit = 0, bounce = 0;
+    for (size_t i = 0; i < hdr.size(); ++i) {
+      const glm::vec3 gi = glm::vec3(albedo[i]) * (1.0f - albedo[i].a) * glm::vec3(indirect[i]);
+      const double total = lum(glm::vec3(hdr[i])), fromGi = lum(gi);
+      if (total <= 1e-4) continue;
+      ++lit;
+      bounce += fromGi > total - fromGi;
+    }
+    const double share = double(bounce) / double(lit);
+    std::printf("%s: %.1f%% of the lit pixels get more bounce light than direct light\n", scene, 100 * share);
+    if (std::string(scene) == "showcase") {
+      EXPECT_GT(share, 0.85);
+    }
+  }
+}
