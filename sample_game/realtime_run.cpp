@@ -65,10 +65,11 @@ GiSetup setUpGi(const Options& o, render::VulkanContext& ctx, render::Renderer& 
 }
 
 // The GI's settings as used and its figures, once at the end of the run.
-void reportGi(const Options& o, const GiSetup& g, RunStats& stats) {
+// `settings`: the GI's settings at the end of the run (the panel may have changed them).
+void reportGi(const gi::GiSettings& settings, const GiSetup& g, RunStats& stats) {
   if (gi::GiSystem* gi = g.system) {
     stats.scalars["vpls"] = gi->effectiveVplCount();  // as used (see the note above), not as asked
-    gi::GiSettings asked = o.giSettings;
+    gi::GiSettings asked = settings;
     for (const gi::OptionRef& r : gi->techniqueEntry().options(asked))
       if (std::string_view(r.spec->name) == "vpls") stats.scalars["vpls_requested"] = r.get();
     for (const gi::OptionRef& r : gi->technique().options()) {
@@ -77,7 +78,7 @@ void reportGi(const Options& o, const GiSetup& g, RunStats& stats) {
       if (name == "temporal") stats.scalars["temporal_sets"] = r.get();
       stats.sections["settings"][r.spec->name] = r.get();
     }
-    gi::BudgetOptions budget = o.giSettings.budget;
+    gi::BudgetOptions budget = settings.budget;
     for (const gi::OptionRef& r : gi::bindOptions(budget)) stats.sections["settings"][r.spec->name] = r.get();
     for (auto& [section, values] : gi->technique().statsSections())
       for (auto& [key, value] : values) stats.sections[section][key] = value;
@@ -97,8 +98,8 @@ void reportGi(const Options& o, const GiSetup& g, RunStats& stats) {
   }
   if (const gi::VoxelScene* voxels = g.voxels) {
     const gi::VoxelStats& v = voxels->stats();
-    stats.scalars["voxel_resolution"] = o.giSettings.voxels.resolution;
-    gi::VoxelSettings used = o.giSettings.voxels;
+    stats.scalars["voxel_resolution"] = settings.voxels.resolution;
+    gi::VoxelSettings used = settings.voxels;
     for (const gi::OptionRef& r : gi::bindOptions(used)) stats.sections["settings"][r.spec->name] = r.get();
     stats.scalars["voxel_fragments"] = double(v.fragments);
     stats.scalars["svo_nodes"] = double(v.nodes);
@@ -221,7 +222,11 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
     double frameMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     ++rendered;
     const bool keepGoing = session.endFrame(frame, snapshot, fs, frameMs);
-    gi.system = session.gi().everMade();  // the panel may have made one
+    // The panel may have made a GI system, or rebuilt it (GiSystem::reset makes a new voxel scene).
+    if (gi::GiSystem* made = session.gi().everMade()) {
+      gi.system = made;
+      gi.voxels = made->voxels();
+    }
     memoryLog.frameRendered(rendered, ctx);
     if (rendered > stats.warmupFrames) {
       stats.frameMs.push(frameMs);
@@ -249,7 +254,7 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
   stats.scalars["draws"] = double(render::extractSnapshot(world, assets, 0).draws.size());
   stats.scalars["validation_errors"] = ctx.validationErrorCount();
   if (preview) stats.scalars["path_preview_spp"] = preview->samplesPerPixel();
-  reportGi(o, gi, stats);
+  reportGi(session.gi().settings(), gi, stats);
 
   int status = session.status();
   if (rendered > 0)
