@@ -229,7 +229,8 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
   selectTechnique(o);
   const std::vector<gi::OptionRef> accepted = acceptedOptions(o);
   for (const auto& [flag, text] : deferred) {
-    auto it = std::find_if(accepted.begin(), accepted.end(), [&](const gi::OptionRef& r) { return flag.substr(2) == r.spec->name; });
+    const std::string name = flag.substr(2);  // a copy: clang 14 cannot capture a structured binding
+    auto it = std::find_if(accepted.begin(), accepted.end(), [&](const gi::OptionRef& r) { return name == r.spec->name; });
     if (it == accepted.end()) {
       error = notForThisRun(o, flag);
       return std::nullopt;
