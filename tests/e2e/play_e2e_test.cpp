@@ -99,6 +99,13 @@ class VirtualDisplay {
 
 bool haveProgram(const char* name) { return std::system((std::string("command -v ") + name + " >/dev/null 2>&1").c_str()) == 0; }
 
+// In a test body: skips without `program`, except under CI=true, where scripts/setup.sh installs it.
+#define DYNGI_REQUIRE_PROGRAM(program)                                                                                  \
+  if (!haveProgram(program)) {                                                                                           \
+    if (dyngi::test::runningInCi()) FAIL() << "CI=true but " << program << " is missing (scripts/setup.sh installs it)"; \
+    GTEST_SKIP() << "no " << program;                                                                                  \
+  }
+
 // The session: the short box's projected centre at 768^2 (the built-in Cornell camera) is (486, 590).
 std::string script(const std::string& screenshot, int quitAt) {
   return "# select the short box, drag it, switch to VCT in the panel, take a screenshot\n"
@@ -112,10 +119,8 @@ std::string script(const std::string& screenshot, int quitAt) {
 }  // namespace
 
 TEST(SamplePlay, ScriptedWindowSessionSelectsDragsSwitchesAndMatchesItsHeadlessReplay) {
-  if (!haveProgram("Xvfb") || !haveProgram("import")) {
-    if (dyngi::test::runningInCi()) FAIL() << "CI=true but Xvfb or ImageMagick's import is missing (scripts/setup.sh installs them)";
-    GTEST_SKIP() << "no Xvfb or import";
-  }
+  DYNGI_REQUIRE_PROGRAM("Xvfb");
+  DYNGI_REQUIRE_PROGRAM("import");  // ImageMagick
   VirtualDisplay xvfb;
   ASSERT_FALSE(xvfb.display().empty()) << "Xvfb did not start";
   TempDir dir;
@@ -226,10 +231,7 @@ TEST(SamplePlay, RecordWritesNumberedFrames) {
 // --gi path in a window: the progressive preview's mean after N frames is the path tracer's image at N
 // samples per pixel, within the path tracer's own seed-to-seed noise at that count.
 TEST(SamplePlay, PathTracedPreviewInAWindowConvergesToThePathTracer) {
-  if (!haveProgram("Xvfb")) {
-    if (dyngi::test::runningInCi()) FAIL() << "CI=true but Xvfb is missing (scripts/setup.sh installs it)";
-    GTEST_SKIP() << "no Xvfb";
-  }
+  DYNGI_REQUIRE_PROGRAM("Xvfb");
   VirtualDisplay xvfb;
   ASSERT_FALSE(xvfb.display().empty()) << "Xvfb did not start";
   TempDir dir;
@@ -270,10 +272,7 @@ TEST(SamplePlay, PathTracedPreviewInAWindowConvergesToThePathTracer) {
 // A resize mid-session (the window system's, as a user's drag would do it): the swapchain, the targets and
 // the panel's framebuffer follow, and the frame after it is whole: lit, panel drawn, no validation error.
 TEST(SamplePlay, ResizeMidSessionKeepsTheSceneAndThePanel) {
-  if (!haveProgram("Xvfb")) {
-    if (dyngi::test::runningInCi()) FAIL() << "CI=true but Xvfb is missing (scripts/setup.sh installs it)";
-    GTEST_SKIP() << "no Xvfb";
-  }
+  DYNGI_REQUIRE_PROGRAM("Xvfb");
   VirtualDisplay xvfb;
   ASSERT_FALSE(xvfb.display().empty()) << "Xvfb did not start";
   TempDir dir;
