@@ -91,6 +91,7 @@ void GiSystem::reset(const GiSettings& settings) {
   build(settings);
   if (renderer_) addFeaturesTo(*renderer_);
   startOver_ = true;
+  detached_ = false;  // rebuilt from the whole world: attach() need not build again
 }
 
 void GiSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {

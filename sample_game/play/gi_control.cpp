@@ -38,8 +38,8 @@ void GiControl::setMode(const std::string& mode) {
     scheduler_.add(ecs::Phase::PostUpdate, std::move(made));  // after transforms and skinning, as at start-up
     return;
   }
+  system_->reset(settings_);  // one rebuild, then (when the GI was off) its features back in the renderer
   if (!system_->attached()) system_->attach(renderer_);
-  system_->reset(settings_);
 }
 
 void GiControl::apply() {

@@ -121,4 +121,16 @@ TEST_F(RenderTest, SwitchingTechniqueAtRunTimeGivesTheImageOfStartingWithIt) {
   fresh.world.write<scene::Transform>(fresh.named("spot")).translation = switched.world.get<scene::Transform>(switched.named("spot")).translation;
   fresh.step(kFrames);
   EXPECT_LT(render::relativeMse(switched.indirect(), fresh.indirect()), 1e-6) << "attached again";
+
+  // Off, then on with other settings (the panel's path: reset while detached, then attach, one rebuild).
+  switched.gi->detach();
+  switched.world.write<scene::Transform>(switched.named("spot")).translation.x += 0.2f;
+  switched.step();
+  switched.gi->reset(order[1]);
+  switched.gi->attach(*switched.renderer);
+  switched.step(kFrames);
+  GiRun fresh2(context(), order[1], "cornell", kSize, kSize);
+  fresh2.world.write<scene::Transform>(fresh2.named("spot")).translation = switched.world.get<scene::Transform>(switched.named("spot")).translation;
+  fresh2.step(kFrames);
+  EXPECT_LT(render::relativeMse(switched.indirect(), fresh2.indirect()), 1e-6) << "reset while off, then attached";
 }
