@@ -190,6 +190,10 @@ TEST(SamplePlay, ScriptedWindowSessionSelectsDragsSwitchesAndMatchesItsHeadlessR
   for (const Png* p : {&window, &captured}) {
     const glm::dvec3 title = meanRgb(*p, 60, 10, 290, 24);
     EXPECT_GT(title.b, title.r + 25) << "the panel's title bar (" << title.r << ", " << title.g << ", " << title.b << ")";
+    // Equal images prove nothing if both are black or white: the 3D view is lit, not washed out.
+    const glm::dvec3 view = meanRgb(*p, kPanelRight, 0, kSize, kSize);
+    EXPECT_GT(view.r + view.g + view.b, 3 * 15.0) << "the 3D view is lit";
+    EXPECT_LT(view.r + view.g + view.b, 3 * 200.0) << "the 3D view is not washed out";
   }
 }
 
