@@ -51,6 +51,7 @@ struct VplReadback {
   glm::vec3 flux;
 };
 // The many-lights technique's current VPLs.
-std::vector<VplReadback> readbackVpls(ManyLights& manyLights);
+// withProbes: also the bounce tail's probes (bounce index = the bounce count), which are never gathered.
+std::vector<VplReadback> readbackVpls(ManyLights& manyLights, bool withProbes = false);
 
 }  // namespace dyngi::gi

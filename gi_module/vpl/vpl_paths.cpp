@@ -7,6 +7,7 @@
 #include "dyngi/engine/scene/light_units.h"
 #include "dyngi/gi/scene_surfaces.h"
 #include "sampling.h"
+#include "shaders/shared/bounce_tail.h"
 
 namespace dyngi::gi {
 namespace {
@@ -83,6 +84,14 @@ void VplPaths::refreshMaterials(const render::RenderSnapshot& snapshot, const Em
         RayHit h = bvh.intersect(v.rayOrigin, v.rayDir, 0.0f, 1e30f);
         SurfaceHit sh;
         if (h.hit && h.entity == v.surface && surfaces.at(h, v.rayOrigin, v.rayDir, sh)) v.albedo = sh.diffuseAlbedo;
+        changed = true;
+      }
+      if (v.placed && b + 1 == B && !v.probeSurface.isNull() && recoloured.count(v.probeSurface)) {
+        // The tail's probe landed on the edited surface: the same probe ray, the new albedo.
+        const glm::vec3 o = v.position + v.normal * (1e-4f * surfaces.sceneScale());
+        RayHit h = bvh.intersect(o, v.probeDir, 0.0f, 1e30f);
+        SurfaceHit sh;
+        if (h.hit && surfaces.at(h, o, v.probeDir, sh)) v.probeAlbedo = sh.diffuseAlbedo;
         changed = true;
       }
       if (!changed) continue;
@@ -203,6 +212,30 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
   stats_.invalidateMs = msSince(t0);
 }
 
+glm::vec3 VplPaths::bounceTailScale() const {
+  if (!settings_.vpl.bounceTail) return glm::vec3(1.0f);
+  const uint32_t B = settings_.vpl.bounces;
+  glm::dvec3 last(0.0), next(0.0);
+  for (uint32_t i = B - 1; i < vpls_.size(); i += B) {
+    const PathVpl& v = vpls_[i];
+    if (!v.valid || !v.placed) continue;
+    last += glm::dvec3(v.flux);
+    next += glm::dvec3(v.flux * v.probeAlbedo);
+  }
+  return gpu::bounceTailScale(glm::vec3(last), glm::vec3(next));
+}
+
+void VplPaths::shootProbe(PathVpl& v, uint64_t& rng, float scale, const EmbreeScene& bvh, const SceneSurfaces& surfaces) const {
+  float u1 = uniform01(rng), u2 = uniform01(rng);
+  v.probeDir = cosineDirection(v.normal, u1, u2);
+  v.probeAlbedo = glm::vec3(0.0f);
+  v.probeSurface = {};
+  const glm::vec3 o = v.position + v.normal * (1e-4f * scale);
+  RayHit h = bvh.intersect(o, v.probeDir, 0.0f, 1e30f);
+  SurfaceHit sh;
+  if (h.hit && surfaces.at(h, o, v.probeDir, sh)) v.probeAlbedo = sh.diffuseAlbedo, v.probeSurface = sh.entity;
+}
+
 bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const SceneSurfaces& surfaces) {
   uint32_t path = index / settings_.vpl.bounces, b = index % settings_.vpl.bounces;
   uint64_t rng = mix64(settings_.vpl.seed * 0x51ED27ULL + (++shotCounter_) * 0x2545F4914F6CDD1DULL + index);
@@ -290,6 +323,7 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
     v.albedo = sh.diffuseAlbedo;
     v.flux = throughput * sh.diffuseAlbedo;
     v.surface = sh.entity;
+    if (settings_.vpl.bounceTail && b + 1 == settings_.vpl.bounces) shootProbe(v, rng, scale, bvh, surfaces);
   }
   vpls_[index] = v;
   return true;

@@ -352,3 +352,40 @@ TEST(VplPaths, DeformingSkinnedMeshInvalidatesExactlyWhatItBlocksAndWhatLiesOnIt
               mismatches);
   EXPECT_EQ(mismatches, 0);
 }
+
+// The bounce tail's ratio (shaders/shared/bounce_tail.h) in two analytic cases. Inside a closed box every
+// probe lands on a wall, so a further bounce keeps exactly the walls' albedo per channel and the last
+// bounce's scale is 1 / (1 - albedo). Over a lone floor every probe leaves the scene: the scale is 1.
+TEST(VplPaths, BounceTailRatioIsTheAlbedoInAClosedBoxAndZeroOverALoneFloor) {
+  auto scaleOf = [](bool closed) {
+    ecs::World world;
+    AssetStore assets;
+    ecs::Scheduler scheduler;
+    scheduler.add(ecs::Phase::PostUpdate, std::make_unique<TransformSystem>());
+    const glm::vec3 albedo{0.5f, 0.25f, 0.75f};
+    Entity room = world.create();
+    world.add(room, Transform{});
+    world.add(room, MeshInstance{assets.addMesh(closed ? makeBox({1, 1, 1}) : makeQuad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2})), true});
+    world.add(room, Material{.baseColor = glm::vec4(albedo, 1.0f)});
+    Entity light = world.create();
+    Transform lt;
+    lt.translation = {0.2f, 0.5f, -0.1f};
+    world.add(light, lt);
+    world.add(light, Light{.type = LightType::Point, .intensity = 3.0f});
+    scheduler.runFrame(world, {});
+    gi::EmbreeScene bvh;
+    bvh.sync(world, assets, 0);
+    const auto snap = render::extractSnapshot(world, assets, 0);
+    gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 600, .bounces = 2, .bounceTail = true}, .reshootBudget = 100000});
+    paths.update(snap, bvh, assets, {});
+    EXPECT_EQ(paths.stats().valid, 600u);
+    return paths.bounceTailScale();
+  };
+  const glm::vec3 closed = scaleOf(true), open = scaleOf(false);
+  EXPECT_NEAR(closed.r, 1.0f / (1.0f - 0.5f), 1e-3f);
+  EXPECT_NEAR(closed.g, 1.0f / (1.0f - 0.25f), 1e-3f);
+  EXPECT_NEAR(closed.b, 1.0f / (1.0f - 0.75f), 1e-3f);
+  EXPECT_EQ(open, glm::vec3(1.0f));
+  // Off, nothing is scaled.
+  EXPECT_EQ(gi::VplPaths(gi::TemporalOptions{}).bounceTailScale(), glm::vec3(1.0f));
+}

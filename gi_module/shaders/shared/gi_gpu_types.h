@@ -124,6 +124,8 @@ struct RsmPush {
 #define DYNGI_VPL_BOUNCE_BINDING_NODES 1
 #define DYNGI_VPL_BOUNCE_BINDING_LEVELS 2
 #define DYNGI_VPL_BOUNCE_BINDING_ATTRIBUTES 3
+// vpl_tail
+#define DYNGI_VPL_TAIL_BINDING_VPLS 0
 // vpl_cdf_rows
 #define DYNGI_VPL_CDF_ROWS_BINDING_RSM_FLUX 0
 #define DYNGI_VPL_CDF_ROWS_BINDING_ROW_PREFIX 1
@@ -375,6 +377,9 @@ struct TemporalQueue {
   uint depth;                                                                      \
   float res;                                                                       \
   float lift;        /* voxel units the ray starts off its surface */
+#define DYNGI_VPL_TAIL_PUSH                                                          \
+  uint lastFirst;    /* first VPL of the last gathered bounce; its probes follow it */ \
+  uint count;        /* VPLs per bounce */
 #define DYNGI_MANY_LIGHTS_DEBUG_PUSH uint mode; uint K; uint vplCount;
 #define DYNGI_INDIRECT_FILTER_PUSH float planeTolerance;
 // The cone parameters every VCT pass that marches cones shares (vct_cone.glsl reads them by name).
@@ -413,6 +418,7 @@ struct VplCdfRowsPush { DYNGI_VPL_CDF_ROWS_PUSH };
 struct VplCdfTotalPush { DYNGI_VPL_CDF_TOTAL_PUSH };
 struct VplSamplePush { DYNGI_VPL_SAMPLE_PUSH };
 struct VplBouncePush { DYNGI_VPL_BOUNCE_PUSH };
+struct VplTailPush { DYNGI_VPL_TAIL_PUSH };
 struct ManyLightsDebugPush { DYNGI_MANY_LIGHTS_DEBUG_PUSH };
 struct IndirectFilterPush { DYNGI_INDIRECT_FILTER_PUSH };
 struct VctInjectPush { DYNGI_VCT_INJECT_PUSH };
@@ -438,6 +444,7 @@ static_assert(sizeof(SvoCounters) == 16);
 static_assert(sizeof(SvoMarkPush) == 8 && sizeof(SvoLevelPush) == 4 && sizeof(SvoExpandPush) == 8);
 static_assert(sizeof(SvoLeafAttributesPush) == 12 && sizeof(SvoMarchPush) == 32 && sizeof(VoxelDebugPush) == 28);
 static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && sizeof(VplSamplePush) == 16);
+static_assert(sizeof(VplTailPush) == 8);
 static_assert(sizeof(VplBouncePush) == 40 && sizeof(ManyLightsDebugPush) == 12 && sizeof(IndirectFilterPush) == 4);
 static_assert(sizeof(VctInjectPush) == 40 && sizeof(VctBouncePush) == 52 && sizeof(VctMipsPush) == 8);
 static_assert(sizeof(VctTracePush) == 48 && sizeof(VctUpsamplePush) == 4 && sizeof(VctDebugPush) == 48 && sizeof(VctProbePush) == 48);

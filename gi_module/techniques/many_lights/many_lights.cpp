@@ -14,6 +14,7 @@
 #include "spirv/vpl_cdf_rows.comp.spv.h"
 #include "spirv/vpl_cdf_total.comp.spv.h"
 #include "spirv/vpl_sample.comp.spv.h"
+#include "spirv/vpl_tail.comp.spv.h"
 
 #include "gpu_aliases.h"
 
@@ -24,8 +25,8 @@ ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const Man
   // The values used from here on (Technique::options() reports them): bounces and K clamped, the VPL
   // count rounded to a multiple of the bounces.
   settings_.vpl.bounces = std::clamp(settings_.vpl.bounces, 1u, 3u);
-  // Bounced VPLs take the albedo and normal of the voxel they land on.
-  if (settings_.vpl.bounces > 1) voxels_.enableLeafAttributes();
+  // Bounced VPLs (and the bounce tail's probes) take the albedo and normal of the voxel they land on.
+  if (settings_.vpl.bounces > 1 || settings_.vpl.bounceTail) voxels_.enableLeafAttributes();
   settings_.vpl.interleave = std::clamp(settings_.vpl.interleave, 1u, 8u);
   settings_.vpl.vplCount = settings_.vpl.effectiveVplCount();
   const Binding rowsB[] = {{DYNGI_VPL_CDF_ROWS_BINDING_RSM_FLUX, kSampled, kCS},
@@ -46,6 +47,8 @@ ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const Man
                              {DYNGI_VPL_BOUNCE_BINDING_LEVELS, kSSBO, kCS},
                              {DYNGI_VPL_BOUNCE_BINDING_ATTRIBUTES, kSSBO, kCS}};
   bounce_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_bounce_comp), bounceB, sizeof(gpu::VplBouncePush), "vpl_bounce");
+  const Binding tailB[] = {{DYNGI_VPL_TAIL_BINDING_VPLS, kSSBO, kCS}};
+  tail_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_tail_comp), tailB, sizeof(gpu::VplTailPush), "vpl_tail");
   gatherPass_ = std::make_unique<IndirectGatherPass>(ctx);
   filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
   const Binding debugB[] = {{DYNGI_MANY_LIGHTS_DEBUG_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
@@ -123,7 +126,8 @@ void ManyLights::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   ensureRsm(rsmLayersUsed_);
   if (!lights.empty()) lights_.upload(lights.data(), lights.size() * sizeof(lights[0]));
   if (!layers.empty()) layers_.upload(layers.data(), layers.size() * sizeof(layers[0]));
-  VkDeviceSize vplBytes = VkDeviceSize(perBounce_) * settings_.vpl.bounces * sizeof(gpu::GpuVpl);
+  // With the bounce tail, one more bounce of probes follows the gathered ones.
+  VkDeviceSize vplBytes = VkDeviceSize(perBounce_) * (settings_.vpl.bounces + (settings_.vpl.bounceTail ? 1 : 0)) * sizeof(gpu::GpuVpl);
   if (!vpls_.valid() || vpls_.size() < vplBytes)
     vpls_ = Buffer(ctx_, vplBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "vpls");
 }
@@ -226,9 +230,10 @@ bool ManyLights::record(render::FrameContext& frame) {
     render::computeWriteBarrier(cmd);
   }
 
-  if (settings_.vpl.bounces > 1) {  // 3. further bounces through the voxel scene
+  const uint32_t bounceLevels = settings_.vpl.bounces + (settings_.vpl.bounceTail ? 1u : 0u);  // the tail's probes: one more
+  if (bounceLevels > 1) {  // 3. further bounces through the voxel scene
     render::ScopedPass scope(ctx_, frame.timer, cmd, "vpl_bounce");
-    for (uint32_t b = 1; b < settings_.vpl.bounces; ++b) {
+    for (uint32_t b = 1; b < bounceLevels; ++b) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bounce_.handle());
       DescriptorWrites()
           .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_VPLS, vpls_.handle())
@@ -240,6 +245,14 @@ bool ManyLights::record(render::FrameContext& frame) {
                                   float(vol.resolution), settings_.vpl.liftVoxels};
       vkCmdPushConstants(cmd, bounce_.layout(), kCS, 0, sizeof(pc), &pc);
       vkCmdDispatch(cmd, dispatchGroups(perBounce_, 64), 1, 1);
+      render::computeWriteBarrier(cmd);
+    }
+    if (settings_.vpl.bounceTail) {  // the last gathered bounce takes the probes' measure of the later ones
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tail_.handle());
+      DescriptorWrites().storageBuffer(DYNGI_VPL_TAIL_BINDING_VPLS, vpls_.handle()).push(ctx_, cmd, tail_);
+      const gpu::VplTailPush tp{(settings_.vpl.bounces - 1) * perBounce_, perBounce_};
+      vkCmdPushConstants(cmd, tail_.layout(), kCS, 0, sizeof(tp), &tp);
+      vkCmdDispatch(cmd, 1, 1, 1);
       render::computeWriteBarrier(cmd);
     }
   }

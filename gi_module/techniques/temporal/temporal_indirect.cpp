@@ -111,6 +111,7 @@ void TemporalIndirect::prepare(render::VulkanContext&, const render::RenderSnaps
   setVpls_.assign(gpuVpls.size(), TemporalVpl{{}, {}, false});  // the BVH visibility's copy
   const auto& all = paths_.vpls();
   const double stride = double(perSet_) / double(gathered_);
+  const glm::vec3 tail = paths_.bounceTailScale();  // the last bounce carries the later ones
   for (size_t k = 0; k < frameSets_.size(); ++k)
     for (uint32_t j = 0; j < gathered_; ++j) {
       const uint32_t i = std::min(perSet_ - 1, uint32_t(double(j) * stride));
@@ -119,10 +120,12 @@ void TemporalIndirect::prepare(render::VulkanContext&, const render::RenderSnaps
       g.position = glm::vec4(0, 0, 0, -1);
       if (index < all.size() && all[index].valid && all[index].placed) {
         const PathVpl& v = all[index];
-        float lum = 0.2126f * v.flux.r + 0.7152f * v.flux.g + 0.0722f * v.flux.b;
-        g.position = glm::vec4(v.position, float(index % paths_.bounces()));
+        const uint32_t bounce = index % paths_.bounces();
+        const glm::vec3 flux = bounce + 1 == paths_.bounces() ? v.flux * tail : v.flux;
+        float lum = 0.2126f * flux.r + 0.7152f * flux.g + 0.0722f * flux.b;
+        g.position = glm::vec4(v.position, float(bounce));
         g.normal = glm::vec4(v.normal, float(index / paths_.bounces()));
-        g.flux = glm::vec4(v.flux, lum);
+        g.flux = glm::vec4(flux, lum);
         setVpls_[k * gathered_ + j] = {v.position, v.normal, lum > 0.0f};
       }
       gpuVpls[k * gathered_ + j] = g;

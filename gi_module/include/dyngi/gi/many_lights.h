@@ -37,7 +37,7 @@ class ManyLights final : public render::RenderFeature {
   void setVplsPerFrame(uint32_t count) { perFrame_ = count; }
 
  private:
-  friend std::vector<VplReadback> readbackVpls(ManyLights&);  // tests (gi_module/testing)
+  friend std::vector<VplReadback> readbackVpls(ManyLights&, bool);  // tests (gi_module/testing)
   void ensureRsm(uint32_t layers);
 
   render::VulkanContext& ctx_;
@@ -52,7 +52,7 @@ class ManyLights final : public render::RenderFeature {
   // run the lookup of a branch not taken.
   render::Pipeline rsm_[2];
   render::Pipeline& rsmPipelineFor(bool baseColorTexture);
-  render::Pipeline cdfRows_, cdfTotal_, sample_, bounce_, debug_;
+  render::Pipeline cdfRows_, cdfTotal_, sample_, bounce_, tail_, debug_;
   std::unique_ptr<class IndirectGatherPass> gatherPass_;
   std::unique_ptr<class IndirectFilterPass> filterPass_;
 };

@@ -12,6 +12,7 @@ namespace dyngi::gi {
 struct VplOptions {
   uint32_t vplCount = 512;             // total over all bounces (per bounce: vplCount / bounces)
   uint32_t bounces = 1;                // light bounces simulated by VPLs, 1..3
+  bool bounceTail = false;             // the last bounce's VPLs also carry the bounces after it (shaders/shared/bounce_tail.h)
   uint32_t interleave = 4;             // K: the G-buffer is split into K x K sub-images
   float distanceClamp = 0.01f;         // B (world units^2): G = cos cos / max(B, d^2)
   float luminanceThreshold = 0.01f;    // skip VPLs dimmer than this fraction of a first-bounce VPL

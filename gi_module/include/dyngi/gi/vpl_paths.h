@@ -41,6 +41,11 @@ struct PathVpl {
   glm::vec3 rayOrigin{0.0f}, rayDir{0.0f, 0.0f, 1.0f};
   glm::vec3 incident{0.0f};
   glm::vec3 albedo{0.0f};
+  // Last bounce only (VplOptions::bounceTail): one more cosine ray from it, never gathered. Its landing
+  // surface's diffuse albedo (0 when it leaves the scene) measures how much flux a further bounce keeps.
+  glm::vec3 probeDir{0.0f, 1.0f, 0.0f};
+  glm::vec3 probeAlbedo{0.0f};
+  ecs::Entity probeSurface{};
 };
 
 struct VplPathStats {
@@ -73,6 +78,9 @@ class VplPaths {
   void replace(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets);
 
   const std::vector<PathVpl>& vpls() const { return vpls_; }
+  // What the last bounce's flux is multiplied by so that it carries every later bounce too
+  // (shaders/shared/bounce_tail.h), from the valid last-bounce VPLs' probes; 1 with bounceTail off.
+  glm::vec3 bounceTailScale() const;
   const TemporalOptions& settings() const { return settings_; }
   const VplPathStats& stats() const { return stats_; }
   uint32_t paths() const { return paths_; }
@@ -106,6 +114,7 @@ class VplPaths {
   void invalidateIndex(uint32_t index, bool hard = false);
   void markChanged(uint32_t index, bool hard);  // counts a VPL once per set rendering (and once more if hard)
   bool lightJumped(const LightState& from, glm::vec3 position, glm::vec3 direction, float scale) const;
+  void shootProbe(PathVpl& v, uint64_t& rng, float scale, const EmbreeScene& bvh, const class SceneSurfaces& surfaces) const;
   bool shoot(uint32_t index, const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const class SceneSurfaces& surfaces);
 
   TemporalOptions settings_;

@@ -29,7 +29,11 @@ void main() {
   if (parent.position.w < 0.0 || parent.flux.w <= 0.0) { vpls[childIndex] = child; return; }
   vec3 n = parent.normal.xyz;
   float u1 = halton(i + 1u, 2u), u2 = halton(i + 1u, 3u);
-  u2 = fract(u2 + 0.618034 * float(bounce));  // decorrelate bounces
+  // Decorrelate the bounces of a path (both dimensions: a path that kept one elevation would go up and
+  // down between floor and ceiling, escape less than the light does, and the bounce tail's probes would
+  // measure too high a ratio).
+  u1 = fract(u1 + 0.754877666 * float(bounce));
+  u2 = fract(u2 + 0.569840291 * float(bounce));
   float r = sqrt(u1), phi = 6.2831853 * u2;
   vec3 t = abs(n.x) > 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
   vec3 b1 = normalize(cross(n, t)), b2 = cross(n, b1);

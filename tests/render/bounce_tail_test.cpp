@@ -1,0 +1,80 @@
+// Energy beyond the last bounce (VplOptions::bounceTail, gi_module/shaders/shared/bounce_tail.h): both
+// VPL techniques with 1..3 simulated bounces against the path tracer with 8, on the Cornell box with a spot.
+// Off by default: with one bounce the tail lands where the light first hits (the mean comes within 5%,
+// but the short box's front, lit by later bounces only, is 73% too bright; without it the tall box's
+// face to the red wall is 64% too dark); with 3 bounces it is right (below).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "dyngi/engine/render/image_metrics.h"
+#include "render/cornell_regions.h"
+#include "render/gi_run.h"
+#include "render/render_fixture.h"
+
+using namespace dyngi;
+using namespace dyngi::test;
+
+namespace {
+constexpr uint32_t kSize = 128;
+constexpr uint32_t kReferenceBounces = 8;
+
+gi::GiSettings settingsFor(const char* technique, uint32_t bounces, bool tail) {
+  gi::GiSettings s;
+  s.technique = technique;
+  gi::VplOptions& v = std::string(technique) == "temporal" ? s.temporal.vpl : s.manyLights.vpl;
+  v.vplCount = 1024 * bounces;
+  v.bounces = bounces;
+  v.bounceTail = tail;
+  s.temporal.temporalSets = 1;
+  s.temporal.reshootBudget = 1024 * bounces;
+  return s;
+}
+
+struct Measure {
+  double mean = 0;             // whole image's luminance over the reference's
+  double worstRegion = 0;      // largest |ratio - 1| over the regions
+  std::string worstName;
+};
+
+Measure compare(const Frame& f, const render::ImageRgba& ref, const scene::AssetStore& assets, bool print) {
+  Measure m;
+  m.mean = luminance(render::meanOver(f.hdr)) / luminance(render::meanOver(ref));
+  Regions regions = cornellRegions(f, assets, kSize);
+  for (auto& [name, mask] : regions.masks) {
+    size_t n = 0;
+    for (uint8_t b : mask) n += b;
+    if (n < 60) continue;
+    double a = luminance(render::meanOver(f.hdr, &mask)), b = luminance(render::meanOver(ref, &mask));
+    if (print) std::printf("    %-16s %.4f / %.4f = %.3f\n", name.c_str(), a, b, a / b);
+    if (std::abs(a / b - 1.0) > m.worstRegion) m.worstRegion = std::abs(a / b - 1.0), m.worstName = name;
+  }
+  return m;
+}
+}  // namespace
+
+TEST_F(RenderTest, BounceTailBringsBothVplTechniquesToThePathTracersManyBounces) {
+  render::ImageRgba reference;
+  for (const char* technique : {"temporal", "many_lights"})
+    for (uint32_t bounces : {1u, 2u, 3u}) {
+      Measure off, on;
+      for (bool tail : {false, true}) {
+        GiRun run(context(), settingsFor(technique, bounces, tail));
+        run.step(3);
+        if (reference.empty()) reference = run.pathTraced(256, kReferenceBounces);
+        Measure m = compare(run.readFrame(), reference, run.assets, bounces == 3);
+        std::printf("%-11s bounces %u tail %-3s: image %.3f of the path tracer's (%u bounces), worst region %s off by %.1f%%\n", technique,
+                    bounces, tail ? "on" : "off", m.mean, kReferenceBounces, m.worstName.c_str(), 100 * m.worstRegion);
+        (tail ? on : off) = m;
+      }
+      EXPECT_LT(std::abs(on.mean - 1.0), std::abs(off.mean - 1.0)) << technique << " at " << bounces << " bounce(s)";
+      if (bounces == 3) {
+        EXPECT_LT(off.mean, 0.95) << technique << ": without the tail 3 bounces miss the later ones";  // measured 0.92
+        EXPECT_NEAR(on.mean, 1.0, 0.03) << technique;  // measured 0.995 (temporal), 1.016 (many lights)
+        // Regions: the dim faces lit only by bounces keep the clamp's loss (issue 16) and, for many lights,
+        // a last bounce already too bright in front of the short box, which the tail scales with the rest
+        // (measured: temporal 12.6% off at worst, many lights 30%; without the tail 27% and 33%).
+        EXPECT_LE(on.worstRegion, std::string(technique) == "temporal" ? 0.15 : 0.35) << technique << ": " << on.worstName;
+      }
+    }
+}
