@@ -8,6 +8,7 @@
 #include "dyngi/gi/scene_surfaces.h"
 #include "sampling.h"
 #include "shaders/shared/bounce_tail.h"
+#include "vpl/emitters.h"
 
 namespace dyngi::gi {
 namespace {
@@ -21,20 +22,6 @@ float uniform01(uint64_t& state) {
 }
 float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 
-// Radiant power of a light (what picks which light a path starts from).
-float lightPower(const render::LightItem& l, const scene::Aabb& bounds) {
-  if (!l.light.enabled) return 0.0f;
-  float i = l.light.intensity * luminance(l.light.color);
-  switch (l.light.type) {
-    case scene::LightType::Point: return i * 4.0f * kPi;
-    case scene::LightType::Spot: return i * 2.0f * kPi * (1.0f - std::cos(std::clamp(l.light.outerConeAngle, 1e-3f, 1.5707f)));
-    case scene::LightType::Directional: {
-      float r = bounds.valid() ? 0.5f * glm::length(bounds.extent()) : 1.0f;
-      return i * kPi * r * r;
-    }
-  }
-  return 0.0f;
-}
 }  // namespace
 
 VplPaths::VplPaths(const TemporalOptions& s) : settings_(s) {
@@ -58,8 +45,22 @@ VplPaths::VplPaths(const TemporalOptions& s) : settings_(s) {
 
 void VplPaths::update(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
                       const std::unordered_set<ecs::Entity>& moved) {
+  cacheEmitterPowers(snapshot, EmitterSet(snapshot, assets));  // what invalidate() compares the paths from emitters with
   invalidate(snapshot, bvh, moved);
   replace(snapshot, bvh, assets);
+}
+
+void VplPaths::cacheEmitterPowers(const render::RenderSnapshot& snapshot, const EmitterSet& emitters) {
+  emitterPowers_.clear();
+  for (const auto& d : snapshot.draws)
+    if (float p = emitters.power(d.entity); p > 0.0f) emitterPowers_.push_back({d.entity, p});
+  emitterTotal_ = emitters.totalPower();
+}
+
+float VplPaths::emitterPower(ecs::Entity entity) const {
+  for (const EmitterPower& e : emitterPowers_)
+    if (e.entity == entity) return e.power;
+  return 0.0f;
 }
 
 void VplPaths::refreshMaterials(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
@@ -74,6 +75,8 @@ void VplPaths::refreshMaterials(const render::RenderSnapshot& snapshot, const Em
       const uint32_t i = path * B + b;
       PathVpl& v = vpls_[i];
       if (!v.valid) break;  // invalid: the rest of the path is reshot anyway
+      // On an emissive source: its flux is the emission, which invalidate() compares; its albedo plays no part.
+      if (b == 0 && pathLight_[path].type == kEmitterSource) continue;
       bool changed = false;
       if (carry) {
         // Cosine sampling: the parent's whole reflected flux travels along the ray.
@@ -145,13 +148,35 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
   stats_.invalidatedThisFrame = 0;
   const float scale = snapshot.sceneBounds.valid() ? std::max(glm::length(snapshot.sceneBounds.extent()), 1e-3f) : 1.0f;
   const float eps = 1e-4f * scale;
-  float totalPower = 0.0f;
+  float totalPower = emitterTotal_;
   for (const auto& l : snapshot.lights) totalPower += lightPower(l, snapshot.sceneBounds);
   for (uint32_t i = 0; i < vpls_.size(); ++i) {
     PathVpl& v = vpls_[i];
     if (!v.valid) continue;
     uint32_t path = i / settings_.vpl.bounces, b = i % settings_.vpl.bounces;
     const LightState& ls = pathLight_[path];
+    if (ls.type == kEmitterSource) {
+      // From an emissive surface: it must still emit what it did, with the same share of the power.
+      const render::DrawItem* draw = nullptr;
+      for (const auto& d : snapshot.draws)
+        if (d.entity == ls.entity) draw = &d;
+      const float power = emitterPower(ls.entity), share = totalPower > 0.0f ? power / totalPower : 0.0f;
+      const bool emits = draw && power > 0.0f && draw->material.emissive == ls.radiant;
+      if (!emits || std::abs(share - ls.probability) > kShareTolerance * ls.probability) {
+        invalidateIndex(path * settings_.vpl.bounces, /*hard=*/true);
+        if (!emits) pathLight_[path].entity = {};
+        continue;
+      }
+      if (!v.placed) continue;
+      if (!v.surface.isNull() && moved.count(v.surface)) {  // the emitter itself (b = 0) or a surface after it
+        invalidateIndex(i);
+        continue;
+      }
+      if (b == 0) continue;  // on the emitter: no ray to it
+      const PathVpl& parent = vpls_[i - 1];
+      if (bvh.occluded(Segment{parent.position + parent.normal * eps * 10.0f, v.position + v.normal * eps * 10.0f}, eps)) invalidateIndex(i);
+      continue;
+    }
     // The light it came from: gone, switched off, moved, turned or changed.
     const render::LightItem* light = nullptr;
     for (const auto& l : snapshot.lights)
@@ -236,17 +261,41 @@ void VplPaths::shootProbe(PathVpl& v, uint64_t& rng, float scale, const EmbreeSc
   if (h.hit && surfaces.at(h, o, v.probeDir, sh)) v.probeAlbedo = sh.diffuseAlbedo, v.probeSurface = sh.entity;
 }
 
-bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const SceneSurfaces& surfaces) {
+bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const SceneSurfaces& surfaces,
+                     const EmitterSet& emitters) {
   uint32_t path = index / settings_.vpl.bounces, b = index % settings_.vpl.bounces;
   uint64_t rng = mix64(settings_.vpl.seed * 0x51ED27ULL + (++shotCounter_) * 0x2545F4914F6CDD1DULL + index);
   const float scale = surfaces.sceneScale();
   glm::vec3 origin, dir, throughput;
   if (b == 0) {
-    // Pick a light in proportion to its power.
-    float total = 0.0f;
-    for (const auto& l : snapshot.lights) total += lightPower(l, snapshot.sceneBounds);
+    // Pick a light or the emissive surfaces in proportion to their power.
+    float lightsTotal = 0.0f;
+    for (const auto& l : snapshot.lights) lightsTotal += lightPower(l, snapshot.sceneBounds);
+    const float total = lightsTotal + emitters.totalPower();
     if (total <= 0.0f) return false;
     float u = uniform01(rng) * total, acc = 0.0f;
+    if (u >= lightsTotal) {
+      // A VPL on an emissive surface (vpl/emitters.h): the path's source and its bounce 0.
+      const float pEmitters = emitters.totalPower() / total;
+      const EmitterSample e = emitters.sample(uniform01(rng), uniform01(rng), uniform01(rng), uniform01(rng));
+      PathVpl v;
+      v.valid = true;
+      if (!e.entity.isNull()) {
+        v.placed = true;
+        v.position = e.position;
+        v.normal = e.normal;
+        v.flux = v.incident = e.flux / (pEmitters * float(paths_));
+        v.albedo = glm::vec3(1.0f);
+        v.surface = e.entity;
+        if (settings_.vpl.bounceTail && settings_.vpl.bounces == 1) shootProbe(v, rng, scale, bvh, surfaces);
+      }
+      glm::vec3 emissive(0.0f);
+      for (const auto& d : snapshot.draws)
+        if (d.entity == e.entity) emissive = d.material.emissive;
+      pathLight_[path] = LightState{e.entity, {}, {}, emissive, 0, 0, 0, kEmitterSource, emitters.power(e.entity) / total};
+      vpls_[index] = v;
+      return true;
+    }
     const render::LightItem* light = nullptr;
     for (const auto& l : snapshot.lights) {
       float p = lightPower(l, snapshot.sceneBounds);
@@ -342,6 +391,8 @@ void VplPaths::replace(const render::RenderSnapshot& snapshot, const EmbreeScene
     budget = std::max(budget, std::min(invalid, settings_.reshootBurst));
   }
   SceneSurfaces surfaces(snapshot, assets);
+  const EmitterSet emitters(snapshot, assets);
+  cacheEmitterPowers(snapshot, emitters);
   for (uint32_t visited = 0; visited < n && budget > 0; ++visited) {
     uint32_t i = cursor_;
     cursor_ = (cursor_ + 1) % n;
@@ -356,7 +407,7 @@ void VplPaths::replace(const render::RenderSnapshot& snapshot, const EmbreeScene
     for (uint32_t j = first; j <= i && budget > 0; ++j) {
       const uint32_t path = j / settings_.vpl.bounces;
       const bool hadNoLight = pathLight_[path].entity.isNull();
-      if (!shoot(j, snapshot, bvh, surfaces)) break;
+      if (!shoot(j, snapshot, bvh, surfaces, emitters)) break;
       if (j % settings_.vpl.bounces == 0) hard = hadNoLight;
       --budget;
       ++stats_.replacedThisFrame;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/gtc/quaternion.hpp>
+#include <glm/gtx/quaternion.hpp>
 
 #include "dyngi/engine/scene/transform_system.h"
 #include "dyngi/gi/vpl_paths.h"
@@ -388,4 +389,119 @@ TEST(VplPaths, BounceTailRatioIsTheAlbedoInAClosedBoxAndZeroOverALoneFloor) {
   EXPECT_EQ(open, glm::vec3(1.0f));
   // Off, nothing is scaled.
   EXPECT_EQ(gi::VplPaths(gi::TemporalOptions{}).bounceTailScale(), glm::vec3(1.0f));
+}
+
+namespace {
+float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+// A closed 2 m box (albedo 0.5) with a 0.4 m emissive panel under its top, facing down; optionally a
+// spot light too, shining down onto the floor (never onto the panel).
+struct EmitterRoom {
+  ecs::World world;
+  AssetStore assets;
+  ecs::Scheduler scheduler;
+  gi::EmbreeScene bvh;
+  Entity panel, light;
+  static constexpr glm::vec3 kRadiance{4.0f, 2.0f, 1.0f};
+  static constexpr float kSide = 0.4f;
+  explicit EmitterRoom(bool withLight) {
+    scheduler.add(ecs::Phase::PostUpdate, std::make_unique<TransformSystem>());
+    Entity room = world.create();
+    world.add(room, Transform{});
+    world.add(room, MeshInstance{assets.addMesh(makeBox({1, 1, 1})), true});
+    world.add(room, Material{.baseColor = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f)});
+    panel = world.create();
+    world.add(panel, Transform{});
+    world.add(panel, MeshInstance{assets.addMesh(makeQuad({-kSide / 2, 0.8f, -kSide / 2}, {kSide, 0, 0}, {0, 0, kSide})), true});
+    world.add(panel, Material{.baseColor = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), .emissive = kRadiance});
+    if (withLight) {
+      light = world.create();
+      Transform lt;
+      lt.translation = {0.3f, -0.5f, 0.2f};
+      lt.rotation = glm::rotation(glm::vec3(0, 0, -1), glm::vec3(0, -1, 0));  // lights shine along local -Z
+      world.add(light, lt);
+      world.add(light, Light{.type = LightType::Spot, .intensity = 2.0f});
+    }
+  }
+  render::RenderSnapshot frame(std::unordered_set<ecs::Entity>* moved = nullptr) {
+    ecs::Tick since = world.tick() - 1;
+    scheduler.runFrame(world, {});
+    if (moved) {
+      moved->clear();
+      world.forEachChanged<WorldTransform>(since, [&](ecs::Entity e) { moved->insert(e); });
+    }
+    bvh.sync(world, assets, since);
+    return render::extractSnapshot(world, assets, 0);
+  }
+};
+}  // namespace
+
+// Paths from an emissive panel (vpl/emitters.h): their first VPLs lie on the panel, face the way it emits,
+// and carry exactly its flux (uniform radiance: 2 pi A L over both sides, every sample the same share).
+TEST(VplPaths, EmissivePanelStartsPathsOnItselfWithItsExactFlux) {
+  EmitterRoom room(false);
+  auto snap = room.frame();
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 2000, .bounces = 2}, .reshootBudget = 100000});
+  paths.update(snap, room.bvh, room.assets, {});
+  ASSERT_EQ(paths.stats().valid, 2000u);
+  glm::dvec3 flux(0.0);
+  uint32_t down = 0, onPanel = 0, bounced = 0;
+  for (uint32_t i = 0; i < 2000; i += 2) {
+    const gi::PathVpl& v = paths.vpls()[i];
+    ASSERT_TRUE(v.placed);
+    flux += glm::dvec3(v.flux);
+    onPanel += std::abs(v.position.y - 0.8f) < 1e-4f && std::abs(v.position.x) <= 0.2001f && std::abs(v.position.z) <= 0.2001f;
+    down += v.normal.y < -0.99f;
+    bounced += paths.vpls()[i + 1].placed && luminance(paths.vpls()[i + 1].flux) > 0.0f;
+  }
+  const glm::dvec3 expected = glm::dvec3(EmitterRoom::kRadiance) * (2.0 * 3.14159265358979 * EmitterRoom::kSide * EmitterRoom::kSide);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(flux[c] / expected[c], 1.0, 1e-4) << c;
+  EXPECT_EQ(onPanel, 1000u);
+  EXPECT_NEAR(down / 1000.0, 0.5, 0.06) << "both sides emit";
+  EXPECT_EQ(bounced, 1000u) << "a closed room: every path's second VPL lands";
+}
+
+// An emitter competes with the lights by power, and its paths follow it: moved, it invalidates them (and
+// only them); its emission changed or switched off, they are redrawn (hard), and off, none starts from it.
+TEST(VplPaths, EmitterPathsShareByPowerAndFollowTheEmitter) {
+  EmitterRoom room(true);
+  std::unordered_set<ecs::Entity> moved;
+  auto snap = room.frame(&moved);
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 4000, .bounces = 1}, .reshootBudget = 100000});
+  paths.update(snap, room.bvh, room.assets, moved);
+  auto fromPanel = [&] {
+    uint32_t n = 0;
+    for (const gi::PathVpl& v : paths.vpls()) n += v.valid && v.placed && v.surface == room.panel;
+    return n;
+  };
+  // Power: the panel 2 pi A L (luminance), the spot 2 pi I (1 - cos outer).
+  const float panelPower = 2.0f * 3.14159265f * EmitterRoom::kSide * EmitterRoom::kSide * luminance(EmitterRoom::kRadiance);
+  const float lightPower = 2.0f * 2.0f * 3.14159265f * (1.0f - std::cos(Light{}.outerConeAngle));
+  const double share = panelPower / (panelPower + lightPower), n = 4000;
+  EXPECT_NEAR(fromPanel() / n, share, 4.0 * std::sqrt(share * (1 - share) / n)) << "paths drawn by power";
+
+  // Moved: exactly its paths are invalid.
+  const uint32_t before = fromPanel();
+  room.world.write<Transform>(room.panel).translation = {0.1f, -0.05f, 0.0f};
+  snap = room.frame(&moved);
+  ASSERT_TRUE(moved.count(room.panel));
+  paths.invalidate(snap, room.bvh, moved);
+  EXPECT_EQ(paths.stats().invalidatedThisFrame, before);
+  paths.replace(snap, room.bvh, room.assets);
+  EXPECT_EQ(paths.stats().valid, 4000u);
+
+  // Emission changed: its paths are redrawn, hard (their sets' stored light says little now).
+  for (uint32_t s = 0; s < paths.settings().temporalSets; ++s) paths.markSetRendered(s);
+  room.world.write<Material>(room.panel).emissive = EmitterRoom::kRadiance * 2.0f;
+  snap = room.frame(&moved);
+  paths.update(snap, room.bvh, room.assets, moved);
+  EXPECT_GT(paths.setStaleFraction(0), 0.3f);
+  EXPECT_NEAR(fromPanel() / n, 2 * panelPower / (2 * panelPower + lightPower), 0.05);
+
+  // Switched off: nothing starts from it any more.
+  room.world.write<Material>(room.panel).emissive = glm::vec3(0.0f);
+  snap = room.frame(&moved);
+  paths.update(snap, room.bvh, room.assets, moved);
+  EXPECT_EQ(fromPanel(), 0u);
+  EXPECT_EQ(paths.stats().valid, 4000u);
 }

@@ -1,10 +1,12 @@
 #include "render/render_fixture.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <string>
 
 #include "dyngi/engine/ecs/scheduler.h"
+#include "dyngi/engine/render/image_io.h"
 #include "dyngi/engine/scene/transform_system.h"
 
 namespace dyngi::test {
@@ -90,6 +92,16 @@ bool segmentHitsBox(const glm::vec3& a, const glm::vec3& b, const Obb& box, floa
     if (t0 > t1) return false;
   }
   return true;
+}
+
+void dumpTestImage(const std::string& name, const std::vector<glm::vec4>& img, uint32_t w, uint32_t h) {
+  const char* dir = std::getenv("DYNGI_TEST_IMAGES");
+  if (!dir) return;
+  render::writeExr(std::string(dir) + "/" + name + ".exr", w, h, img);
+  std::vector<uint8_t> px(size_t(w) * h * 4, 255);
+  for (size_t i = 0; i < size_t(w) * h; ++i)
+    for (int c = 0; c < 3; ++c) px[i * 4 + c] = uint8_t(std::lround(255.0 * std::pow(std::clamp(double(img[i][c]) * 2.0, 0.0, 1.0), 1.0 / 2.2)));
+  render::writePng(std::string(dir) + "/" + name + ".png", w, h, px);
 }
 
 }  // namespace dyngi::test

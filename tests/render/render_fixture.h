@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "dyngi/engine/ecs/world.h"
@@ -31,6 +32,10 @@ class RenderTest : public ::testing::Test {
   Frame render(ecs::World& world, scene::AssetStore& assets, uint32_t width, uint32_t height,
                const render::RendererSettings& settings = {}, int frames = 1);
 };
+
+// DYNGI_TEST_IMAGES=dir: tests write the images they compare there as EXR and PNG (x2, gamma 2.2), for
+// a person to look at; without it nothing is written.
+void dumpTestImage(const std::string& name, const std::vector<glm::vec4>& img, uint32_t width, uint32_t height);
 
 // An oriented box (unit cube scaled by halfExtent, then `model`), for CPU visibility checks.
 struct Obb {

@@ -45,16 +45,7 @@ gi::GiSettings vctSettings() {
   return *static_cast<gi::VoxelConeTracing*>(features.at(0));
 }
 
-// DYNGI_TEST_IMAGES=dir: tests write the images they compare there (for a person to look at).
-void dump(const std::string& name, const render::ImageRgba& img, uint32_t w, uint32_t h) {
-  const char* dir = std::getenv("DYNGI_TEST_IMAGES");
-  if (!dir) return;
-  render::writeExr(std::string(dir) + "/" + name + ".exr", w, h, img);
-  std::vector<uint8_t> px(size_t(w) * h * 4, 255);
-  for (size_t i = 0; i < size_t(w) * h; ++i)
-    for (int c = 0; c < 3; ++c) px[i * 4 + c] = uint8_t(std::lround(255.0 * std::pow(std::clamp(double(img[i][c]) * 2.0, 0.0, 1.0), 1.0 / 2.2)));
-  render::writePng(std::string(dir) + "/" + name + ".png", w, h, px);
-}
+void dump(const std::string& name, const render::ImageRgba& img, uint32_t w, uint32_t h) { dumpTestImage(name, img, w, h); }
 
 double lum(const glm::dvec3& c) { return luminance(c); }
 

@@ -17,6 +17,8 @@
 #include "spirv/vpl_tail.comp.spv.h"
 
 #include "gpu_aliases.h"
+#include "sampling.h"
+#include "vpl/emitters.h"
 
 namespace dyngi::gi {
 
@@ -64,6 +66,36 @@ ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const Man
 }
 
 ManyLights::~ManyLights() = default;
+
+static_assert(sizeof(gpu::GpuVpl) == 48, "ManyLights::EmitterVpl mirrors gpu::GpuVpl");
+
+void ManyLights::prepareEmitters(const render::RenderSnapshot& snapshot, const scene::AssetStore& assets) {
+  emitterVpls_.clear();
+  const EmitterSet emitters(snapshot, assets);
+  if (emitters.empty()) return;
+  float lightsPower = 0.0f;
+  for (const render::LightItem& l : snapshot.lights) lightsPower += lightPower(l, snapshot.sceneBounds);
+  const uint32_t bounces = std::clamp(settings_.vpl.bounces, 1u, 3u), perBounce = vplCount() / bounces;
+  // The emitters' share of the first bounce, at least one VPL while they emit, and one left to the RSMs
+  // while a light does.
+  const float share = emitters.totalPower() / (emitters.totalPower() + lightsPower);
+  uint32_t n = std::max(1u, uint32_t(std::lround(share * float(perBounce))));
+  if (lightsPower > 0.0f) n = std::min(n, perBounce - 1);
+  for (uint32_t k = 0; k < n; ++k) {
+    uint64_t h = mix64(uint64_t(settings_.vpl.seed) * 0x9E3779B97F4A7C15ULL + k);
+    auto next = [&h] { h = mix64(h + 0x632BE59BD9B4E019ULL); return float(h >> 40) * (1.0f / 16777216.0f); };
+    const float u0 = (float(k) + next()) / float(n);  // stratified over the emitters' power
+    const EmitterSample e = emitters.sample(u0, next(), next(), next());
+    EmitterVpl v{glm::vec4(0, 0, 0, -1), glm::vec4(0, 1, 0, 0), glm::vec4(0.0f)};
+    if (!e.entity.isNull()) {
+      const glm::vec3 flux = e.flux / float(n);
+      v.position = glm::vec4(e.position, 0.0f);  // bounce 0: the source itself
+      v.normal = glm::vec4(e.normal, 0.0f);
+      v.flux = glm::vec4(flux, emitterLuminance(flux));
+    }
+    emitterVpls_.push_back(v);
+  }
+}
 
 void ManyLights::ensureRsm(uint32_t layers) {
   layers = std::max(layers, 1u);
@@ -129,7 +161,17 @@ void ManyLights::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   // With the bounce tail, one more bounce of probes follows the gathered ones.
   VkDeviceSize vplBytes = VkDeviceSize(perBounce_) * (settings_.vpl.bounces + (settings_.vpl.bounceTail ? 1 : 0)) * sizeof(gpu::GpuVpl);
   if (!vpls_.valid() || vpls_.size() < vplBytes)
-    vpls_ = Buffer(ctx_, vplBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "vpls");
+    vpls_ = Buffer(ctx_, vplBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::GpuOnly, "vpls");
+  // The emitters' VPLs close the first bounce: [perBounce - n, perBounce) (prepareEmitters sized them
+  // with this frame's VPL count).
+  if (emitterVpls_.size() > perBounce_) emitterVpls_.resize(perBounce_);
+  for (uint32_t k = 0; k < emitterVpls_.size(); ++k) emitterVpls_[k].normal.w = float(perBounce_ - uint32_t(emitterVpls_.size()) + k);
+  const VkDeviceSize emitterBytes = emitterVpls_.size() * sizeof(EmitterVpl);
+  if (emitterBytes > 0) {
+    if (!emitterUpload_.valid() || emitterUpload_.size() < emitterBytes)
+      emitterUpload_ = Buffer(ctx_, emitterBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "emitter vpls");
+    emitterUpload_.upload(emitterVpls_.data(), emitterBytes);
+  }
 }
 
 render::Pipeline& ManyLights::rsmPipelineFor(bool baseColorTexture) {
@@ -224,10 +266,15 @@ bool ManyLights::record(render::FrameContext& frame) {
         .storageBuffer(DYNGI_VPL_SAMPLE_BINDING_ROW_CDF, rowCdf_.handle())
         .storageBuffer(DYNGI_VPL_SAMPLE_BINDING_VPLS, vpls_.handle())
         .push(ctx_, cmd, sample_);
-    const gpu::VplSamplePush sp{res, rsmLayers_, perBounce_, settings_.vpl.seed * 7919u};
+    const uint32_t fromEmitters = uint32_t(emitterVpls_.size()), fromLights = perBounce_ - fromEmitters;
+    const gpu::VplSamplePush sp{res, rsmLayers_, fromLights, settings_.vpl.seed * 7919u};
     vkCmdPushConstants(cmd, sample_.layout(), kCS, 0, sizeof(sp), &sp);
-    vkCmdDispatch(cmd, dispatchGroups(perBounce_, 64), 1, 1);
-    render::computeWriteBarrier(cmd);
+    if (fromLights > 0) vkCmdDispatch(cmd, dispatchGroups(fromLights, 64), 1, 1);
+    if (fromEmitters > 0) {  // the emitters' VPLs, sampled on the CPU, after the lights'
+      const VkBufferCopy region{0, VkDeviceSize(fromLights) * sizeof(gpu::GpuVpl), VkDeviceSize(fromEmitters) * sizeof(gpu::GpuVpl)};
+      vkCmdCopyBuffer(cmd, emitterUpload_.handle(), vpls_.handle(), 1, &region);
+    }
+    render::computeWriteBarrier(cmd);  // compute and transfer writes
   }
 
   const uint32_t bounceLevels = settings_.vpl.bounces + (settings_.vpl.bounceTail ? 1u : 0u);  // the tail's probes: one more

@@ -20,8 +20,9 @@ namespace {
 class ManyLightsTechnique final : public Technique {
  public:
   ManyLightsTechnique(const TechniqueServices& services, const ManyLightsOptions& options)
-      : feature_(services.ctx, *services.voxels, options) {}
+      : assets_(services.assets), feature_(services.ctx, *services.voxels, options) {}
   std::vector<render::RenderFeature*> features() override { return {&feature_}; }
+  void update(const TechniqueFrame& frame) override { feature_.prepareEmitters(frame.snapshot, assets_); }
   std::vector<OptionRef> options() override { return bindOptions(feature_.settings()); }
   bool setDebugView(std::string_view name) override {
     ManyLightsView& v = feature_.settings().view;
@@ -45,6 +46,7 @@ class ManyLightsTechnique final : public Technique {
   ManyLights& feature() { return feature_; }
 
  private:
+  const scene::AssetStore& assets_;
   ManyLights feature_;
 };
 

@@ -6,6 +6,7 @@
 // indirect, filter (plus the voxel scene's voxelize and svo_build).
 #include <algorithm>
 #include <memory>
+#include <vector>
 
 #include "dyngi/engine/render/pipeline.h"
 #include "dyngi/engine/render/render_feature.h"
@@ -35,6 +36,12 @@ class ManyLights final : public render::RenderFeature {
     return perFrame_ ? std::clamp(perFrame_ / b * b, b, requested) : requested;
   }
   void setVplsPerFrame(uint32_t count) { perFrame_ = count; }
+  // Emissive surfaces as VPL sources (vpl/emitters.h), before prepare(): the first bounce's VPLs are
+  // split between the RSMs and the emitters in proportion to the lights' and the emitters' power; the
+  // emitters' are sampled here on the CPU (stratified, the same every frame while nothing changes).
+  // Without a call (the feature used on its own) only the lights make VPLs.
+  void prepareEmitters(const render::RenderSnapshot& snapshot, const scene::AssetStore& assets);
+  uint32_t emitterVplCount() const { return uint32_t(emitterVpls_.size()); }
 
  private:
   friend std::vector<VplReadback> readbackVpls(ManyLights&, bool);  // tests (gi_module/testing)
@@ -47,6 +54,11 @@ class ManyLights final : public render::RenderFeature {
   uint32_t perFrame_ = 0;  // a GI budget's VPL count (0: the options')
   render::Image rsmPosition_, rsmNormal_, rsmFlux_, rsmDepth_;
   render::Buffer layers_, lights_, rowPrefix_, rowCdf_, vpls_;
+  struct EmitterVpl {  // gpu::GpuVpl's layout
+    glm::vec4 position, normal, flux;
+  };
+  std::vector<EmitterVpl> emitterVpls_;  // this frame's VPLs on emissive surfaces (prepareEmitters)
+  render::Buffer emitterUpload_;
   render::Image raw_;
   // One RSM pipeline per material kind (base-colour texture or not), made on first use: lavapipe would
   // run the lookup of a branch not taken.

@@ -9,8 +9,9 @@
 //     or when it left its spot light's cone; invalidating a VPL invalidates its children;
 //  2. replacement: at most `reshootBudget` VPLs are reshot (all invalid ones, up to `reshootBurst`, when
 //     more are invalid: a light switched or moved), found by a round-robin cursor that goes on where the
-//     last frame stopped; a VPL is reshot only when its parent is valid. Light rays sample the
-//     light's emission (a spot's cone, a point's sphere, a directional light's beam over the scene),
+//     last frame stopped; a VPL is reshot only when its parent is valid. A path starts from a light or
+//     an emissive surface, in proportion to their power (an emissive surface's bounce-0 VPL lies on it,
+//     vpl/emitters.h). Light rays sample the light's emission (a spot's cone, a point's sphere, a directional light's beam over the scene),
 //     VPL rays a cosine hemisphere; the closest hit comes from Embree and the flux from the hit's
 //     material (texture via barycentrics). A ray that leaves the scene makes a valid VPL with no flux
 //     (the estimator's zero), so reshooting always completes.
@@ -111,17 +112,29 @@ class VplPaths {
     float probability = 0;  // the chance this light had of being picked (its share of the lights' power)
     bool operator==(const LightState&) const = default;
   };
+  // Paths whose source is an emissive surface (vpl/emitters.h) rather than a light: LightState::type.
+  static constexpr uint32_t kEmitterSource = 3;
+  struct EmitterPower {
+    ecs::Entity entity;
+    float power;
+  };
+  float emitterPower(ecs::Entity entity) const;
+  void cacheEmitterPowers(const render::RenderSnapshot& snapshot, const class EmitterSet& emitters);
   void invalidateIndex(uint32_t index, bool hard = false);
   void markChanged(uint32_t index, bool hard);  // counts a VPL once per set rendering (and once more if hard)
   bool lightJumped(const LightState& from, glm::vec3 position, glm::vec3 direction, float scale) const;
   void shootProbe(PathVpl& v, uint64_t& rng, float scale, const EmbreeScene& bvh, const class SceneSurfaces& surfaces) const;
-  bool shoot(uint32_t index, const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const class SceneSurfaces& surfaces);
+  bool shoot(uint32_t index, const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const class SceneSurfaces& surfaces,
+             const class EmitterSet& emitters);
 
   TemporalOptions settings_;
   uint32_t reshootBudget_ = 0;  // per frame, as used (settings_.reshootBudget, or one set's worth for 0)
   uint32_t paths_ = 0;
   std::vector<PathVpl> vpls_;
   std::vector<LightState> pathLight_;   // per path: the light state its bounce-0 VPL was shot from
+  // The emissive surfaces' power at the last update() (what invalidate() compares paths against).
+  std::vector<EmitterPower> emitterPowers_;
+  float emitterTotal_ = 0.0f;
   std::vector<uint8_t> changedSinceRendered_;  // per VPL: 0 no, 1 soft, 2 hard change since its set was rendered
   std::vector<uint32_t> setChanges_;           // per set: its VPLs changed since it was rendered
   std::vector<uint32_t> setHardChanges_;       // ... of which hard
