@@ -34,11 +34,17 @@ int loadScene(const Options& o, ecs::World& world, scene::AssetStore& assets) {
                    names.empty() ? "none" : names.c_str());
       return 2;
     }
+    if (!report.ignoredExtensions.empty()) {
+      std::string names;
+      for (auto& e : report.ignoredExtensions) names += (names.empty() ? "" : ", ") + e;
+      std::fprintf(stderr, "dyngi_sample: note: %s uses glTF extensions dyngi ignores (optional in the file): %s\n", o.scene.c_str(),
+                   names.c_str());
+    }
     if (addDefaultLightIfUnlit(world))
       std::fprintf(stderr, "dyngi_sample: note: %s has no lights and no emissive surfaces; added a default directional light\n",
                    o.scene.c_str());
     else if (report.lights == 0)
-      std::fprintf(stderr, "dyngi_sample: note: %s has no punctual lights; direct light comes from emissive surfaces only\n",
+      std::fprintf(stderr, "dyngi_sample: note: %s has no punctual lights; its light comes from emissive surfaces only\n",
                    o.scene.c_str());
   }
 

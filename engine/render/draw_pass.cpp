@@ -1,5 +1,7 @@
 #include "dyngi/engine/render/draw_pass.h"
 
+#include "shared/gpu_types.h"
+
 #include <stdexcept>
 
 namespace dyngi::render {
@@ -36,6 +38,13 @@ RenderingScope::RenderingScope(VkCommandBuffer cmd, uint32_t width, uint32_t hei
 }
 
 RenderingScope::~RenderingScope() { vkCmdEndRendering(cmd_); }
+
+uint32_t materialTextureBits(const scene::Material& m) {
+  return (m.baseColorTexture != scene::kNoTexture ? DYNGI_MATERIAL_BASE_COLOR_TEX : 0u) |
+         (m.emissiveTexture != scene::kNoTexture ? DYNGI_MATERIAL_EMISSIVE_TEX : 0u) |
+         (m.metallicRoughnessTexture != scene::kNoTexture ? DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX : 0u) |
+         (m.occlusionTexture != scene::kNoTexture ? DYNGI_MATERIAL_OCCLUSION_TEX : 0u);
+}
 
 void drawEach(const FrameContext& frame, std::optional<std::span<const size_t>> indices, const DrawPipelineFor& pipelineFor,
               const DrawSetup& setup) {

@@ -159,6 +159,8 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
   for (const DrawItem& d : snapshot.draws) {  // create textures before recording starts
     textures(d.material.baseColorTexture);
     textures(d.material.emissiveTexture);
+    textures(d.material.metallicRoughnessTexture);
+    textures(d.material.occlusionTexture);
   }
   for (RenderFeature* f : features_) f->prepare(ctx_, snapshot);
   shadow_->prepare(snapshot);

@@ -123,6 +123,11 @@ class Importer {
       : model_(model), world_(world), assets_(assets), opts_(opts) {}
 
   ImportReport run() {
+    // Extensions: a required one the import cannot honour would render the file wrong; refuse it.
+    for (const std::string& e : model_.extensionsRequired)
+      if (!supported(e)) fail("requires the glTF extension " + e + ", which dyngi does not support");
+    for (const std::string& e : model_.extensionsUsed)
+      if (!supported(e)) report_.ignoredExtensions.push_back(e);
     // Phase 1: read and validate everything without touching the world.
     meshes_.resize(model_.meshes.size());
     for (size_t m = 0; m < model_.meshes.size(); ++m) meshes_[m] = readMesh(int(m));
@@ -158,7 +163,19 @@ class Importer {
     materialsByMesh_.resize(meshes_.size());
     for (size_t m = 0; m < meshes_.size(); ++m)
       for (auto& p : meshes_[m]) materialsByMesh_[m].push_back(p.material);
-    for (size_t t = 0; t < model_.textures.size(); ++t) textureIds_.push_back(commitTexture(t));
+    // Colour textures (base colour, emission) are sRGB, data textures (metallic-roughness, occlusion)
+    // linear; a texture used both ways is committed twice.
+    std::vector<bool> colourUse(model_.textures.size(), false), dataUse(model_.textures.size(), false);
+    for (const auto& m : model_.materials) {
+      for (int t : {m.pbrMetallicRoughness.baseColorTexture.index, m.emissiveTexture.index})
+        if (t >= 0) colourUse[size_t(t)] = true;
+      for (int t : {m.pbrMetallicRoughness.metallicRoughnessTexture.index, m.occlusionTexture.index})
+        if (t >= 0) dataUse[size_t(t)] = true;
+    }
+    for (size_t t = 0; t < model_.textures.size(); ++t) {
+      textureIds_.push_back(colourUse[t] || !dataUse[t] ? commitTexture(t, /*srgb=*/true) : kNoTexture);
+      linearTextureIds_.push_back(dataUse[t] ? commitTexture(t, /*srgb=*/false) : kNoTexture);
+    }
     for (auto& prims : meshes_) {
       std::vector<MeshId> ids;
       for (auto& p : prims) ids.push_back(assets_.addMesh(std::move(p.mesh)));
@@ -289,6 +306,11 @@ class Importer {
     }
   }
 
+  static bool supported(const std::string& extension) {
+    const auto& all = supportedGltfExtensions();
+    return std::find(all.begin(), all.end(), extension) != all.end();
+  }
+
   void checkMaterials() {
     auto checkTex = [&](int t, const std::string& where) {
       if (t < 0) return;
@@ -305,6 +327,8 @@ class Importer {
       std::string where = "material " + std::to_string(i);
       checkTex(m.pbrMetallicRoughness.baseColorTexture.index, where);
       checkTex(m.emissiveTexture.index, where);
+      checkTex(m.pbrMetallicRoughness.metallicRoughnessTexture.index, where);
+      checkTex(m.occlusionTexture.index, where);
     }
     for (auto& prims : meshes_)
       for (auto& p : prims)
@@ -331,10 +355,11 @@ class Importer {
     return int(numberOr(it->second, "light", -1));
   }
 
-  TextureId commitTexture(size_t t) {
+  TextureId commitTexture(size_t t, bool srgb) {
     const auto& img = model_.images[size_t(model_.textures[t].source)];
     TextureData tex;
     tex.name = img.name;
+    tex.srgb = srgb;
     tex.width = uint32_t(img.width);
     tex.height = uint32_t(img.height);
     tex.rgba8.resize(size_t(tex.width) * tex.height * 4);
@@ -369,6 +394,11 @@ class Importer {
       strength = float(numberOr(it->second, "emissiveStrength", 1.0));
     for (int i = 0; i < 3 && size_t(i) < m.emissiveFactor.size(); ++i) mat.emissive[i] = float(m.emissiveFactor[size_t(i)]) * strength;
     if (m.emissiveTexture.index >= 0) mat.emissiveTexture = textureIds_[size_t(m.emissiveTexture.index)];
+    if (pbr.metallicRoughnessTexture.index >= 0) mat.metallicRoughnessTexture = linearTextureIds_[size_t(pbr.metallicRoughnessTexture.index)];
+    if (m.occlusionTexture.index >= 0) {
+      mat.occlusionTexture = linearTextureIds_[size_t(m.occlusionTexture.index)];
+      mat.occlusionStrength = std::clamp(float(m.occlusionTexture.strength), 0.0f, 1.0f);
+    }
     return mat;
   }
 
@@ -571,7 +601,8 @@ class Importer {
   std::vector<std::vector<PendingPrimitive>> meshes_;
   std::vector<std::vector<int>> materialsByMesh_;
   std::vector<std::vector<MeshId>> meshIds_;
-  std::vector<TextureId> textureIds_;
+  std::vector<TextureId> textureIds_;        // per glTF texture: its sRGB copy (colour uses)
+  std::vector<TextureId> linearTextureIds_;  // ... and its linear copy (data uses)
   std::vector<Entity> nodeEntities_;
   struct PendingSkin {
     Entity entity;
@@ -584,6 +615,11 @@ class Importer {
 };
 
 }  // namespace
+
+const std::vector<std::string>& supportedGltfExtensions() {
+  static const std::vector<std::string> all = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+  return all;
+}
 
 namespace {
 // Runs the importer on a parsed model; turns every error into "<name>: <problem>".

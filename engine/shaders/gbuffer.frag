@@ -5,10 +5,14 @@
 layout(set = 0, binding = DYNGI_GBUFFER_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = DYNGI_GBUFFER_BINDING_BASE_COLOR_TEX) uniform sampler2D baseColorTex;
 layout(set = 0, binding = DYNGI_GBUFFER_BINDING_EMISSIVE_TEX) uniform sampler2D emissiveTex;
+layout(set = 0, binding = DYNGI_GBUFFER_BINDING_METALLIC_ROUGHNESS_TEX) uniform sampler2D metallicRoughnessTex;
+layout(set = 0, binding = DYNGI_GBUFFER_BINDING_OCCLUSION_TEX) uniform sampler2D occlusionTex;
 layout(push_constant) uniform Push { GBufferPush pc; };
 // Material variants (GBufferPass::pipelineFor): the texture lookups are compiled in only when used.
 layout(constant_id = 0) const bool kBaseColorTexture = true;
 layout(constant_id = 1) const bool kEmissiveTexture = true;
+layout(constant_id = 2) const bool kMetallicRoughnessTexture = true;
+layout(constant_id = 3) const bool kOcclusionTexture = true;
 
 layout(location = 0) in vec3 inWorldPos;
 layout(location = 1) in vec3 inNormal;
@@ -17,18 +21,26 @@ layout(location = 2) in vec2 inUv;
 layout(location = 0) out vec4 outPosition;  // xyz world, w 1 = geometry
 layout(location = 1) out vec4 outNormal;    // xyz world normal facing the camera, w roughness
 layout(location = 2) out vec4 outAlbedo;    // rgb linear base colour, a metallic
-layout(location = 3) out vec4 outEmissive;  // rgb emitted radiance
+layout(location = 3) out vec4 outEmissive;  // rgb emitted radiance, a the share of indirect light that reaches it (occlusion texture)
 
 void main() {
   vec4 base = pc.baseColor;
   if (kBaseColorTexture) base *= texture(baseColorTex, inUv);
   vec3 emissive = pc.emissive.rgb;
   if (kEmissiveTexture) emissive *= texture(emissiveTex, inUv).rgb;
+  float metallic = pc.params.x, roughness = pc.params.y;
+  if (kMetallicRoughnessTexture) {
+    vec4 mr = texture(metallicRoughnessTex, inUv);  // glTF: roughness in G, metallic in B
+    roughness *= mr.g;
+    metallic *= mr.b;
+  }
+  float occlusion = 1.0;
+  if (kOcclusionTexture) occlusion = 1.0 + pc.emissive.w * (texture(occlusionTex, inUv).r - 1.0);
   vec3 n = normalize(inNormal);
   // Surfaces are lit on the side the camera sees (glTF double-sided / thin walls).
   if (dot(n, frame.cameraPos.xyz - inWorldPos) < 0.0) n = -n;
   outPosition = vec4(inWorldPos, 1.0);
-  outNormal = vec4(n, pc.params.y);
-  outAlbedo = vec4(base.rgb, pc.params.x);
-  outEmissive = vec4(emissive, 1.0);
+  outNormal = vec4(n, roughness);
+  outAlbedo = vec4(base.rgb, metallic);
+  outEmissive = vec4(emissive, occlusion);
 }

@@ -61,19 +61,21 @@ void main() {
   vec3 n = normalize(normalRough.xyz);
   vec4 albedoMetal = imageLoad(gAlbedo, px);
   vec3 diffuse = albedoMetal.rgb * (1.0 - albedoMetal.a) / PI;
-  vec3 radiance = imageLoad(gEmissive, px).rgb;
+  vec4 emissiveOcclusion = imageLoad(gEmissive, px);
+  vec3 radiance = emissiveOcclusion.rgb;
+  float occlusion = emissiveOcclusion.a;  // the material's occlusion texture: indirect light only
   // A do-while: lavapipe runs a for loop's body once more, masked, before it sees every lane has left,
   // which here would cost a whole light (shadow lookups included) per pixel.
   uint count = frame.sizeAndCount.z, i = 0u;
   do {
     if (i < count) radiance += diffuse * directLight(lights[i], pos.xyz, n);
   } while (++i < count);
-  if (hasIndirect != 0u) radiance += albedoMetal.rgb * (1.0 - albedoMetal.a) * imageLoad(indirect, px).rgb;
+  if (hasIndirect != 0u) radiance += occlusion * albedoMetal.rgb * (1.0 - albedoMetal.a) * imageLoad(indirect, px).rgb;
   if (kSpecular) {
     // Dielectrics reflect 4 percent at normal incidence, metals their base colour.
     vec3 f0 = mix(vec3(0.04), albedoMetal.rgb, albedoMetal.a);
     float nDotV = clamp(dot(n, normalize(frame.cameraPos.xyz - pos.xyz)), 0.0, 1.0);
-    radiance += specularColour(f0, normalRough.w, nDotV) * imageLoad(specular, px).rgb;
+    radiance += occlusion * specularColour(f0, normalRough.w, nDotV) * imageLoad(specular, px).rgb;
   }
   imageStore(outHdr, px, vec4(radiance, 1.0));
 }

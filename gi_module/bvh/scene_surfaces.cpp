@@ -44,7 +44,10 @@ bool SceneSurfaces::at(const RayHit& h, const glm::vec3& origin, const glm::vec3
   glm::vec2 uv(0.0f);
   if (m.uvs.size() == m.positions.size()) uv = w0 * m.uvs[i0] + h.u * m.uvs[i1] + h.v * m.uvs[i2];
   if (mat.baseColorTexture != scene::kNoTexture && mat.baseColorTexture < assets_.textureCount()) base *= texel(mat.baseColorTexture, uv);
-  out.diffuseAlbedo = base * (1.0f - mat.metallic);
+  float metallic = mat.metallic;
+  if (mat.metallicRoughnessTexture != scene::kNoTexture && mat.metallicRoughnessTexture < assets_.textureCount())
+    metallic *= texel(mat.metallicRoughnessTexture, uv).b;  // glTF: metallic in B
+  out.diffuseAlbedo = base * (1.0f - metallic);
   out.emission = mat.emissive;
   if (mat.emissiveTexture != scene::kNoTexture && mat.emissiveTexture < assets_.textureCount()) out.emission *= texel(mat.emissiveTexture, uv);
   return true;

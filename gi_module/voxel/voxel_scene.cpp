@@ -178,8 +178,9 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   if (rebuildSvo_) svo_->plan(ranges_, frameIndex_, voxelizedThisFrame_, removedNow, stats_);
 }
 
-render::Pipeline& VoxelScene::voxelizePipelineFor(bool baseColorTexture, bool emissiveTexture) {
-  Pipeline& pipeline = voxelize_[(baseColorTexture ? 1 : 0) | (emissiveTexture ? 2 : 0)];
+render::Pipeline& VoxelScene::voxelizePipelineFor(uint32_t textureBits) {
+  textureBits &= DYNGI_MATERIAL_BASE_COLOR_TEX | DYNGI_MATERIAL_EMISSIVE_TEX | DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX;  // what it reads
+  Pipeline& pipeline = voxelize_[textureBits];
   if (pipeline.handle()) return pipeline;
   Pipeline::GraphicsDesc d;
   d.vertex = DYNGI_SHADER(spv_voxelize_vert);
@@ -191,8 +192,10 @@ render::Pipeline& VoxelScene::voxelizePipelineFor(bool baseColorTexture, bool em
   d.bindings = {{DYNGI_VOXELIZE_BINDING_FRAGMENTS, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_VOXELIZE_BINDING_COUNTERS, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
-  d.fragmentSpecialization = {baseColorTexture ? 1u : 0u, emissiveTexture ? 1u : 0u};
+                {DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  auto bit = [&](uint32_t b) { return (textureBits & b) ? 1u : 0u; };
+  d.fragmentSpecialization = {bit(DYNGI_MATERIAL_BASE_COLOR_TEX), bit(DYNGI_MATERIAL_EMISSIVE_TEX), bit(DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX)};
   d.name = "voxelize";
   pipeline = Pipeline::graphics(ctx_, d);
   return pipeline;
@@ -218,7 +221,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
       render::RenderingScope rendering(cmd, res, res);
       const glm::mat4 toVoxel = volume_.worldToVoxelMatrix();
       auto pipelineFor = [&](const render::DrawItem& d) -> const Pipeline& {
-        return voxelizePipelineFor(d.material.baseColorTexture != scene::kNoTexture, d.material.emissiveTexture != scene::kNoTexture);
+        return voxelizePipelineFor(render::materialTextureBits(d.material));
       };
       render::drawEach(frame, drawsToVoxelize_, pipelineFor, [&](VkCommandBuffer c, const render::DrawItem& d, const Pipeline& pipeline) {
         const Range& r = ranges_.at(d.entity);
@@ -228,13 +231,15 @@ bool VoxelScene::record(render::FrameContext& frame) {
         pc.capacity = uint32_t(r.capacity);
         pc.counterIndex = r.counter;
         pc.resolution = res;
-        pc.albedo = glm::vec4(glm::vec3(d.material.baseColor) * (1.0f - d.material.metallic), 0.0f);
+        pc.albedo = glm::vec4(glm::vec3(d.material.baseColor), d.material.metallic);
         pc.emission = glm::vec4(d.material.emissive, 0.0f);
         DescriptorWrites()
             .storageBuffer(DYNGI_VOXELIZE_BINDING_FRAGMENTS, fragments_.handle())
             .storageBuffer(DYNGI_VOXELIZE_BINDING_COUNTERS, counters_.handle())
             .sampledImage(DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX, frame.textureView(d.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
             .sampledImage(DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, frame.textureView(d.material.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+            .sampledImage(DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX, frame.textureView(d.material.metallicRoughnessTexture), frame.linearSampler,
+                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
             .push(ctx_, c, pipeline);
         vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(pc), &pc);

@@ -106,6 +106,7 @@ Document build(const GltfSpec& spec) {
       accessors.push_back(acc.str());
       pj << "{\"attributes\":{\"POSITION\":" << accessors.size() - 1;
       if (!p.normals.empty()) pj << ",\"NORMAL\":" << addAccessor(p.normals, "VEC3", 5126);
+      if (!p.uvs.empty()) pj << ",\"TEXCOORD_0\":" << addAccessor(p.uvs, "VEC2", 5126);
       if (!p.joints.empty()) {
         std::vector<uint16_t> j16;
         for (auto& j : p.joints)
@@ -189,7 +190,14 @@ Document build(const GltfSpec& spec) {
   j << "{\"asset\":{\"version\":\"2.0\"}";
   std::vector<std::string> used;
   if (!spec.lightsJson.empty()) used.push_back("\"KHR_lights_punctual\"");
+  auto quoted = [](const std::vector<std::string>& names) {
+    std::vector<std::string> q;
+    for (const auto& n : names) q.push_back("\"" + n + "\"");
+    return q;
+  };
+  for (const auto& q : quoted(spec.extensionsUsed)) used.push_back(q);
   j << ",\"extensionsUsed\":[" << joinStrings(used) << "]";
+  if (!spec.extensionsRequired.empty()) j << ",\"extensionsRequired\":[" << joinStrings(quoted(spec.extensionsRequired)) << "]";
   if (!spec.lightsJson.empty()) j << ",\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[" << joinStrings(spec.lightsJson) << "]}}";
   j << ",\"scene\":0,\"scenes\":[{\"nodes\":[";
   for (size_t i = 0; i < roots.size(); ++i) j << (i ? "," : "") << roots[i];
@@ -200,6 +208,8 @@ Document build(const GltfSpec& spec) {
   if (!animations.empty()) j << ",\"animations\":[" << joinStrings(animations) << "]";
   if (!spec.materialsJson.empty()) j << ",\"materials\":[" << joinStrings(spec.materialsJson) << "]";
   if (!spec.camerasJson.empty()) j << ",\"cameras\":[" << joinStrings(spec.camerasJson) << "]";
+  if (!spec.imagesJson.empty()) j << ",\"images\":[" << joinStrings(spec.imagesJson) << "]";
+  if (!spec.texturesJson.empty()) j << ",\"textures\":[" << joinStrings(spec.texturesJson) << "]";
   if (!accessors.empty()) j << ",\"accessors\":[" << joinStrings(accessors) << "]";
   if (!views.empty()) j << ",\"bufferViews\":[" << joinStrings(views) << "]";
   doc.jsonBeforeBuffers = j.str();

@@ -14,6 +14,7 @@ namespace dyngi::test {
 struct GltfPrimitiveSpec {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;   // may be empty
+  std::vector<glm::vec2> uvs;       // TEXCOORD_0; may be empty
   std::vector<uint32_t> indices;    // may be empty (non-indexed)
   std::vector<glm::uvec4> joints;   // JOINTS_0 (unsigned short), with weights; may be empty
   std::vector<glm::vec4> weights;   // WEIGHTS_0
@@ -60,6 +61,9 @@ struct GltfSpec {
   std::vector<std::string> materialsJson;  // raw material objects
   std::vector<std::string> lightsJson;     // raw KHR_lights_punctual light objects
   std::vector<std::string> camerasJson;    // raw camera objects
+  std::vector<std::string> imagesJson;     // raw image objects (e.g. {"uri":"a.png"} beside the file)
+  std::vector<std::string> texturesJson;   // raw texture objects
+  std::vector<std::string> extensionsUsed, extensionsRequired;  // names, beside the ones the writer adds
   std::vector<GltfSkinSpec> skins;
   std::vector<GltfAnimationSpec> animations;
 };

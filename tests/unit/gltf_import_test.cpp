@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "dyngi/engine/render/image_io.h"
 #include "dyngi/engine/scene/gltf_import.h"
 #include "support/gltf_writer.h"
 #include "support/temp_dir.h"
@@ -344,4 +345,58 @@ TEST(GltfFuzzRegressions, EveryKeptInputGetsAnAnswer) {
     EXPECT_EQ(l->world.aliveCount(), 0u) << path;
   }
   EXPECT_GE(files, 4u) << "the regression files are there";
+}
+
+// glTF materials as artists author them: the metallic-roughness and occlusion textures reach the
+// Material, as linear data (a texture also used for colour is kept twice: sRGB for colour, linear for
+// data), with the occlusion strength.
+TEST(GltfImport, MetallicRoughnessAndOcclusionTexturesAreImportedAsLinearData) {
+  TempDir dir;
+  // 2 x 2 texels whose green and blue are data (roughness, metallic).
+  const std::vector<uint8_t> texels = {10, 64, 200, 255, 20, 128, 0, 255, 30, 192, 50, 255, 40, 255, 255, 255};
+  ASSERT_EQ(render::writePng(dir.file("mr.png"), 2, 2, texels), "");
+  GltfSpec s = oneQuad();
+  s.meshes[0][0].uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  s.meshes[0][0].material = 0;
+  s.imagesJson = {R"({"uri":"mr.png"})"};
+  s.texturesJson = {R"({"source":0})"};
+  s.materialsJson = {R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0},"metallicRoughnessTexture":{"index":0},
+                        "metallicFactor":0.5,"roughnessFactor":0.25},"occlusionTexture":{"index":0,"strength":0.75}})"};
+  auto l = loadSpec(dir, s);
+  ASSERT_EQ(l->error, "");
+  const Material* m = nullptr;
+  l->world.each<Material>([&](Entity, const Material& mat) { m = &mat; });
+  ASSERT_NE(m, nullptr);
+  ASSERT_NE(m->metallicRoughnessTexture, kNoTexture);
+  EXPECT_EQ(m->occlusionTexture, m->metallicRoughnessTexture) << "one linear copy serves both data uses";
+  ASSERT_NE(m->baseColorTexture, kNoTexture);
+  EXPECT_NE(m->baseColorTexture, m->metallicRoughnessTexture) << "colour and data copies apart";
+  EXPECT_TRUE(l->assets.texture(m->baseColorTexture).srgb);
+  const TextureData& data = l->assets.texture(m->metallicRoughnessTexture);
+  EXPECT_FALSE(data.srgb);
+  EXPECT_EQ(data.rgba8, texels);
+  EXPECT_FLOAT_EQ(m->metallic, 0.5f);
+  EXPECT_FLOAT_EQ(m->roughness, 0.25f);
+  EXPECT_FLOAT_EQ(m->occlusionStrength, 0.75f);
+  EXPECT_TRUE(l->report.ignoredExtensions.empty());
+}
+
+// An extension the file requires and dyngi does not support is refused in one line naming it; one the
+// file only uses is named in the report (the sample prints it once) and the file imports.
+TEST(GltfImport, UnsupportedRequiredExtensionsAreRefusedAndOptionalOnesNamed) {
+  TempDir dir;
+  GltfSpec s = oneQuad();
+  s.extensionsUsed = {"KHR_materials_transmission", "KHR_materials_emissive_strength"};
+  auto optional = loadSpec(dir, s);
+  ASSERT_EQ(optional->error, "");
+  EXPECT_EQ(optional->report.ignoredExtensions, std::vector<std::string>{"KHR_materials_transmission"});
+
+  s.extensionsRequired = {"KHR_materials_transmission"};
+  const std::string path = dir.write("required.gltf", test::writeGltf(s));
+  auto required = load(path);
+  expectCleanFailure(*required, path, "requires the glTF extension KHR_materials_transmission");
+  for (const std::string& name : supportedGltfExtensions()) {
+    s.extensionsUsed = s.extensionsRequired = {name};
+    EXPECT_EQ(loadSpec(dir, s)->error, "") << name;
+  }
 }

@@ -8,8 +8,8 @@ namespace dyngi::render {
 
 GBufferPass::GBufferPass(VulkanContext& ctx) : ctx_(ctx) {}
 
-Pipeline& GBufferPass::pipelineFor(bool baseColorTexture, bool emissiveTexture) {
-  Pipeline& pipeline = pipelines_[(baseColorTexture ? 1 : 0) | (emissiveTexture ? 2 : 0)];
+Pipeline& GBufferPass::pipelineFor(uint32_t textureBits) {
+  Pipeline& pipeline = pipelines_[textureBits & 15u];
   if (pipeline.handle()) return pipeline;
   Pipeline::GraphicsDesc d;
   d.vertex = DYNGI_SHADER(spv_gbuffer_vert);
@@ -22,8 +22,12 @@ Pipeline& GBufferPass::pipelineFor(bool baseColorTexture, bool emissiveTexture) 
   d.pushConstantBytes = sizeof(gpu::GBufferPush);
   d.bindings = {{DYNGI_GBUFFER_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_GBUFFER_BINDING_BASE_COLOR_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {DYNGI_GBUFFER_BINDING_EMISSIVE_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
-  d.fragmentSpecialization = {baseColorTexture ? 1u : 0u, emissiveTexture ? 1u : 0u};
+                {DYNGI_GBUFFER_BINDING_EMISSIVE_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_GBUFFER_BINDING_METALLIC_ROUGHNESS_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_GBUFFER_BINDING_OCCLUSION_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  auto bit = [&](uint32_t b) { return (textureBits & b) ? 1u : 0u; };
+  d.fragmentSpecialization = {bit(DYNGI_MATERIAL_BASE_COLOR_TEX), bit(DYNGI_MATERIAL_EMISSIVE_TEX), bit(DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX),
+                              bit(DYNGI_MATERIAL_OCCLUSION_TEX)};
   d.name = "gbuffer";
   pipeline = Pipeline::graphics(ctx_, d);
   return pipeline;
@@ -48,19 +52,22 @@ void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
     drawEach(
         frame, std::nullopt,
         [&](const DrawItem& d) -> const Pipeline& {
-          return pipelineFor(d.material.baseColorTexture != scene::kNoTexture, d.material.emissiveTexture != scene::kNoTexture);
+          return pipelineFor(materialTextureBits(d.material));
         },
         [&](VkCommandBuffer c, const DrawItem& d, const Pipeline& pipeline) {
           const scene::Material& m = d.material;
           gpu::GBufferPush pc;
           pc.model = d.model;
           pc.baseColor = m.baseColor;
-          pc.emissive = glm::vec4(m.emissive, 0.0f);
+          pc.emissive = glm::vec4(m.emissive, m.occlusionStrength);
           pc.params = glm::vec4(m.metallic, m.roughness, 0.0f, 0.0f);
           DescriptorWrites()
               .uniformBuffer(DYNGI_GBUFFER_BINDING_FRAME, frame.frameUniforms.handle())
               .sampledImage(DYNGI_GBUFFER_BINDING_BASE_COLOR_TEX, textures(m.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
               .sampledImage(DYNGI_GBUFFER_BINDING_EMISSIVE_TEX, textures(m.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+              .sampledImage(DYNGI_GBUFFER_BINDING_METALLIC_ROUGHNESS_TEX, textures(m.metallicRoughnessTexture), frame.linearSampler,
+                            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+              .sampledImage(DYNGI_GBUFFER_BINDING_OCCLUSION_TEX, textures(m.occlusionTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
               .push(ctx_, c, pipeline);
           vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
         });

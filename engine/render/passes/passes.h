@@ -99,8 +99,8 @@ class GBufferPass {
   VulkanContext& ctx_;
   // One pipeline per material kind (base-colour texture or not, emissive texture or not), made on first
   // use: lavapipe runs both sides of a branch, so an untextured material would pay for the lookups.
-  Pipeline pipelines_[4];
-  Pipeline& pipelineFor(bool baseColorTexture, bool emissiveTexture);
+  Pipeline pipelines_[16];  // by the material's texture bits (DYNGI_MATERIAL_*_TEX)
+  Pipeline& pipelineFor(uint32_t textureBits);
 };
 
 // The frame's radiance into targets.hdr: emission + shadowed direct light + albedo x targets.indirect

@@ -54,7 +54,7 @@ DYNGI_GPU_STRUCT(GpuLight) {
 DYNGI_GPU_STRUCT(GBufferPush) {
   mat4 model;
   vec4 baseColor;       // linear RGBA factor
-  vec4 emissive;        // rgb outgoing radiance factor, w unused
+  vec4 emissive;        // rgb outgoing radiance factor, w the occlusion texture's strength
   vec4 params;          // x metallic, y roughness (zw unused: textures are pipeline variants)
 };
 
@@ -64,6 +64,14 @@ DYNGI_GPU_STRUCT(GBufferPush) {
 #define DYNGI_GBUFFER_BINDING_FRAME 0
 #define DYNGI_GBUFFER_BINDING_BASE_COLOR_TEX 1
 #define DYNGI_GBUFFER_BINDING_EMISSIVE_TEX 2
+#define DYNGI_GBUFFER_BINDING_METALLIC_ROUGHNESS_TEX 3
+#define DYNGI_GBUFFER_BINDING_OCCLUSION_TEX 4
+// The material's textures, as bits of a pipeline variant (the G-buffer's; the voxelization and the RSMs
+// use the ones they read).
+#define DYNGI_MATERIAL_BASE_COLOR_TEX 1u
+#define DYNGI_MATERIAL_EMISSIVE_TEX 2u
+#define DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX 4u
+#define DYNGI_MATERIAL_OCCLUSION_TEX 8u
 // lighting
 #define DYNGI_LIGHTING_BINDING_FRAME 0
 #define DYNGI_LIGHTING_BINDING_G_POSITION 1

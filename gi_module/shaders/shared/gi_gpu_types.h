@@ -31,7 +31,7 @@ struct VoxelizePush {
   uint capacity;        // its size,
   uint counterIndex;    // and the counter its fragments are appended with
   uint resolution;      // voxels per side
-  vec4 albedo;          // rgb base colour factor (a unused: textures are pipeline variants)
+  vec4 albedo;          // rgb base colour factor, a metallic factor (diffuse = base x (1 - metallic))
   vec4 emission;        // rgb emitted radiance (a unused)
 };
 
@@ -97,7 +97,7 @@ struct alignas(16) RsmPush {
 struct RsmPush {
 #endif
   mat4 model;
-  vec4 baseColor;       // rgb linear base colour x (1 - metallic) (a unused: textures are pipeline variants)
+  vec4 baseColor;       // rgb linear base colour factor, a metallic factor (diffuse = base x (1 - metallic))
   uint layer;           // the RsmLayer drawn
   uint pad0, pad1, pad2;
 };
@@ -119,6 +119,7 @@ struct RsmPush {
 #define DYNGI_RSM_BINDING_LAYERS 0
 #define DYNGI_RSM_BINDING_LIGHTS 1
 #define DYNGI_RSM_BINDING_BASE_COLOR_TEX 2
+#define DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX 3
 // vpl_bounce
 #define DYNGI_VPL_BOUNCE_BINDING_VPLS 0
 #define DYNGI_VPL_BOUNCE_BINDING_NODES 1
@@ -193,6 +194,7 @@ struct RsmPush {
 #define DYNGI_VOXELIZE_BINDING_COUNTERS 1
 #define DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX 2
 #define DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX 3
+#define DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX 4
 
 // Voxel cone tracing (techniques/vct/): the passes over the occupied voxels (SVO leaves) and the screen.
 // vct_inject: direct light and emission of each occupied voxel into the radiance volume

@@ -174,8 +174,10 @@ void ManyLights::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   }
 }
 
-render::Pipeline& ManyLights::rsmPipelineFor(bool baseColorTexture) {
-  Pipeline& pipeline = rsm_[baseColorTexture ? 1 : 0];
+render::Pipeline& ManyLights::rsmPipelineFor(uint32_t textureBits) {
+  textureBits &= DYNGI_MATERIAL_BASE_COLOR_TEX | DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX;  // what it reads
+  const bool baseColorTexture = textureBits & DYNGI_MATERIAL_BASE_COLOR_TEX, mrTexture = textureBits & DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX;
+  Pipeline& pipeline = rsm_[(baseColorTexture ? 1 : 0) | (mrTexture ? 2 : 0)];
   if (pipeline.handle()) return pipeline;
   Pipeline::GraphicsDesc d;
   d.vertex = DYNGI_SHADER(spv_rsm_vert);
@@ -187,8 +189,9 @@ render::Pipeline& ManyLights::rsmPipelineFor(bool baseColorTexture) {
   d.pushConstantBytes = sizeof(gpu::RsmPush);
   d.bindings = {{DYNGI_RSM_BINDING_LAYERS, kSSBO, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_RSM_BINDING_LIGHTS, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {DYNGI_RSM_BINDING_BASE_COLOR_TEX, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT}};
-  d.fragmentSpecialization = {baseColorTexture ? 1u : 0u};
+                {DYNGI_RSM_BINDING_BASE_COLOR_TEX, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  d.fragmentSpecialization = {baseColorTexture ? 1u : 0u, mrTexture ? 1u : 0u};
   d.name = "rsm";
   pipeline = Pipeline::graphics(ctx_, d);
   return pipeline;
@@ -217,17 +220,19 @@ bool ManyLights::record(render::FrameContext& frame) {
                                        render::depthAttachment(rsmDepth_.layerView(layer), VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_DONT_CARE));
       if (layer < rsmLayersUsed_) {
         auto pipelineFor = [&](const render::DrawItem& dr) -> const Pipeline& {
-          return rsmPipelineFor(dr.material.baseColorTexture != scene::kNoTexture);
+          return rsmPipelineFor(render::materialTextureBits(dr.material));
         };
         render::drawEach(frame, std::nullopt, pipelineFor, [&](VkCommandBuffer c, const render::DrawItem& dr, const Pipeline& pipeline) {
           gpu::RsmPush pc{};
           pc.model = dr.model;
-          pc.baseColor = glm::vec4(glm::vec3(dr.material.baseColor) * (1.0f - dr.material.metallic), 0.0f);
+          pc.baseColor = glm::vec4(glm::vec3(dr.material.baseColor), dr.material.metallic);
           pc.layer = layer;
           DescriptorWrites()
               .storageBuffer(DYNGI_RSM_BINDING_LAYERS, layers_.handle())
               .storageBuffer(DYNGI_RSM_BINDING_LIGHTS, lights_.handle())
               .sampledImage(DYNGI_RSM_BINDING_BASE_COLOR_TEX, frame.textureView(dr.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+              .sampledImage(DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX, frame.textureView(dr.material.metallicRoughnessTexture), frame.linearSampler,
+                            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
               .push(ctx_, c, pipeline);
           vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
         });

@@ -10,10 +10,12 @@ layout(push_constant) uniform Push { VoxelizePush pc; };
 // Material variants (VoxelScene::voxelizePipelineFor): texture lookups compiled in only when used.
 layout(constant_id = 0) const bool kBaseColorTexture = true;
 layout(constant_id = 1) const bool kEmissiveTexture = true;
+layout(constant_id = 2) const bool kMetallicRoughnessTexture = true;
 layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_FRAGMENTS) buffer Fragments { uvec4 fragments[]; };
 layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_COUNTERS) buffer Counters { uint counters[]; };
 layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX) uniform sampler2D baseColorTex;
 layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX) uniform sampler2D emissiveTex;
+layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX) uniform sampler2D metallicRoughnessTex;
 
 layout(location = 0) flat in vec3 v0;
 layout(location = 1) flat in vec3 v1;
@@ -60,13 +62,15 @@ void main() {
   if (px.x < 0 || px.y < 0 || px.x >= res || px.y >= res) return;
 
   vec3 nrm = normalize(n);
-  vec4 albedo = vec4(pc.albedo.rgb, 1.0);
   vec3 emission = pc.emission.rgb;
   for (int z = z0; z <= z1; ++z) {
     ivec3 v = ivec3(unproject(vec2(px), float(z), axis));
     vec3 center = vec3(v) + 0.5;
     if (!triangleOverlapsBox(center, vec3(0.5 + kEps), v0, v1, v2)) continue;
-    if (kBaseColorTexture || kEmissiveTexture) {
+    vec4 albedo = vec4(pc.albedo.rgb, 1.0);
+    float metallic = pc.albedo.a;
+    emission = pc.emission.rgb;
+    if (kBaseColorTexture || kEmissiveTexture || kMetallicRoughnessTexture) {
       // Barycentrics of the voxel centre's projection onto the triangle (clamped) for texturing.
       vec3 p = center - dot(center - v0, nrm) * nrm;
       vec3 e0 = v1 - v0, e1 = v2 - v0, ep = p - v0;
@@ -79,7 +83,9 @@ void main() {
       vec2 uv = bary.x * uv0 + bary.y * uv1 + bary.z * uv2;
       if (kBaseColorTexture) albedo.rgb *= textureLod(baseColorTex, uv, 0.0).rgb;
       if (kEmissiveTexture) emission *= textureLod(emissiveTex, uv, 0.0).rgb;
+      if (kMetallicRoughnessTexture) metallic *= textureLod(metallicRoughnessTex, uv, 0.0).b;
     }
+    albedo.rgb *= 1.0 - metallic;  // the diffuse share
     uint slot = atomicAdd(counters[pc.counterIndex], 1u);
     if (slot >= pc.capacity) continue;  // over capacity: counted, so the host grows the range
     uint coord = uint(v.x) | (uint(v.y) << 10) | (uint(v.z) << 20);

@@ -60,10 +60,10 @@ class ManyLights final : public render::RenderFeature {
   std::vector<EmitterVpl> emitterVpls_;  // this frame's VPLs on emissive surfaces (prepareEmitters)
   render::Buffer emitterUpload_;
   render::Image raw_;
-  // One RSM pipeline per material kind (base-colour texture or not), made on first use: lavapipe would
+  // One RSM pipeline per material kind (which textures it binds), made on first use: lavapipe would
   // run the lookup of a branch not taken.
-  render::Pipeline rsm_[2];
-  render::Pipeline& rsmPipelineFor(bool baseColorTexture);
+  render::Pipeline rsm_[4];  // by the base-colour and metallic-roughness texture bits
+  render::Pipeline& rsmPipelineFor(uint32_t textureBits);
   render::Pipeline cdfRows_, cdfTotal_, sample_, bounce_, tail_, debug_;
   std::unique_ptr<class IndirectGatherPass> gatherPass_;
   std::unique_ptr<class IndirectFilterPass> filterPass_;

@@ -8,9 +8,11 @@
 layout(set = 0, binding = DYNGI_RSM_BINDING_LAYERS) readonly buffer Layers { RsmLayer layers[]; };
 layout(set = 0, binding = DYNGI_RSM_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
 layout(set = 0, binding = DYNGI_RSM_BINDING_BASE_COLOR_TEX) uniform sampler2D baseColorTex;
+layout(set = 0, binding = DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX) uniform sampler2D metallicRoughnessTex;
 layout(push_constant) uniform Push { RsmPush pc; };
 // Material variant (ManyLights::rsmPipelineFor): the lookup is compiled in only when a texture is bound.
 layout(constant_id = 0) const bool kBaseColorTexture = true;
+layout(constant_id = 1) const bool kMetallicRoughnessTexture = true;
 layout(location = 0) in vec3 inWorld;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
@@ -22,6 +24,9 @@ void main() {
   GpuLight L = lights[layer.lightIndex];
   vec3 albedo = pc.baseColor.rgb;
   if (kBaseColorTexture) albedo *= texture(baseColorTex, inUv).rgb;
+  float metallic = pc.baseColor.a;
+  if (kMetallicRoughnessTexture) metallic *= texture(metallicRoughnessTex, inUv).b;
+  albedo *= 1.0 - metallic;  // the diffuse share
   vec3 n = normalize(inNormal);
   vec3 radiant = L.radiance.rgb * L.radiance.w;
   vec3 flux;

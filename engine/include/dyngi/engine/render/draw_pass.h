@@ -49,6 +49,9 @@ class RenderingScope {
 
 // Picks a draw's pipeline (bound when it differs from the last draw's).
 using DrawPipelineFor = std::function<const Pipeline&(const DrawItem&)>;
+// The textures a material binds, as DYNGI_MATERIAL_*_TEX bits (shared/gpu_types.h): what the raster
+// passes' pipeline variants are chosen by (a lookup not taken still costs on lavapipe).
+uint32_t materialTextureBits(const scene::Material& material);
 // Records a draw's descriptors and push constants; drawEach then binds its mesh and draws it.
 using DrawSetup = std::function<void(VkCommandBuffer, const DrawItem&, const Pipeline&)>;
 

@@ -66,6 +66,13 @@ struct Material {
   TextureId emissiveTexture = kNoTexture;
   float metallic = 0.0f;
   float roughness = 1.0f;
+  // glTF's metallic-roughness texture (linear): roughness x G, metallic x B.
+  TextureId metallicRoughnessTexture = kNoTexture;
+  // glTF's occlusion texture (linear R): the share of the indirect light that reaches the surface,
+  // 1 + strength (R - 1). Direct light is not affected (the shadow maps see the geometry), nor the path
+  // tracer (it traces the occlusion the texture approximates).
+  TextureId occlusionTexture = kNoTexture;
+  float occlusionStrength = 1.0f;
 };
 
 enum class LightType : uint32_t { Directional = 0, Point = 1, Spot = 2 };

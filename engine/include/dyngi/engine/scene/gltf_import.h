@@ -29,7 +29,12 @@ struct ImportReport {
   bool missingClip = false;         // ImportOptions::clip named a clip the file lacks (first one plays)
   Entity activeCamera{};   // null when the file has no camera
   Aabb worldBounds;        // of all mesh instances at import time
+  // Extensions the file uses that the import does not honour (optional ones: the file still renders,
+  // without them). A required one it does not support fails the import instead.
+  std::vector<std::string> ignoredExtensions;
 };
+// The glTF extensions the import honours.
+const std::vector<std::string>& supportedGltfExtensions();
 
 struct ImportOptions {
   bool markStatic = true;  // tag imported mesh entities StaticTag (DynamicTag otherwise); skinned ones are always dynamic

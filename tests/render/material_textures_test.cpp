@@ -1,0 +1,168 @@
+// glTF material textures in every consumer: the G-buffer (roughness, metallic, occlusion), the lighting
+// (occlusion scales the indirect light only), the path tracer and the VPLs (the diffuse share follows
+// the metallic texture).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtx/quaternion.hpp>
+
+#include "dyngi/engine/render/image_metrics.h"
+#include "dyngi/gi/many_lights.h"
+#include "dyngi/gi/path_tracer.h"
+#include "dyngi/gi/vpl_paths.h"
+#include "render/gi_run.h"
+#include "render/render_fixture.h"
+#include "testing/gi_probes.h"
+
+using namespace dyngi;
+using namespace dyngi::test;
+
+namespace {
+constexpr float kMetallic = 0.8f, kRoughness = 0.5f;
+constexpr uint8_t kLeftG = 64;  // the left half's roughness texel; its metallic texel is 0, the right half's are 255
+
+// 8 x 8 linear texels: the left half (u < 0.5) G = 64, B = 0; the right half G = B = 255.
+scene::TextureId halvesTexture(scene::AssetStore& assets) {
+  scene::TextureData t;
+  t.width = t.height = 8;
+  t.srgb = false;
+  for (uint32_t y = 0; y < 8; ++y)
+    for (uint32_t x = 0; x < 8; ++x) t.rgba8.insert(t.rgba8.end(), {0, uint8_t(x < 4 ? kLeftG : 255), uint8_t(x < 4 ? 0 : 255), 255});
+  return assets.addTexture(t);
+}
+
+// A 2 m quad facing +z whose material takes its metallic and roughness from halvesTexture(), lit head-on
+// by a directional light; the camera frames it.
+void litQuad(ecs::World& w, scene::AssetStore& a) {
+  const scene::Entity quad = w.create();
+  w.add(quad, scene::Transform{});
+  w.add(quad, scene::MeshInstance{a.addMesh(scene::makeQuad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0})), true});
+  w.add(quad, scene::Material{.baseColor = glm::vec4(0.7f, 0.6f, 0.5f, 1.0f), .metallic = kMetallic, .roughness = kRoughness,
+                              .metallicRoughnessTexture = halvesTexture(a)});
+  const scene::Entity sun = w.create();
+  scene::Transform st;
+  st.translation = {0, 0, 3};
+  w.add(sun, st);  // local -Z: towards the quad
+  w.add(sun, scene::Light{.type = scene::LightType::Directional, .intensity = 2.0f});
+}
+
+// Pixels whose surface point lies in the quad's left or right half, away from the seam and the border.
+std::vector<uint8_t> halfMask(const Frame& f, bool right) {
+  std::vector<uint8_t> m(f.position.size(), 0);
+  for (size_t i = 0; i < m.size(); ++i) {
+    const glm::vec4& p = f.position[i];
+    m[i] = p.w > 0.5f && std::abs(p.y) < 0.8f && (right ? p.x > 0.2f && p.x < 0.8f : p.x < -0.2f && p.x > -0.8f);
+  }
+  return m;
+}
+}  // namespace
+
+// Per texel: roughness x G and metallic x B in the G-buffer; the diffuse light (1 - metallic) in the
+// raster frame equals the path tracer's (direct light only, its own SceneSurfaces reading the texture).
+TEST_F(RenderTest, MetallicRoughnessTextureReachesTheGBufferTheLightingAndThePathTracer) {
+  ecs::World w;
+  scene::AssetStore assets;
+  litQuad(w, assets);
+  Frame f = render(w, assets, 96, 96);
+  gi::EmbreeScene bvh;
+  bvh.sync(w, assets, 0);
+  gi::PathTracerSettings pts;
+  pts.spp = 4;
+  pts.bounces = 0;
+  pts.pixelJitter = false;
+  const render::ImageRgba ref = gi::pathTrace(f.snapshot, bvh, assets, 96, 96, pts);
+  for (bool right : {false, true}) {
+    const std::vector<uint8_t> mask = halfMask(f, right);
+    size_t n = 0;
+    for (size_t i = 0; i < mask.size(); ++i) {
+      if (!mask[i]) continue;
+      ++n;
+      const float roughness = kRoughness * (right ? 1.0f : kLeftG / 255.0f), metallic = right ? kMetallic : 0.0f;
+      ASSERT_NEAR(f.normal[i].w, roughness, 2e-3f) << "pixel " << i;
+      ASSERT_NEAR(f.albedo[i].a, metallic, 1.0f / 255.0f) << "pixel " << i;
+    }
+    ASSERT_GT(n, 500u);
+    const double raster = luminance(render::meanOver(f.hdr, &mask)), path = luminance(render::meanOver(ref, &mask));
+    // Lambert under the sun: E x base x (1 - metallic) / pi.
+    const double expected = 2.0 * luminance(glm::dvec3(0.7, 0.6, 0.5)) * (1.0 - (right ? kMetallic : 0.0)) / 3.14159265358979;
+    std::printf("%s half: raster %.4f  path tracer %.4f  analytic %.4f\n", right ? "metallic" : "rough", raster, path, expected);
+    EXPECT_NEAR(raster / expected, 1.0, 0.01);
+    EXPECT_NEAR(path / expected, 1.0, 0.01);
+  }
+}
+
+// The VPLs see the diffuse share the texture gives: many lights' RSMs sample no VPL from the metallic
+// half's weaker flux in its proportion, and the temporal paths' VPLs there reflect (1 - 0.8) x as much.
+TEST_F(RenderTest, MetallicRoughnessTextureSetsTheVplsDiffuseShare) {
+  ecs::World w;
+  scene::AssetStore assets;
+  litQuad(w, assets);
+  render(w, assets, 8, 8);  // propagates the transforms
+  // Many lights: the first bounce's VPLs per half, in proportion to the flux each half reflects.
+  gi::VoxelScene voxels(context(), gi::VoxelSettings{.resolution = 64});
+  gi::ManyLights ml(context(), voxels, gi::ManyLightsOptions{.vpl = {.vplCount = 2048}});
+  render::Renderer renderer(context());
+  renderer.addFeature(&voxels);
+  renderer.addFeature(&ml);
+  renderer.resize(32, 32);
+  renderer.render(render::extractSnapshot(w, assets, 0));
+  double left = 0, right = 0;
+  for (const gi::VplReadback& v : gi::readbackVpls(ml))
+    if (v.bounce == 0 && std::abs(v.position.x) > 0.25f && std::abs(v.position.x) < 0.8f && std::abs(v.position.y) < 0.8f)
+      (v.position.x < 0 ? left : right) += luminance(glm::dvec3(v.flux));
+  std::printf("many lights: VPL flux right / left %.3f (expected %.3f)\n", right / left, 1.0 - kMetallic);
+  EXPECT_NEAR(right / left, 1.0 - kMetallic, 0.05);
+  // Temporal paths: each VPL's albedo is the texel's diffuse share.
+  gi::EmbreeScene bvh;
+  bvh.sync(w, assets, 0);
+  const auto snap = render::extractSnapshot(w, assets, 0);
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 2000}, .reshootBudget = 100000});
+  paths.update(snap, bvh, assets, {});
+  size_t checked = 0;
+  for (const gi::PathVpl& v : paths.vpls()) {
+    // Away from the seam and the border, where the bilinear lookup (wrapping) blends the halves.
+    if (!v.placed || std::abs(v.position.x) < 0.25f || std::abs(v.position.x) > 0.8f || std::abs(v.position.y) > 0.8f) continue;
+    const float share = v.position.x < 0 ? 1.0f : 1.0f - kMetallic;
+    EXPECT_NEAR(v.albedo.r, 0.7f * share, 1e-3f);
+    ++checked;
+  }
+  EXPECT_GT(checked, 400u);  // the sun's beam covers the scene's bounding disc, wider than the quad
+}
+
+// The occlusion texture scales the indirect light (diffuse and specular), never the direct: the same GI
+// run with and without it differs on the floor by exactly (1 - occlusion) x albedo x indirect.
+TEST_F(RenderTest, OcclusionTextureScalesTheIndirectLightOnly) {
+  constexpr uint8_t kR = 64;
+  constexpr float kStrength = 0.5f;
+  const float occlusion = 1.0f + kStrength * (kR / 255.0f - 1.0f);
+  gi::GiSettings s;
+  s.temporal.reshootBudget = 512;
+  GiRun plain(context(), s), occluded(context(), s);
+  scene::TextureData t;
+  t.width = t.height = 4;
+  t.srgb = false;
+  for (int i = 0; i < 16; ++i) t.rgba8.insert(t.rgba8.end(), {kR, 0, 0, 255});
+  scene::Material& m = occluded.world.write<scene::Material>(occluded.named("floor"));
+  m.occlusionTexture = occluded.assets.addTexture(t);
+  m.occlusionStrength = kStrength;
+  plain.step(20), occluded.step(20);
+  const Frame a = plain.readFrame(), b = occluded.readFrame();
+  const render::ImageRgba indirect = plain.indirect(), albedo = plain.renderer->readback(render::TargetId::Albedo);
+  size_t floor = 0, other = 0;
+  double worst = 0;
+  for (size_t i = 0; i < a.hdr.size(); ++i) {
+    if (a.position[i].w < 0.5f) continue;
+    const bool onFloor = std::abs(a.position[i].y) < 1e-3f && a.normal[i].y > 0.99f;
+    for (int c = 0; c < 3; ++c) {
+      const float diffuseIndirect = albedo[i][c] * (1.0f - albedo[i].a) * indirect[i][c];
+      const float expected = onFloor ? a.hdr[i][c] - (1.0f - occlusion) * diffuseIndirect : a.hdr[i][c];
+      worst = std::max(worst, double(std::abs(b.hdr[i][c] - expected) / std::max(a.hdr[i][c], 0.05f)));
+    }
+    (onFloor ? floor : other) += 1;
+  }
+  std::printf("occlusion %.4f: %zu floor and %zu other pixels, worst relative difference %.2e\n", occlusion, floor, other, worst);
+  EXPECT_GT(floor, 1000u);
+  EXPECT_LT(worst, 2e-3);
+}
