@@ -40,6 +40,7 @@ int loadScene(const Options& o, ecs::World& world, scene::AssetStore& assets) {
       std::fprintf(stderr, "dyngi_sample: note: %s uses glTF extensions dyngi ignores (optional in the file): %s\n", o.scene.c_str(),
                    names.c_str());
     }
+    for (const std::string& note : report.notes) std::fprintf(stderr, "dyngi_sample: note: %s: %s\n", o.scene.c_str(), note.c_str());
     if (addDefaultLightIfUnlit(world))
       std::fprintf(stderr, "dyngi_sample: note: %s has no lights and no emissive surfaces; added a default directional light\n",
                    o.scene.c_str());

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
+#include <set>
 #include <filesystem>
 #include <functional>
 #include <glm/gtc/type_ptr.hpp>
@@ -380,10 +382,49 @@ class Importer {
     return assets_.addTexture(std::move(tex));
   }
 
-  Material materialFor(int index) const {
+  // KHR_texture_transform on a texture reference; nullopt without one.
+  static std::optional<TextureTransform> textureTransform(const tinygltf::ExtensionMap& extensions) {
+    auto it = extensions.find("KHR_texture_transform");
+    if (it == extensions.end() || !it->second.IsObject()) return std::nullopt;
+    const tinygltf::Value& v = it->second;
+    TextureTransform t;
+    auto pair = [&](const char* key, glm::vec2& out) {
+      if (!v.Has(key) || !v.Get(key).IsArray() || v.Get(key).ArrayLen() != 2) return;
+      for (int i = 0; i < 2; ++i)
+        if (v.Get(key).Get(i).IsNumber()) out[i] = float(v.Get(key).Get(i).GetNumberAsDouble());
+    };
+    pair("offset", t.offset);
+    pair("scale", t.scale);
+    t.rotation = float(numberOr(v, "rotation", 0.0));
+    // Non-finite values would spread NaN through every lookup: such a transform is left out.
+    if (!std::isfinite(t.offset.x) || !std::isfinite(t.offset.y) || !std::isfinite(t.scale.x) || !std::isfinite(t.scale.y) ||
+        !std::isfinite(t.rotation))
+      return std::nullopt;
+    return t;
+  }
+
+  Material materialFor(int index) {
     Material mat;
     if (index < 0) return mat;
     const auto& m = model_.materials[size_t(index)];
+    // One texture transform per material (every texture of it uses it): the first texture's that has
+    // one. Textures of one material with different transforms are rare; they are reported.
+    std::optional<TextureTransform> transform;
+    bool differ = false;
+    auto consider = [&](int textureIndex, const tinygltf::ExtensionMap& ext) {
+      if (textureIndex < 0) return;
+      const TextureTransform t = textureTransform(ext).value_or(TextureTransform{});
+      if (!transform) transform = t;
+      else differ |= !(*transform == t);
+    };
+    consider(m.pbrMetallicRoughness.baseColorTexture.index, m.pbrMetallicRoughness.baseColorTexture.extensions);
+    consider(m.pbrMetallicRoughness.metallicRoughnessTexture.index, m.pbrMetallicRoughness.metallicRoughnessTexture.extensions);
+    consider(m.emissiveTexture.index, m.emissiveTexture.extensions);
+    consider(m.occlusionTexture.index, m.occlusionTexture.extensions);
+    if (transform) mat.uvTransform = *transform;
+    if (differ && notedMaterials_.insert(index).second)
+      report_.notes.push_back("material " + std::to_string(index) + " (" + m.name +
+                              ") gives its textures different KHR_texture_transform values; all use the first texture's");
     const auto& pbr = m.pbrMetallicRoughness;
     for (int i = 0; i < 4 && size_t(i) < pbr.baseColorFactor.size(); ++i) mat.baseColor[i] = float(pbr.baseColorFactor[size_t(i)]);
     if (pbr.baseColorTexture.index >= 0) mat.baseColorTexture = textureIds_[size_t(pbr.baseColorTexture.index)];
@@ -601,6 +642,7 @@ class Importer {
   std::vector<std::vector<PendingPrimitive>> meshes_;
   std::vector<std::vector<int>> materialsByMesh_;
   std::vector<std::vector<MeshId>> meshIds_;
+  std::set<int> notedMaterials_;             // materials a note was written about (once each)
   std::vector<TextureId> textureIds_;        // per glTF texture: its sRGB copy (colour uses)
   std::vector<TextureId> linearTextureIds_;  // ... and its linear copy (data uses)
   std::vector<Entity> nodeEntities_;
@@ -617,7 +659,7 @@ class Importer {
 }  // namespace
 
 const std::vector<std::string>& supportedGltfExtensions() {
-  static const std::vector<std::string> all = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+  static const std::vector<std::string> all = {"KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform"};
   return all;
 }
 

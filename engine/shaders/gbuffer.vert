@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
+#include "shared/uv_transform.h"
 
 layout(set = 0, binding = DYNGI_GBUFFER_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(push_constant) uniform Push { GBufferPush pc; };
@@ -18,6 +19,6 @@ void main() {
   outWorldPos = world.xyz;
   // Inverse-transpose keeps normals right under non-uniform scale.
   outNormal = transpose(inverse(mat3(pc.model))) * inNormal;
-  outUv = inUv;
+  outUv = applyUvTransform(pc.uvLinear, pc.params.zw, inUv);
   gl_Position = frame.viewProj * world;
 }

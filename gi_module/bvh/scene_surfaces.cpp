@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shared/uv_transform.h"
+
 namespace dyngi::gi {
 namespace {
 float srgbToLinear(uint8_t v) {
@@ -43,6 +45,7 @@ bool SceneSurfaces::at(const RayHit& h, const glm::vec3& origin, const glm::vec3
   glm::vec3 base(mat.baseColor);
   glm::vec2 uv(0.0f);
   if (m.uvs.size() == m.positions.size()) uv = w0 * m.uvs[i0] + h.u * m.uvs[i1] + h.v * m.uvs[i2];
+  uv = gpu::applyUvTransform(mat.uvTransform.linear(), mat.uvTransform.offset, uv);  // KHR_texture_transform
   if (mat.baseColorTexture != scene::kNoTexture && mat.baseColorTexture < assets_.textureCount()) base *= texel(mat.baseColorTexture, uv);
   float metallic = mat.metallic;
   if (mat.metallicRoughnessTexture != scene::kNoTexture && mat.metallicRoughnessTexture < assets_.textureCount())

@@ -226,13 +226,15 @@ bool VoxelScene::record(render::FrameContext& frame) {
       render::drawEach(frame, drawsToVoxelize_, pipelineFor, [&](VkCommandBuffer c, const render::DrawItem& d, const Pipeline& pipeline) {
         const Range& r = ranges_.at(d.entity);
         gpu::VoxelizePush pc{};
-        pc.modelToVoxel = toVoxel * d.model;
+        pc.modelToVoxelRows = glm::mat3x4(glm::transpose(toVoxel * d.model));
         pc.firstSlot = uint32_t(r.first);
         pc.capacity = uint32_t(r.capacity);
         pc.counterIndex = r.counter;
         pc.resolution = res;
         pc.albedo = glm::vec4(glm::vec3(d.material.baseColor), d.material.metallic);
         pc.emission = glm::vec4(d.material.emissive, 0.0f);
+        pc.uvLinear = d.material.uvTransform.linear();
+        pc.uvOffset = glm::vec4(d.material.uvTransform.offset, 0.0f, 0.0f);
         DescriptorWrites()
             .storageBuffer(DYNGI_VOXELIZE_BINDING_FRAGMENTS, fragments_.handle())
             .storageBuffer(DYNGI_VOXELIZE_BINDING_COUNTERS, counters_.handle())

@@ -114,6 +114,16 @@ TEST_F(RenderTest, MetallicRoughnessTextureSetsTheVplsDiffuseShare) {
       (v.position.x < 0 ? left : right) += luminance(glm::dvec3(v.flux));
   std::printf("many lights: VPL flux right / left %.3f (expected %.3f)\n", right / left, 1.0 - kMetallic);
   EXPECT_NEAR(right / left, 1.0 - kMetallic, 0.05);
+  // The voxels' albedo: the diffuse share per texel too (what VCT injects and many lights' bounces reflect).
+  size_t voxelsChecked = 0;
+  const gi::VoxelVolume& vol = voxels.volume();
+  for (const gi::VoxelFragment& fr : gi::VoxelProbe(voxels).readbackFragments()) {
+    const glm::vec3 p = vol.origin + (glm::vec3(fr.cell) + 0.5f) * vol.voxelSize;
+    if (std::abs(p.x) < 0.25f || std::abs(p.x) > 0.8f || std::abs(p.y) > 0.8f) continue;
+    EXPECT_NEAR(fr.albedo.r, 0.7f * (p.x < 0 ? 1.0f : 1.0f - kMetallic), 2.0f / 255.0f) << "voxel at x " << p.x;
+    ++voxelsChecked;
+  }
+  EXPECT_GT(voxelsChecked, 100u);
   // Temporal paths: each VPL's albedo is the texel's diffuse share.
   gi::EmbreeScene bvh;
   bvh.sync(w, assets, 0);
@@ -165,4 +175,65 @@ TEST_F(RenderTest, OcclusionTextureScalesTheIndirectLightOnly) {
   std::printf("occlusion %.4f: %zu floor and %zu other pixels, worst relative difference %.2e\n", occlusion, floor, other, worst);
   EXPECT_GT(floor, 1000u);
   EXPECT_LT(worst, 2e-3);
+}
+
+// KHR_texture_transform in every consumer: a base-colour texture red where u < 0.5 and green where
+// u >= 0.5, on a quad whose v grows with y, under uv' = R(90 degrees) uv + (1, 0) = (1 - v, u): the colour
+// then depends on y (green below, red above) instead of x. The G-buffer, the path tracer, many lights'
+// RSM VPLs and the temporal paths' VPLs all see it turned.
+TEST_F(RenderTest, TextureTransformTurnsTheTextureInEveryConsumer) {
+  ecs::World w;
+  scene::AssetStore assets;
+  litQuad(w, assets);
+  scene::TextureData t;
+  t.width = t.height = 8;
+  t.srgb = false;
+  for (uint32_t y = 0; y < 8; ++y)
+    for (uint32_t x = 0; x < 8; ++x) t.rgba8.insert(t.rgba8.end(), {uint8_t(x < 4 ? 255 : 0), uint8_t(x < 4 ? 0 : 255), 0, 255});
+  w.each<scene::Material>([&](scene::Entity e, const scene::Material&) {
+    scene::Material& m = w.write<scene::Material>(e);
+    m = scene::Material{.baseColorTexture = assets.addTexture(t), .uvTransform = {.offset = {1.0f, 0.0f}, .rotation = 1.5707963f}};
+  });
+  Frame f = render(w, assets, 64, 64);
+  gi::EmbreeScene bvh;
+  bvh.sync(w, assets, 0);
+  gi::PathTracerSettings pts;
+  pts.spp = 4;
+  pts.bounces = 0;
+  pts.pixelJitter = false;
+  const render::ImageRgba ref = gi::pathTrace(f.snapshot, bvh, assets, 64, 64, pts);
+  // Redness (r / (r + g)) expected where the surface point is: 1 above (y > 0), 0 below.
+  auto expectTurned = [](const char* who, const glm::vec3& p, const glm::vec3& colour) {
+    if (std::abs(p.x) > 0.8f || std::abs(p.y) > 0.8f || std::abs(p.y) < 0.25f) return 0;  // off the seam and the wrapping border
+    const float redness = colour.r / std::max(colour.r + colour.g, 1e-6f);
+    EXPECT_NEAR(redness, p.y > 0 ? 1.0f : 0.0f, 0.02f) << who << " at (" << p.x << ", " << p.y << ")";
+    return 1;
+  };
+  int n = 0;
+  for (size_t i = 0; i < f.position.size(); ++i)
+    if (f.position[i].w > 0.5f) {
+      n += expectTurned("G-buffer albedo", glm::vec3(f.position[i]), glm::vec3(f.albedo[i]));
+      expectTurned("path tracer", glm::vec3(f.position[i]), glm::vec3(ref[i]));
+    }
+  EXPECT_GT(n, 500);
+  gi::VoxelScene voxels(context(), gi::VoxelSettings{.resolution = 64});
+  gi::ManyLights ml(context(), voxels, gi::ManyLightsOptions{.vpl = {.vplCount = 1024}});
+  render::Renderer renderer(context());
+  renderer.addFeature(&voxels);
+  renderer.addFeature(&ml);
+  renderer.resize(32, 32);
+  renderer.render(render::extractSnapshot(w, assets, 0));
+  int vpls = 0;
+  for (const gi::VplReadback& v : gi::readbackVpls(ml)) vpls += v.bounce == 0 ? expectTurned("RSM VPL", v.position, v.flux) : 0;
+  EXPECT_GT(vpls, 100);
+  int fragments = 0;
+  const gi::VoxelVolume& vol = voxels.volume();
+  for (const gi::VoxelFragment& fr : gi::VoxelProbe(voxels).readbackFragments())
+    fragments += expectTurned("voxel fragment", vol.origin + (glm::vec3(fr.cell) + 0.5f) * vol.voxelSize, glm::vec3(fr.albedo));
+  EXPECT_GT(fragments, 100);
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 2000}, .reshootBudget = 100000});
+  paths.update(render::extractSnapshot(w, assets, 0), bvh, assets, {});
+  int pathVpls = 0;
+  for (const gi::PathVpl& v : paths.vpls()) pathVpls += v.placed ? expectTurned("path VPL", v.position, v.albedo) : 0;
+  EXPECT_GT(pathVpls, 100);
 }

@@ -400,3 +400,34 @@ TEST(GltfImport, UnsupportedRequiredExtensionsAreRefusedAndOptionalOnesNamed) {
     EXPECT_EQ(loadSpec(dir, s)->error, "") << name;
   }
 }
+
+// KHR_texture_transform reaches the Material (one per material); a material whose textures carry
+// different transforms keeps the first and is named once in the report's notes.
+TEST(GltfImport, TextureTransformIsImportedAndDifferingOnesNoted) {
+  TempDir dir;
+  ASSERT_EQ(render::writePng(dir.file("t.png"), 1, 1, {255, 255, 255, 255}), "");
+  GltfSpec s = oneQuad();
+  s.nodes.push_back({.name = "second", .mesh = 0});
+  s.meshes[0][0].uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  s.meshes[0][0].material = 0;
+  s.imagesJson = {R"({"uri":"t.png"})"};
+  s.texturesJson = {R"({"source":0})"};
+  s.extensionsUsed = {"KHR_texture_transform"};
+  const std::string transform = R"("extensions":{"KHR_texture_transform":{"offset":[0.25,0.5],"rotation":0.3,"scale":[2,3]}})";
+  s.materialsJson = {R"({"name":"tiles","pbrMetallicRoughness":{"baseColorTexture":{"index":0,)" + transform + R"(}}})"};
+  auto same = loadSpec(dir, s);
+  ASSERT_EQ(same->error, "");
+  const Material* m = nullptr;
+  same->world.each<Material>([&](Entity, const Material& mat) { m = &mat; });
+  ASSERT_NE(m, nullptr);
+  EXPECT_EQ(m->uvTransform, (TextureTransform{.offset = {0.25f, 0.5f}, .rotation = 0.3f, .scale = {2.0f, 3.0f}}));
+  EXPECT_TRUE(same->report.notes.empty());
+  EXPECT_TRUE(same->report.ignoredExtensions.empty());
+
+  s.materialsJson = {R"({"name":"tiles","pbrMetallicRoughness":{"baseColorTexture":{"index":0,)" + transform +
+                     R"(}},"emissiveTexture":{"index":0}})"};
+  auto differ = loadSpec(dir, s);
+  ASSERT_EQ(differ->error, "");
+  ASSERT_EQ(differ->report.notes.size(), 1u) << "once, though two nodes use the material";
+  EXPECT_NE(differ->report.notes[0].find("tiles"), std::string::npos) << differ->report.notes[0];
+}

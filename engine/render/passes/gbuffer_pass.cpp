@@ -60,7 +60,8 @@ void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
           pc.model = d.model;
           pc.baseColor = m.baseColor;
           pc.emissive = glm::vec4(m.emissive, m.occlusionStrength);
-          pc.params = glm::vec4(m.metallic, m.roughness, 0.0f, 0.0f);
+          pc.params = glm::vec4(m.metallic, m.roughness, m.uvTransform.offset);
+          pc.uvLinear = m.uvTransform.linear();
           DescriptorWrites()
               .uniformBuffer(DYNGI_GBUFFER_BINDING_FRAME, frame.frameUniforms.handle())
               .sampledImage(DYNGI_GBUFFER_BINDING_BASE_COLOR_TEX, textures(m.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)

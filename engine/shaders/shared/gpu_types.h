@@ -55,7 +55,8 @@ DYNGI_GPU_STRUCT(GBufferPush) {
   mat4 model;
   vec4 baseColor;       // linear RGBA factor
   vec4 emissive;        // rgb outgoing radiance factor, w the occlusion texture's strength
-  vec4 params;          // x metallic, y roughness (zw unused: textures are pipeline variants)
+  vec4 params;          // x metallic, y roughness, zw the texture coordinates' offset (KHR_texture_transform)
+  vec4 uvLinear;        // the texture coordinates' linear map (shared/uv_transform.h)
 };
 
 // Descriptor bindings of the engine's passes (set 0, push descriptors): the shaders declare them and the
@@ -101,7 +102,7 @@ static_assert(sizeof(ShadowPush) == 64);
 static_assert(sizeof(LightingPush) == 4);
 static_assert(sizeof(FrameUniforms) == 4 * 64 + 8 * 16);
 static_assert(sizeof(GpuLight) == 64);
-static_assert(sizeof(GBufferPush) == 112);
+static_assert(sizeof(GBufferPush) == 128);  // the guaranteed push-constant minimum
 }  // namespace dyngi::gpu
 #endif
 

@@ -9,6 +9,7 @@ namespace dyngi::gi::gpu {
 using vec4 = glm::vec4;
 using uvec4 = glm::uvec4;
 using mat4 = glm::mat4;
+using mat3x4 = glm::mat3x4;
 #endif
 
 // SVO node word: bit 31 = occupied / subdivided; bits 0..30 = child group (0: none yet). Children of a
@@ -26,13 +27,15 @@ struct alignas(16) VoxelizePush {
 #else
 struct VoxelizePush {
 #endif
-  mat4 modelToVoxel;    // object space -> voxel units ([0, resolution)^3)
+  mat3x4 modelToVoxelRows;  // object space -> voxel units ([0, resolution)^3): the affine map's three rows
   uint firstSlot;       // the entity's fragment range: first slot,
   uint capacity;        // its size,
   uint counterIndex;    // and the counter its fragments are appended with
   uint resolution;      // voxels per side
   vec4 albedo;          // rgb base colour factor, a metallic factor (diffuse = base x (1 - metallic))
   vec4 emission;        // rgb emitted radiance (a unused)
+  vec4 uvLinear;        // KHR_texture_transform (engine/shaders/shared/uv_transform.h): the linear map,
+  vec4 uvOffset;        // and in xy the offset
 };
 
 // Per-level bookkeeping of the SVO build (storage buffer, one per level).
@@ -98,6 +101,8 @@ struct RsmPush {
 #endif
   mat4 model;
   vec4 baseColor;       // rgb linear base colour factor, a metallic factor (diffuse = base x (1 - metallic))
+  vec4 uvLinear;        // KHR_texture_transform (engine/shaders/shared/uv_transform.h): the linear map,
+  vec4 uvOffset;        // and in xy the offset
   uint layer;           // the RsmLayer drawn
   uint pad0, pad1, pad2;
 };
@@ -433,9 +438,9 @@ struct VctProbePush { DYNGI_VCT_PROBE_PUSH };
 #endif
 
 #ifdef __cplusplus
-static_assert(sizeof(VoxelizePush) == 112);
+static_assert(sizeof(VoxelizePush) == 128);
 static_assert(sizeof(GpuVpl) == 48);
-static_assert(sizeof(RsmPush) == 96);
+static_assert(sizeof(RsmPush) == 128);
 static_assert(sizeof(RsmLayer) == 96);
 static_assert(sizeof(GatherPush) == 64);
 static_assert(sizeof(TemporalSetCamera) == 128);

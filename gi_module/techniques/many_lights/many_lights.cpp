@@ -226,6 +226,8 @@ bool ManyLights::record(render::FrameContext& frame) {
           gpu::RsmPush pc{};
           pc.model = dr.model;
           pc.baseColor = glm::vec4(glm::vec3(dr.material.baseColor), dr.material.metallic);
+          pc.uvLinear = dr.material.uvTransform.linear();
+          pc.uvOffset = glm::vec4(dr.material.uvTransform.offset, 0.0f, 0.0f);
           pc.layer = layer;
           DescriptorWrites()
               .storageBuffer(DYNGI_RSM_BINDING_LAYERS, layers_.handle())

@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
+#include "shared/uv_transform.h"
 layout(set = 0, binding = DYNGI_RSM_BINDING_LAYERS) readonly buffer Layers { RsmLayer layers[]; };
 layout(push_constant) uniform Push { RsmPush pc; };
 layout(location = 0) in vec3 inPosition;
@@ -13,6 +14,6 @@ void main() {
   vec4 w = pc.model * vec4(inPosition, 1.0);
   outWorld = w.xyz;
   outNormal = transpose(inverse(mat3(pc.model))) * inNormal;
-  outUv = inUv;
+  outUv = applyUvTransform(pc.uvLinear, pc.uvOffset.xy, inUv);
   gl_Position = layers[pc.layer].viewProj * w;
 }

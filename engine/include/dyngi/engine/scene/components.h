@@ -1,5 +1,6 @@
 #pragma once
 // The engine's built-in components. Plain data: behaviour lives in systems.
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -59,6 +60,20 @@ struct MeshInstance {
 };
 
 // pbrMetallicRoughness subset. emissive is outgoing radiance (factor x KHR_materials_emissive_strength).
+// KHR_texture_transform (engine/shaders/shared/uv_transform.h applies it): one per material, used by all
+// of its textures.
+struct TextureTransform {
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;  // radians, counter-clockwise in UV space
+  glm::vec2 scale{1.0f};
+  // The linear part's rows, (x, y) and (z, w): R(rotation) S(scale).
+  glm::vec4 linear() const {
+    const float c = std::cos(rotation), s = std::sin(rotation);
+    return {scale.x * c, -scale.y * s, scale.x * s, scale.y * c};
+  }
+  bool operator==(const TextureTransform&) const = default;
+};
+
 struct Material {
   glm::vec4 baseColor{1.0f};
   TextureId baseColorTexture = kNoTexture;
@@ -73,6 +88,7 @@ struct Material {
   // tracer (it traces the occlusion the texture approximates).
   TextureId occlusionTexture = kNoTexture;
   float occlusionStrength = 1.0f;
+  TextureTransform uvTransform;
 };
 
 enum class LightType : uint32_t { Directional = 0, Point = 1, Spot = 2 };

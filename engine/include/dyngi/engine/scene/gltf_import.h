@@ -32,6 +32,9 @@ struct ImportReport {
   // Extensions the file uses that the import does not honour (optional ones: the file still renders,
   // without them). A required one it does not support fails the import instead.
   std::vector<std::string> ignoredExtensions;
+  // What the import did differently from the file, one line each (a material whose textures' transforms
+  // differ uses one of them).
+  std::vector<std::string> notes;
 };
 // The glTF extensions the import honours.
 const std::vector<std::string>& supportedGltfExtensions();
