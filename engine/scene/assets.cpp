@@ -110,4 +110,27 @@ MeshData makeSphere(float radius, int segments, int rings) {
   return m;
 }
 
+namespace {
+float srgbToLinear(uint8_t v) {
+  const float c = float(v) / 255.0f;
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+}  // namespace
+
+glm::vec4 sampleTexture(const TextureData& t, glm::vec2 uv) {
+  if (t.width == 0 || t.height == 0 || t.rgba8.size() < size_t(t.width) * t.height * 4) return glm::vec4(1.0f);
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = glm::vec2(0.0f);
+  const float x = (uv.x - std::floor(uv.x)) * float(t.width) - 0.5f, y = (uv.y - std::floor(uv.y)) * float(t.height) - 0.5f;
+  const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+  const float fx = x - float(x0), fy = y - float(y0);
+  auto at = [&](int xi, int yi) {
+    const uint32_t xx = uint32_t((xi % int(t.width) + int(t.width)) % int(t.width));
+    const uint32_t yy = uint32_t((yi % int(t.height) + int(t.height)) % int(t.height));
+    const uint8_t* p = &t.rgba8[(size_t(yy) * t.width + xx) * 4];
+    const glm::vec3 rgb = t.srgb ? glm::vec3(srgbToLinear(p[0]), srgbToLinear(p[1]), srgbToLinear(p[2])) : glm::vec3(p[0], p[1], p[2]) / 255.0f;
+    return glm::vec4(rgb, float(p[3]) / 255.0f);
+  };
+  return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx), glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
+}
+
 }  // namespace dyngi::scene

@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <cstring>
 #include <optional>
-#include <set>
 #include <filesystem>
 #include <functional>
 #include <glm/gtc/type_ptr.hpp>
@@ -403,6 +402,11 @@ class Importer {
     return t;
   }
 
+  // Materials are read once per primitive instance: each note is written once.
+  void noteOnce(const std::string& note) {
+    if (std::find(report_.notes.begin(), report_.notes.end(), note) == report_.notes.end()) report_.notes.push_back(note);
+  }
+
   Material materialFor(int index) {
     Material mat;
     if (index < 0) return mat;
@@ -422,9 +426,14 @@ class Importer {
     consider(m.emissiveTexture.index, m.emissiveTexture.extensions);
     consider(m.occlusionTexture.index, m.occlusionTexture.extensions);
     if (transform) mat.uvTransform = *transform;
-    if (differ && notedMaterials_.insert(index).second)
-      report_.notes.push_back("material " + std::to_string(index) + " (" + m.name +
-                              ") gives its textures different KHR_texture_transform values; all use the first texture's");
+    if (m.alphaMode == "MASK") {
+      mat.alphaMask = true;
+      mat.alphaCutoff = std::isfinite(m.alphaCutoff) ? float(std::max(m.alphaCutoff, 0.0)) : 0.5f;
+    } else if (m.alphaMode == "BLEND") {
+      noteOnce("material " + std::to_string(index) + " (" + m.name + ") is alphaMode BLEND; drawn opaque");
+    }
+    if (differ)
+      noteOnce("material " + std::to_string(index) + " (" + m.name + ") gives its textures different KHR_texture_transform values; all use the first texture's");
     const auto& pbr = m.pbrMetallicRoughness;
     for (int i = 0; i < 4 && size_t(i) < pbr.baseColorFactor.size(); ++i) mat.baseColor[i] = float(pbr.baseColorFactor[size_t(i)]);
     if (pbr.baseColorTexture.index >= 0) mat.baseColorTexture = textureIds_[size_t(pbr.baseColorTexture.index)];
@@ -642,7 +651,6 @@ class Importer {
   std::vector<std::vector<PendingPrimitive>> meshes_;
   std::vector<std::vector<int>> materialsByMesh_;
   std::vector<std::vector<MeshId>> meshIds_;
-  std::set<int> notedMaterials_;             // materials a note was written about (once each)
   std::vector<TextureId> textureIds_;        // per glTF texture: its sRGB copy (colour uses)
   std::vector<TextureId> linearTextureIds_;  // ... and its linear copy (data uses)
   std::vector<Entity> nodeEntities_;

@@ -13,6 +13,7 @@ layout(constant_id = 0) const bool kBaseColorTexture = true;
 layout(constant_id = 1) const bool kEmissiveTexture = true;
 layout(constant_id = 2) const bool kMetallicRoughnessTexture = true;
 layout(constant_id = 3) const bool kOcclusionTexture = true;
+layout(constant_id = 4) const bool kAlphaMask = false;  // alphaMode MASK: pc.baseColor.a is the texture-alpha threshold
 
 layout(location = 0) in vec3 inWorldPos;
 layout(location = 1) in vec3 inNormal;
@@ -24,8 +25,9 @@ layout(location = 2) out vec4 outAlbedo;    // rgb linear base colour, a metalli
 layout(location = 3) out vec4 outEmissive;  // rgb emitted radiance, a the share of indirect light that reaches it (occlusion texture)
 
 void main() {
-  vec4 base = pc.baseColor;
+  vec4 base = vec4(pc.baseColor.rgb, 1.0);
   if (kBaseColorTexture) base *= texture(baseColorTex, inUv);
+  if (kAlphaMask && base.a < pc.baseColor.a) discard;
   vec3 emissive = pc.emissive.rgb;
   if (kEmissiveTexture) emissive *= texture(emissiveTex, inUv).rgb;
   float metallic = pc.params.x, roughness = pc.params.y;

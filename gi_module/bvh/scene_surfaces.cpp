@@ -6,12 +6,6 @@
 #include "shared/uv_transform.h"
 
 namespace dyngi::gi {
-namespace {
-float srgbToLinear(uint8_t v) {
-  float c = float(v) / 255.0f;
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-}  // namespace
 
 SceneSurfaces::SceneSurfaces(const render::RenderSnapshot& s, const scene::AssetStore& assets) : snap_(s), assets_(assets) {
   for (size_t i = 0; i < s.draws.size(); ++i) drawOf_[s.draws[i].entity] = i;
@@ -56,20 +50,6 @@ bool SceneSurfaces::at(const RayHit& h, const glm::vec3& origin, const glm::vec3
   return true;
 }
 
-glm::vec3 SceneSurfaces::texel(scene::TextureId id, glm::vec2 uv) const {
-  const scene::TextureData& t = assets_.texture(id);
-  if (t.width == 0 || t.height == 0) return glm::vec3(1.0f);
-  // Bilinear with wrap, like the rasterizer's sampler.
-  float x = (uv.x - std::floor(uv.x)) * float(t.width) - 0.5f, y = (uv.y - std::floor(uv.y)) * float(t.height) - 0.5f;
-  int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-  float fx = x - float(x0), fy = y - float(y0);
-  auto at = [&](int xi, int yi) {
-    uint32_t xx = uint32_t((xi % int(t.width) + int(t.width)) % int(t.width));
-    uint32_t yy = uint32_t((yi % int(t.height) + int(t.height)) % int(t.height));
-    const uint8_t* p = &t.rgba8[(size_t(yy) * t.width + xx) * 4];
-    return t.srgb ? glm::vec3(srgbToLinear(p[0]), srgbToLinear(p[1]), srgbToLinear(p[2])) : glm::vec3(p[0], p[1], p[2]) / 255.0f;
-  };
-  return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx), glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
-}
+glm::vec3 SceneSurfaces::texel(scene::TextureId id, glm::vec2 uv) const { return glm::vec3(scene::sampleTexture(assets_.texture(id), uv)); }
 
 }  // namespace dyngi::gi

@@ -179,8 +179,9 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
 }
 
 render::Pipeline& VoxelScene::voxelizePipelineFor(uint32_t textureBits) {
+  const bool alphaMask = textureBits & DYNGI_MATERIAL_ALPHA_MASK;
   textureBits &= DYNGI_MATERIAL_BASE_COLOR_TEX | DYNGI_MATERIAL_EMISSIVE_TEX | DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX;  // what it reads
-  Pipeline& pipeline = voxelize_[textureBits];
+  Pipeline& pipeline = voxelize_[textureBits | (alphaMask ? 8u : 0u)];
   if (pipeline.handle()) return pipeline;
   Pipeline::GraphicsDesc d;
   d.vertex = DYNGI_SHADER(spv_voxelize_vert);
@@ -195,7 +196,8 @@ render::Pipeline& VoxelScene::voxelizePipelineFor(uint32_t textureBits) {
                 {DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
   auto bit = [&](uint32_t b) { return (textureBits & b) ? 1u : 0u; };
-  d.fragmentSpecialization = {bit(DYNGI_MATERIAL_BASE_COLOR_TEX), bit(DYNGI_MATERIAL_EMISSIVE_TEX), bit(DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX)};
+  d.fragmentSpecialization = {bit(DYNGI_MATERIAL_BASE_COLOR_TEX), bit(DYNGI_MATERIAL_EMISSIVE_TEX), bit(DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX),
+                              alphaMask ? 1u : 0u};
   d.name = "voxelize";
   pipeline = Pipeline::graphics(ctx_, d);
   return pipeline;
@@ -234,7 +236,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
         pc.albedo = glm::vec4(glm::vec3(d.material.baseColor), d.material.metallic);
         pc.emission = glm::vec4(d.material.emissive, 0.0f);
         pc.uvLinear = d.material.uvTransform.linear();
-        pc.uvOffset = glm::vec4(d.material.uvTransform.offset, 0.0f, 0.0f);
+        pc.uvOffset = glm::vec4(d.material.uvTransform.offset, render::alphaMaskThreshold(d.material), 0.0f);
         DescriptorWrites()
             .storageBuffer(DYNGI_VOXELIZE_BINDING_FRAGMENTS, fragments_.handle())
             .storageBuffer(DYNGI_VOXELIZE_BINDING_COUNTERS, counters_.handle())

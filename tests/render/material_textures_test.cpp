@@ -237,3 +237,130 @@ TEST_F(RenderTest, TextureTransformTurnsTheTextureInEveryConsumer) {
   for (const gi::PathVpl& v : paths.vpls()) pathVpls += v.placed ? expectTurned("path VPL", v.position, v.albedo) : 0;
   EXPECT_GT(pathVpls, 100);
 }
+
+namespace {
+// A 4 m floor under a 2 m horizontal "fence" 1 m above it whose left half (x < 0) its base colour's alpha
+// cuts away (alphaMode MASK, cutoff 0.5), lit from above by the sun; the camera looks down from the side.
+constexpr float kFenceHeight = 1.0f;
+void floorUnderAFence(ecs::World& w, scene::AssetStore& a) {
+  const scene::Entity floor = w.create();
+  w.add(floor, scene::Transform{});
+  w.add(floor, scene::MeshInstance{a.addMesh(scene::makeQuad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4})), true});
+  w.add(floor, scene::Material{.baseColor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f)});
+  scene::TextureData t;
+  t.width = t.height = 8;
+  for (uint32_t y = 0; y < 8; ++y)
+    for (uint32_t x = 0; x < 8; ++x) t.rgba8.insert(t.rgba8.end(), {200, 120, 60, uint8_t(x < 4 ? 0 : 255)});
+  const scene::Entity fence = w.create();
+  w.add(fence, scene::Transform{});
+  // Both faces: the quad's uv u runs along +x.
+  scene::MeshData mesh = scene::makeQuad({-1, kFenceHeight, 1}, {2, 0, 0}, {0, 0, -2});
+  w.add(fence, scene::MeshInstance{a.addMesh(std::move(mesh)), true});
+  w.add(fence, scene::Material{.baseColorTexture = a.addTexture(t), .alphaMask = true, .alphaCutoff = 0.5f});
+  const scene::Entity sun = w.create();
+  scene::Transform st;
+  st.rotation = glm::quatLookAtRH(glm::normalize(glm::vec3(0.15f, -1.0f, 0.1f)), glm::vec3(0, 1, 0));
+  w.add(sun, st);
+  w.add(sun, scene::Light{.type = scene::LightType::Directional, .intensity = 2.0f});
+  const scene::Entity cam = w.create();
+  scene::Transform ct;
+  ct.translation = {3.5f, 3.5f, 0.5f};
+  ct.rotation = glm::quatLookAtRH(glm::normalize(glm::vec3(-3.5f, -3.5f, -0.5f)), glm::vec3(0, 1, 0));
+  w.add(cam, ct);
+  w.add(cam, scene::Camera{.yfov = 1.0f});
+  w.add(cam, scene::ActiveCamera{});
+}
+// Where the sun's ray down to floor point p crosses the fence's plane: over its cut half, its solid half,
+// or beside it.
+enum class Under { Hole, Solid, Open };
+Under underTheFence(const glm::vec3& p) {
+  const glm::vec3 toSun = -glm::normalize(glm::vec3(0.15f, -1.0f, 0.1f));
+  const glm::vec3 q = p + toSun * (kFenceHeight / toSun.y);
+  if (std::abs(q.x) > 1.0f || std::abs(q.z) > 1.0f) return Under::Open;
+  return q.x < 0.0f ? Under::Hole : Under::Solid;
+}
+}  // namespace
+
+// alphaMode MASK in every consumer: the G-buffer sees the floor through the cut half, the shadow map
+// lets the sun through it, the path tracer (Embree's filter) agrees pixel by pixel, and neither the
+// voxels, many lights' RSM VPLs nor the temporal paths' VPLs lie on the cut half.
+TEST_F(RenderTest, AlphaMaskCutsTheSurfaceInEveryConsumer) {
+  ecs::World w;
+  scene::AssetStore assets;
+  floorUnderAFence(w, assets);
+  constexpr uint32_t kSize = 96;
+  Frame f = render(w, assets, kSize, kSize);
+  gi::EmbreeScene bvh;
+  bvh.sync(w, assets, 0);
+  gi::PathTracerSettings pts;
+  pts.spp = 4;
+  pts.bounces = 0;
+  pts.pixelJitter = false;
+  const render::ImageRgba ref = gi::pathTrace(f.snapshot, bvh, assets, kSize, kSize, pts);
+  dumpTestImage("alpha_mask_raster", f.hdr, kSize, kSize);
+  dumpTestImage("alpha_mask_path", ref, kSize, kSize);
+  size_t fencePixels = 0, litFloor[3] = {0, 0, 0}, floorPixels[3] = {0, 0, 0}, disagree = 0, covered = 0;
+  for (size_t i = 0; i < f.position.size(); ++i) {
+    if (f.position[i].w < 0.5f) continue;
+    ++covered;
+    const glm::vec3 p(f.position[i]);
+    if (std::abs(p.y - kFenceHeight) < 1e-3f) {
+      ++fencePixels;
+      EXPECT_GT(p.x, -0.05f) << "the G-buffer shows the fence's cut half";
+    } else if (std::abs(p.y) < 1e-3f) {
+      const int under = int(underTheFence(p));
+      ++floorPixels[under];
+      litFloor[under] += f.hdr[i].r > 0.1f;
+    }
+    // The path tracer (primary rays and shadow rays through Embree's alpha filter) sees the same.
+    disagree += std::abs(luminance(glm::dvec3(f.hdr[i])) - luminance(glm::dvec3(ref[i]))) > 0.05;
+  }
+  std::printf("fence %zu px; floor under the hole %zu (lit %zu), under the solid half %zu (lit %zu), open %zu (lit %zu); "
+              "raster and path tracer disagree on %zu of %zu px\n",
+              fencePixels, floorPixels[0], litFloor[0], floorPixels[1], litFloor[1], floorPixels[2], litFloor[2], disagree, covered);
+  EXPECT_GT(fencePixels, 300u);
+  EXPECT_GT(floorPixels[0], 40u);
+  EXPECT_GT(floorPixels[1], 100u);
+  EXPECT_GE(litFloor[0], floorPixels[0] * 95 / 100) << "the sun passes the cut half";
+  EXPECT_LE(litFloor[1], floorPixels[1] * 5 / 100) << "the solid half casts its shadow";
+  EXPECT_LE(disagree, covered / 50) << "edges only";
+
+  // The GI's views of the scene: voxels, RSM VPLs, path VPLs.
+  gi::VoxelScene voxels(context(), gi::VoxelSettings{.resolution = 64});
+  gi::ManyLights ml(context(), voxels, gi::ManyLightsOptions{.vpl = {.vplCount = 2048}});
+  render::Renderer renderer(context());
+  renderer.addFeature(&voxels);
+  renderer.addFeature(&ml);
+  renderer.resize(32, 32);
+  renderer.render(render::extractSnapshot(w, assets, 0));
+  auto onCutHalf = [](const glm::vec3& p, float tolerance) {
+    return std::abs(p.y - kFenceHeight) < tolerance && p.x < -tolerance && std::abs(p.z) < 1.0f;
+  };
+  const gi::VoxelVolume& vol = voxels.volume();
+  size_t fenceFragments = 0;
+  for (const gi::VoxelFragment& fr : gi::VoxelProbe(voxels).readbackFragments()) {
+    const glm::vec3 c = vol.origin + (glm::vec3(fr.cell) + 0.5f) * vol.voxelSize;
+    EXPECT_FALSE(onCutHalf(c, vol.voxelSize)) << "a voxel on the cut half at x " << c.x;
+    fenceFragments += std::abs(c.y - kFenceHeight) < vol.voxelSize;
+  }
+  EXPECT_GT(fenceFragments, 50u) << "the solid half is voxelized";
+  size_t rsmOnFence = 0, rsmUnderSolid = 0;
+  for (const gi::VplReadback& v : gi::readbackVpls(ml)) {
+    if (v.bounce != 0) continue;
+    EXPECT_FALSE(onCutHalf(v.position, 1e-2f)) << "an RSM VPL on the cut half";
+    rsmOnFence += std::abs(v.position.y - kFenceHeight) < 1e-2f;
+    rsmUnderSolid += std::abs(v.position.y) < 1e-2f && underTheFence(v.position) == Under::Solid;
+  }
+  EXPECT_GT(rsmOnFence, 50u);
+  EXPECT_EQ(rsmUnderSolid, 0u) << "the RSM sees the fence's solid half, not the floor under it";
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 3000}, .reshootBudget = 100000});
+  paths.update(render::extractSnapshot(w, assets, 0), bvh, assets, {});
+  size_t pathsThroughHole = 0;
+  for (const gi::PathVpl& v : paths.vpls()) {
+    if (!v.placed) continue;
+    EXPECT_FALSE(onCutHalf(v.position, 1e-3f)) << "a path VPL on the cut half";
+    pathsThroughHole += std::abs(v.position.y) < 1e-3f && underTheFence(v.position) == Under::Hole;
+    EXPECT_FALSE(std::abs(v.position.y) < 1e-3f && underTheFence(v.position) == Under::Solid) << "a path VPL in the solid half's shadow";
+  }
+  EXPECT_GT(pathsThroughHole, 20u);
+}

@@ -431,3 +431,25 @@ TEST(GltfImport, TextureTransformIsImportedAndDifferingOnesNoted) {
   ASSERT_EQ(differ->report.notes.size(), 1u) << "once, though two nodes use the material";
   EXPECT_NE(differ->report.notes[0].find("tiles"), std::string::npos) << differ->report.notes[0];
 }
+
+// alphaMode MASK with its cutoff reaches the Material; BLEND (not drawn as blending) is drawn opaque and
+// named once in the notes.
+TEST(GltfImport, AlphaMaskIsImportedAndBlendNoted) {
+  TempDir dir;
+  GltfSpec s = oneQuad();
+  s.meshes[0][0].material = 0;
+  s.materialsJson = {R"({"name":"leaves","alphaMode":"MASK","alphaCutoff":0.3})"};
+  auto mask = loadSpec(dir, s);
+  ASSERT_EQ(mask->error, "");
+  mask->world.each<Material>([&](Entity, const Material& m) {
+    EXPECT_TRUE(m.alphaMask);
+    EXPECT_FLOAT_EQ(m.alphaCutoff, 0.3f);
+  });
+  EXPECT_TRUE(mask->report.notes.empty());
+  s.materialsJson = {R"({"name":"glass","alphaMode":"BLEND"})"};
+  auto blend = loadSpec(dir, s);
+  ASSERT_EQ(blend->error, "");
+  blend->world.each<Material>([&](Entity, const Material& m) { EXPECT_FALSE(m.alphaMask); });
+  ASSERT_EQ(blend->report.notes.size(), 1u);
+  EXPECT_NE(blend->report.notes[0].find("BLEND"), std::string::npos);
+}

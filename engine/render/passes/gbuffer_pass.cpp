@@ -9,7 +9,7 @@ namespace dyngi::render {
 GBufferPass::GBufferPass(VulkanContext& ctx) : ctx_(ctx) {}
 
 Pipeline& GBufferPass::pipelineFor(uint32_t textureBits) {
-  Pipeline& pipeline = pipelines_[textureBits & 15u];
+  Pipeline& pipeline = pipelines_[textureBits & 31u];
   if (pipeline.handle()) return pipeline;
   Pipeline::GraphicsDesc d;
   d.vertex = DYNGI_SHADER(spv_gbuffer_vert);
@@ -27,7 +27,7 @@ Pipeline& GBufferPass::pipelineFor(uint32_t textureBits) {
                 {DYNGI_GBUFFER_BINDING_OCCLUSION_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
   auto bit = [&](uint32_t b) { return (textureBits & b) ? 1u : 0u; };
   d.fragmentSpecialization = {bit(DYNGI_MATERIAL_BASE_COLOR_TEX), bit(DYNGI_MATERIAL_EMISSIVE_TEX), bit(DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX),
-                              bit(DYNGI_MATERIAL_OCCLUSION_TEX)};
+                              bit(DYNGI_MATERIAL_OCCLUSION_TEX), bit(DYNGI_MATERIAL_ALPHA_MASK)};
   d.name = "gbuffer";
   pipeline = Pipeline::graphics(ctx_, d);
   return pipeline;
@@ -58,7 +58,7 @@ void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
           const scene::Material& m = d.material;
           gpu::GBufferPush pc;
           pc.model = d.model;
-          pc.baseColor = m.baseColor;
+          pc.baseColor = glm::vec4(glm::vec3(m.baseColor), m.alphaMask ? alphaMaskThreshold(m) : 1.0f);
           pc.emissive = glm::vec4(m.emissive, m.occlusionStrength);
           pc.params = glm::vec4(m.metallic, m.roughness, m.uvTransform.offset);
           pc.uvLinear = m.uvTransform.linear();

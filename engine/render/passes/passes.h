@@ -45,7 +45,7 @@ class ShadowPass {
  private:
   VulkanContext& ctx_;
   Settings settings_;
-  Pipeline pipeline_;
+  Pipeline pipeline_, maskedPipeline_;  // opaque casters; alpha-masked casters (their base colour's alpha cuts them)
   // A layered shadow map: the depth layers its draws test against, and the r32f lookup layers.
   struct Layers {
     Image depth, lookup;
@@ -99,7 +99,7 @@ class GBufferPass {
   VulkanContext& ctx_;
   // One pipeline per material kind (base-colour texture or not, emissive texture or not), made on first
   // use: lavapipe runs both sides of a branch, so an untextured material would pay for the lookups.
-  Pipeline pipelines_[16];  // by the material's texture bits (DYNGI_MATERIAL_*_TEX)
+  Pipeline pipelines_[32];  // by the material's texture bits (DYNGI_MATERIAL_*)
   Pipeline& pipelineFor(uint32_t textureBits);
 };
 

@@ -10,6 +10,8 @@
 #include "passes.h"
 #include "spirv/shadow.frag.spv.h"
 #include "spirv/shadow.vert.spv.h"
+#include "spirv/shadow_masked.frag.spv.h"
+#include "spirv/shadow_masked.vert.spv.h"
 
 namespace dyngi::render {
 ShadowPass::ShadowPass(VulkanContext& ctx, const Settings& settings) : ctx_(ctx), settings_(settings) {
@@ -20,10 +22,18 @@ ShadowPass::ShadowPass(VulkanContext& ctx, const Settings& settings) : ctx_(ctx)
   d.colorFormats = {VK_FORMAT_R32_SFLOAT};
   d.depthFormat = VK_FORMAT_D32_SFLOAT;
   d.pushConstantBytes = sizeof(gpu::ShadowPush);
-  // The depth bias is applied in shadow.frag (to the depth test and the lookup alike), as floats' bits.
+  // The depth bias is applied in shadow_depth.glsl (to the depth test and the lookup alike), as floats' bits.
   d.fragmentSpecialization = {std::bit_cast<uint32_t>(settings.depthBiasConstant), std::bit_cast<uint32_t>(settings.depthBiasSlope)};
   d.name = "shadow";
   pipeline_ = Pipeline::graphics(ctx, d);
+  // Alpha-masked casters (glTF alphaMode MASK): their own variant, so opaque ones pay no texture lookup.
+  d.vertex = DYNGI_SHADER(spv_shadow_masked_vert);
+  d.fragment = DYNGI_SHADER(spv_shadow_masked_frag);
+  setMeshVertexInput(d, /*normal=*/false, /*uv=*/true);
+  d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  d.bindings = {{DYNGI_SHADOW_BINDING_BASE_COLOR_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  d.name = "shadow_masked";
+  maskedPipeline_ = Pipeline::graphics(ctx, d);
 
   lights_ = Buffer(ctx, sizeof(gpu::GpuLight) * DYNGI_MAX_LIGHTS, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "lights");
   matrices_ = Buffer(ctx, sizeof(glm::mat4) * settings.maxLayers, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "shadow matrices");
@@ -96,10 +106,19 @@ void ShadowPass::drawCasters(VkCommandBuffer cmd, const Layers& target, uint32_t
   RenderingScope rendering(cmd, size, size, {colorAttachment(target.lookup.layerView(layer), {{1.0f, 0.0f, 0.0f, 0.0f}}, load)},
                            depthAttachment(target.depth.layerView(layer), load));
   drawEach(
-      frame, draws, [&](const DrawItem&) -> const Pipeline& { return pipeline_; },
+      frame, draws, [&](const DrawItem& d) -> const Pipeline& { return d.material.alphaMask ? maskedPipeline_ : pipeline_; },
       [&](VkCommandBuffer c, const DrawItem& d, const Pipeline& p) {
-        const gpu::ShadowPush pc{viewProj * d.model};
-        vkCmdPushConstants(c, p.layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(pc), &pc);
+        const scene::Material& m = d.material;
+        const gpu::ShadowPush pc{viewProj * d.model, m.uvTransform.linear(), glm::vec4(m.uvTransform.offset, alphaMaskThreshold(m), 0.0f)};
+        if (m.alphaMask) {
+          DescriptorWrites()
+              .sampledImage(DYNGI_SHADOW_BINDING_BASE_COLOR_TEX, frame.textureView(m.baseColorTexture), frame.linearSampler,
+                            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+              .push(ctx_, c, p);
+          vkCmdPushConstants(c, p.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+        } else {
+          vkCmdPushConstants(c, p.layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(pc), &pc);
+        }
       });
 }
 

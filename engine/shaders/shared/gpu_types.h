@@ -53,7 +53,7 @@ DYNGI_GPU_STRUCT(GpuLight) {
 // Push constants of the G-buffer pass (<= 128 bytes, the guaranteed minimum).
 DYNGI_GPU_STRUCT(GBufferPush) {
   mat4 model;
-  vec4 baseColor;       // linear RGBA factor
+  vec4 baseColor;       // rgb linear factor; a: alphaMaskThreshold() in the alpha-mask variant (alpha is not stored)
   vec4 emissive;        // rgb outgoing radiance factor, w the occlusion texture's strength
   vec4 params;          // x metallic, y roughness, zw the texture coordinates' offset (KHR_texture_transform)
   vec4 uvLinear;        // the texture coordinates' linear map (shared/uv_transform.h)
@@ -67,12 +67,15 @@ DYNGI_GPU_STRUCT(GBufferPush) {
 #define DYNGI_GBUFFER_BINDING_EMISSIVE_TEX 2
 #define DYNGI_GBUFFER_BINDING_METALLIC_ROUGHNESS_TEX 3
 #define DYNGI_GBUFFER_BINDING_OCCLUSION_TEX 4
+// shadow (alpha-masked casters)
+#define DYNGI_SHADOW_BINDING_BASE_COLOR_TEX 0
 // The material's textures, as bits of a pipeline variant (the G-buffer's; the voxelization and the RSMs
 // use the ones they read).
 #define DYNGI_MATERIAL_BASE_COLOR_TEX 1u
 #define DYNGI_MATERIAL_EMISSIVE_TEX 2u
 #define DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX 4u
 #define DYNGI_MATERIAL_OCCLUSION_TEX 8u
+#define DYNGI_MATERIAL_ALPHA_MASK 16u  // not a texture: the alpha test's variant
 // lighting
 #define DYNGI_LIGHTING_BINDING_FRAME 0
 #define DYNGI_LIGHTING_BINDING_G_POSITION 1
@@ -92,13 +95,16 @@ DYNGI_GPU_STRUCT(GBufferPush) {
 
 // Push constants of the shadow pass (one caster into one layer) and of the lighting pass, as member
 // lists: C++ gets a struct, the shader `layout(push_constant) uniform Push { DYNGI_SHADOW_PUSH };`.
-#define DYNGI_SHADOW_PUSH mat4 lightViewProjModel;
+#define DYNGI_SHADOW_PUSH                                                                              \
+  mat4 lightViewProjModel;                                                                             \
+  vec4 uvLinear;           /* alpha-masked casters: KHR_texture_transform (shared/uv_transform.h), */ \
+  vec4 uvOffsetThreshold;  /* xy its offset, z alphaMaskThreshold() */
 #define DYNGI_LIGHTING_PUSH uint hasIndirect;  /* 0: no feature wrote indirect light */
 
 #ifdef __cplusplus
 struct ShadowPush { DYNGI_SHADOW_PUSH };
 struct LightingPush { DYNGI_LIGHTING_PUSH };
-static_assert(sizeof(ShadowPush) == 64);
+static_assert(sizeof(ShadowPush) == 96);
 static_assert(sizeof(LightingPush) == 4);
 static_assert(sizeof(FrameUniforms) == 4 * 64 + 8 * 16);
 static_assert(sizeof(GpuLight) == 64);

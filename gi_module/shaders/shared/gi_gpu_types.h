@@ -35,7 +35,7 @@ struct VoxelizePush {
   vec4 albedo;          // rgb base colour factor, a metallic factor (diffuse = base x (1 - metallic))
   vec4 emission;        // rgb emitted radiance (a unused)
   vec4 uvLinear;        // KHR_texture_transform (engine/shaders/shared/uv_transform.h): the linear map,
-  vec4 uvOffset;        // and in xy the offset
+  vec4 uvOffset;        // and in xy the offset; z the alpha mask's threshold (alphaMaskThreshold())
 };
 
 // Per-level bookkeeping of the SVO build (storage buffer, one per level).
@@ -102,7 +102,7 @@ struct RsmPush {
   mat4 model;
   vec4 baseColor;       // rgb linear base colour factor, a metallic factor (diffuse = base x (1 - metallic))
   vec4 uvLinear;        // KHR_texture_transform (engine/shaders/shared/uv_transform.h): the linear map,
-  vec4 uvOffset;        // and in xy the offset
+  vec4 uvOffset;        // and in xy the offset; z the alpha mask's threshold (alphaMaskThreshold())
   uint layer;           // the RsmLayer drawn
   uint pad0, pad1, pad2;
 };

@@ -175,9 +175,9 @@ void ManyLights::prepare(render::VulkanContext&, const render::RenderSnapshot& s
 }
 
 render::Pipeline& ManyLights::rsmPipelineFor(uint32_t textureBits) {
-  textureBits &= DYNGI_MATERIAL_BASE_COLOR_TEX | DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX;  // what it reads
   const bool baseColorTexture = textureBits & DYNGI_MATERIAL_BASE_COLOR_TEX, mrTexture = textureBits & DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX;
-  Pipeline& pipeline = rsm_[(baseColorTexture ? 1 : 0) | (mrTexture ? 2 : 0)];
+  const bool alphaMask = textureBits & DYNGI_MATERIAL_ALPHA_MASK;
+  Pipeline& pipeline = rsm_[(baseColorTexture ? 1 : 0) | (mrTexture ? 2 : 0) | (alphaMask ? 4 : 0)];
   if (pipeline.handle()) return pipeline;
   Pipeline::GraphicsDesc d;
   d.vertex = DYNGI_SHADER(spv_rsm_vert);
@@ -191,7 +191,7 @@ render::Pipeline& ManyLights::rsmPipelineFor(uint32_t textureBits) {
                 {DYNGI_RSM_BINDING_LIGHTS, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_RSM_BINDING_BASE_COLOR_TEX, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT}};
-  d.fragmentSpecialization = {baseColorTexture ? 1u : 0u, mrTexture ? 1u : 0u};
+  d.fragmentSpecialization = {baseColorTexture ? 1u : 0u, mrTexture ? 1u : 0u, alphaMask ? 1u : 0u};
   d.name = "rsm";
   pipeline = Pipeline::graphics(ctx_, d);
   return pipeline;
@@ -227,7 +227,7 @@ bool ManyLights::record(render::FrameContext& frame) {
           pc.model = dr.model;
           pc.baseColor = glm::vec4(glm::vec3(dr.material.baseColor), dr.material.metallic);
           pc.uvLinear = dr.material.uvTransform.linear();
-          pc.uvOffset = glm::vec4(dr.material.uvTransform.offset, 0.0f, 0.0f);
+          pc.uvOffset = glm::vec4(dr.material.uvTransform.offset, render::alphaMaskThreshold(dr.material), 0.0f);
           pc.layer = layer;
           DescriptorWrites()
               .storageBuffer(DYNGI_RSM_BINDING_LAYERS, layers_.handle())

@@ -11,6 +11,7 @@ layout(push_constant) uniform Push { VoxelizePush pc; };
 layout(constant_id = 0) const bool kBaseColorTexture = true;
 layout(constant_id = 1) const bool kEmissiveTexture = true;
 layout(constant_id = 2) const bool kMetallicRoughnessTexture = true;
+layout(constant_id = 3) const bool kAlphaMask = false;  // alphaMode MASK: voxels where the texture's alpha is cut stay empty
 layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_FRAGMENTS) buffer Fragments { uvec4 fragments[]; };
 layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_COUNTERS) buffer Counters { uint counters[]; };
 layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX) uniform sampler2D baseColorTex;
@@ -70,6 +71,7 @@ void main() {
     vec4 albedo = vec4(pc.albedo.rgb, 1.0);
     float metallic = pc.albedo.a;
     emission = pc.emission.rgb;
+    float alpha = 1.0;
     if (kBaseColorTexture || kEmissiveTexture || kMetallicRoughnessTexture) {
       // Barycentrics of the voxel centre's projection onto the triangle (clamped) for texturing.
       vec3 p = center - dot(center - v0, nrm) * nrm;
@@ -81,10 +83,15 @@ void main() {
       vec3 bary = clamp(vec3(1.0 - bv - bw, bv, bw), 0.0, 1.0);
       bary /= max(bary.x + bary.y + bary.z, 1e-6);
       vec2 uv = bary.x * uv0 + bary.y * uv1 + bary.z * uv2;
-      if (kBaseColorTexture) albedo.rgb *= textureLod(baseColorTex, uv, 0.0).rgb;
+      if (kBaseColorTexture) {
+        vec4 texel = textureLod(baseColorTex, uv, 0.0);
+        albedo.rgb *= texel.rgb;
+        alpha = texel.a;
+      }
       if (kEmissiveTexture) emission *= textureLod(emissiveTex, uv, 0.0).rgb;
       if (kMetallicRoughnessTexture) metallic *= textureLod(metallicRoughnessTex, uv, 0.0).b;
     }
+    if (kAlphaMask && alpha < pc.uvOffset.z) continue;  // cut out at the voxel's centre
     albedo.rgb *= 1.0 - metallic;  // the diffuse share
     uint slot = atomicAdd(counters[pc.counterIndex], 1u);
     if (slot >= pc.capacity) continue;  // over capacity: counted, so the host grows the range

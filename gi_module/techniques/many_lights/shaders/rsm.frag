@@ -13,6 +13,7 @@ layout(push_constant) uniform Push { RsmPush pc; };
 // Material variant (ManyLights::rsmPipelineFor): the lookup is compiled in only when a texture is bound.
 layout(constant_id = 0) const bool kBaseColorTexture = true;
 layout(constant_id = 1) const bool kMetallicRoughnessTexture = true;
+layout(constant_id = 2) const bool kAlphaMask = false;  // alphaMode MASK: cut texels do not reflect (the light passes)
 layout(location = 0) in vec3 inWorld;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
@@ -23,7 +24,13 @@ void main() {
   RsmLayer layer = layers[pc.layer];
   GpuLight L = lights[layer.lightIndex];
   vec3 albedo = pc.baseColor.rgb;
-  if (kBaseColorTexture) albedo *= texture(baseColorTex, inUv).rgb;
+  float alpha = 1.0;
+  if (kBaseColorTexture) {
+    vec4 texel = texture(baseColorTex, inUv);
+    albedo *= texel.rgb;
+    alpha = texel.a;
+  }
+  if (kAlphaMask && alpha < pc.uvOffset.z) discard;
   float metallic = pc.baseColor.a;
   if (kMetallicRoughnessTexture) metallic *= texture(metallicRoughnessTex, inUv).b;
   albedo *= 1.0 - metallic;  // the diffuse share

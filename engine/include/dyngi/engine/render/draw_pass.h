@@ -52,6 +52,9 @@ using DrawPipelineFor = std::function<const Pipeline&(const DrawItem&)>;
 // The textures a material binds, as DYNGI_MATERIAL_*_TEX bits (shared/gpu_types.h): what the raster
 // passes' pipeline variants are chosen by (a lookup not taken still costs on lavapipe).
 uint32_t materialTextureBits(const scene::Material& material);
+// A masked material's cut, as a threshold on the base-colour texture's alpha: cutoff / the alpha factor
+// (above 1, every fragment is cut). Shaders: `if (textureAlpha < threshold) discard;`.
+float alphaMaskThreshold(const scene::Material& material);
 // Records a draw's descriptors and push constants; drawEach then binds its mesh and draws it.
 using DrawSetup = std::function<void(VkCommandBuffer, const DrawItem&, const Pipeline&)>;
 

@@ -55,6 +55,11 @@ struct TextureData {
   bool srgb = true;
 };
 
+// The texture at uv, bilinear with wrap like the rasterizer's sampler: rgb linear (sRGB decoded when
+// the texture is sRGB), alpha linear. An empty texture reads as white. The CPU's one texture lookup
+// (the path tracer, the VPL shooter, the ray queries' alpha cut).
+glm::vec4 sampleTexture(const TextureData& texture, glm::vec2 uv);
+
 class AssetStore {
  public:
   MeshId addMesh(MeshData mesh);

@@ -89,6 +89,10 @@ struct Material {
   TextureId occlusionTexture = kNoTexture;
   float occlusionStrength = 1.0f;
   TextureTransform uvTransform;
+  // glTF alphaMode MASK: where base colour alpha x the texture's alpha < alphaCutoff the surface is not
+  // there (foliage, fences): cut from the G-buffer, the shadow maps, the voxels, the RSMs and the rays.
+  bool alphaMask = false;
+  float alphaCutoff = 0.5f;
 };
 
 enum class LightType : uint32_t { Directional = 0, Point = 1, Spot = 2 };
