@@ -16,6 +16,20 @@ using namespace dyngi;
 using namespace dyngi::scene;
 
 namespace {
+// Propagates transforms, syncs the BVH, returns the snapshot and the entities that moved.
+render::RenderSnapshot stepFrame(ecs::World& world, const AssetStore& assets, ecs::Scheduler& scheduler, gi::EmbreeScene& bvh,
+                                 std::unordered_set<ecs::Entity>* moved) {
+  // Everything written since the previous frame happened at the current tick or later.
+  const ecs::Tick since = world.tick() - 1;
+  scheduler.runFrame(world, {});
+  if (moved) {
+    moved->clear();
+    world.forEachChanged<WorldTransform>(since, [&](ecs::Entity e) { moved->insert(e); });
+  }
+  bvh.sync(world, assets, since);
+  return render::extractSnapshot(world, assets, 0);
+}
+
 struct Fixture {
   ecs::World world;
   AssetStore assets;
@@ -25,18 +39,7 @@ struct Fixture {
     sample::buildBuiltinScene("cornell", world, assets);
     scheduler.add(ecs::Phase::PostUpdate, std::make_unique<TransformSystem>());
   }
-  // Propagates transforms, syncs the BVH, returns the snapshot and the entities that moved.
-  render::RenderSnapshot frame(std::unordered_set<ecs::Entity>* moved = nullptr) {
-    // Everything written since the previous frame happened at the current tick or later.
-    ecs::Tick since = world.tick() - 1;
-    scheduler.runFrame(world, {});
-    if (moved) {
-      moved->clear();
-      world.forEachChanged<WorldTransform>(since, [&](ecs::Entity e) { moved->insert(e); });
-    }
-    bvh.sync(world, assets, since);
-    return render::extractSnapshot(world, assets, 0);
-  }
+  render::RenderSnapshot frame(std::unordered_set<ecs::Entity>* moved = nullptr) { return stepFrame(world, assets, scheduler, bvh, moved); }
 };
 
 // 256 one-bounce VPLs in four temporal sets, filled at once, every set marked rendered: the starting
@@ -423,16 +426,7 @@ struct EmitterRoom {
       world.add(light, Light{.type = LightType::Spot, .intensity = 2.0f});
     }
   }
-  render::RenderSnapshot frame(std::unordered_set<ecs::Entity>* moved = nullptr) {
-    ecs::Tick since = world.tick() - 1;
-    scheduler.runFrame(world, {});
-    if (moved) {
-      moved->clear();
-      world.forEachChanged<WorldTransform>(since, [&](ecs::Entity e) { moved->insert(e); });
-    }
-    bvh.sync(world, assets, since);
-    return render::extractSnapshot(world, assets, 0);
-  }
+  render::RenderSnapshot frame(std::unordered_set<ecs::Entity>* moved = nullptr) { return stepFrame(world, assets, scheduler, bvh, moved); }
 };
 }  // namespace
 

@@ -16,6 +16,10 @@ struct Regions {
 // From the frame's G-buffer (position, normal) and the boxes' transforms; `size` x `size` frames.
 Regions cornellRegions(const Frame& f, const scene::AssetStore& assets, uint32_t size);
 
+// The pixels of a surface by its G-buffer normal (within ~18 degrees of `normal`), emitters (red >= 1)
+// left out: the walls of a scene that is not the built-in box. `count` gets how many.
+std::vector<uint8_t> surfaceFacing(const Frame& f, const glm::vec3& normal, size_t& count);
+
 inline double luminance(const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
 }  // namespace dyngi::test

@@ -106,13 +106,8 @@ TEST_F(RenderTest, SharedEmissiveCornellBoxLightsTheRoomThroughBothVplTechniques
     // only (the path tracer's 0.0019, under 1% of the floor), where a VPL's cosine is 0.
     size_t checked = 0;
     for (const auto& [name, normal] : surfaces) {
-      std::vector<uint8_t> mask(f.hdr.size(), 0);
       size_t n = 0;
-      for (size_t i = 0; i < mask.size(); ++i) {
-        const bool on = f.position[i].w > 0.5f && glm::dot(glm::vec3(f.normal[i]), normal) > 0.95f && f.hdr[i].r < 1.0f;
-        mask[i] = on;
-        n += on;
-      }
+      const std::vector<uint8_t> mask = surfaceFacing(f, normal, n);
       const double a = luminance(render::meanOver(f.hdr, &mask)), b = luminance(render::meanOver(reference, &mask));
       if (n < 100 || b < 1e-3) continue;
       std::printf("shared CornellBox.glb %-11s %-10s %.4f / %.4f = %.3f (%zu px)\n", c.name, name, a, b, a / b, n);

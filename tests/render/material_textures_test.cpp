@@ -57,6 +57,38 @@ std::vector<uint8_t> halfMask(const Frame& f, bool right) {
   }
   return m;
 }
+// The path tracer's direct light (no bounce) at the frame's sample positions, on an Embree scene synced
+// to the world (`bvh`, left for the test's own rays).
+render::ImageRgba directPathTraced(const Frame& f, gi::EmbreeScene& bvh, const ecs::World& w, const scene::AssetStore& assets) {
+  bvh.sync(w, assets, 0);
+  gi::PathTracerSettings pts;
+  pts.spp = 4;
+  pts.bounces = 0;
+  pts.pixelJitter = false;
+  return gi::pathTrace(f.snapshot, bvh, assets, f.width, f.height, pts);
+}
+
+// One many-lights frame of the world (64^3 voxels): what its voxelization and its RSM VPLs made of it.
+struct ManyLightsRun {
+  gi::VoxelScene voxels;
+  gi::ManyLights ml;
+  render::Renderer renderer;
+  ManyLightsRun(render::VulkanContext& ctx, const ecs::World& w, const scene::AssetStore& a, uint32_t vplCount)
+      : voxels(ctx, gi::VoxelSettings{.resolution = 64}), ml(ctx, voxels, gi::ManyLightsOptions{.vpl = {.vplCount = vplCount}}), renderer(ctx) {
+    renderer.addFeature(&voxels);
+    renderer.addFeature(&ml);
+    renderer.resize(32, 32);
+    renderer.render(render::extractSnapshot(w, a, 0));
+  }
+  // The fragments' voxel centres (world) with their albedo.
+  std::vector<std::pair<glm::vec3, glm::vec3>> voxelAlbedos() {
+    std::vector<std::pair<glm::vec3, glm::vec3>> out;
+    const gi::VoxelVolume& vol = voxels.volume();
+    for (const gi::VoxelFragment& fr : gi::VoxelProbe(voxels).readbackFragments())
+      out.emplace_back(vol.origin + (glm::vec3(fr.cell) + 0.5f) * vol.voxelSize, glm::vec3(fr.albedo));
+    return out;
+  }
+};
 }  // namespace
 
 // Per texel: roughness x G and metallic x B in the G-buffer; the diffuse light (1 - metallic) in the
@@ -67,12 +99,7 @@ TEST_F(RenderTest, MetallicRoughnessTextureReachesTheGBufferTheLightingAndThePat
   litQuad(w, assets);
   Frame f = render(w, assets, 96, 96);
   gi::EmbreeScene bvh;
-  bvh.sync(w, assets, 0);
-  gi::PathTracerSettings pts;
-  pts.spp = 4;
-  pts.bounces = 0;
-  pts.pixelJitter = false;
-  const render::ImageRgba ref = gi::pathTrace(f.snapshot, bvh, assets, 96, 96, pts);
+  const render::ImageRgba ref = directPathTraced(f, bvh, w, assets);
   for (bool right : {false, true}) {
     const std::vector<uint8_t> mask = halfMask(f, right);
     size_t n = 0;
@@ -101,26 +128,18 @@ TEST_F(RenderTest, MetallicRoughnessTextureSetsTheVplsDiffuseShare) {
   litQuad(w, assets);
   render(w, assets, 8, 8);  // propagates the transforms
   // Many lights: the first bounce's VPLs per half, in proportion to the flux each half reflects.
-  gi::VoxelScene voxels(context(), gi::VoxelSettings{.resolution = 64});
-  gi::ManyLights ml(context(), voxels, gi::ManyLightsOptions{.vpl = {.vplCount = 2048}});
-  render::Renderer renderer(context());
-  renderer.addFeature(&voxels);
-  renderer.addFeature(&ml);
-  renderer.resize(32, 32);
-  renderer.render(render::extractSnapshot(w, assets, 0));
+  ManyLightsRun run(context(), w, assets, 2048);
   double left = 0, right = 0;
-  for (const gi::VplReadback& v : gi::readbackVpls(ml))
+  for (const gi::VplReadback& v : gi::readbackVpls(run.ml))
     if (v.bounce == 0 && std::abs(v.position.x) > 0.25f && std::abs(v.position.x) < 0.8f && std::abs(v.position.y) < 0.8f)
       (v.position.x < 0 ? left : right) += luminance(glm::dvec3(v.flux));
   std::printf("many lights: VPL flux right / left %.3f (expected %.3f)\n", right / left, 1.0 - kMetallic);
   EXPECT_NEAR(right / left, 1.0 - kMetallic, 0.05);
   // The voxels' albedo: the diffuse share per texel too (what VCT injects and many lights' bounces reflect).
   size_t voxelsChecked = 0;
-  const gi::VoxelVolume& vol = voxels.volume();
-  for (const gi::VoxelFragment& fr : gi::VoxelProbe(voxels).readbackFragments()) {
-    const glm::vec3 p = vol.origin + (glm::vec3(fr.cell) + 0.5f) * vol.voxelSize;
+  for (const auto& [p, albedo] : run.voxelAlbedos()) {
     if (std::abs(p.x) < 0.25f || std::abs(p.x) > 0.8f || std::abs(p.y) > 0.8f) continue;
-    EXPECT_NEAR(fr.albedo.r, 0.7f * (p.x < 0 ? 1.0f : 1.0f - kMetallic), 2.0f / 255.0f) << "voxel at x " << p.x;
+    EXPECT_NEAR(albedo.r, 0.7f * (p.x < 0 ? 1.0f : 1.0f - kMetallic), 2.0f / 255.0f) << "voxel at x " << p.x;
     ++voxelsChecked;
   }
   EXPECT_GT(voxelsChecked, 100u);
@@ -196,12 +215,7 @@ TEST_F(RenderTest, TextureTransformTurnsTheTextureInEveryConsumer) {
   });
   Frame f = render(w, assets, 64, 64);
   gi::EmbreeScene bvh;
-  bvh.sync(w, assets, 0);
-  gi::PathTracerSettings pts;
-  pts.spp = 4;
-  pts.bounces = 0;
-  pts.pixelJitter = false;
-  const render::ImageRgba ref = gi::pathTrace(f.snapshot, bvh, assets, 64, 64, pts);
+  const render::ImageRgba ref = directPathTraced(f, bvh, w, assets);
   // Redness (r / (r + g)) expected where the surface point is: 1 above (y > 0), 0 below.
   auto expectTurned = [](const char* who, const glm::vec3& p, const glm::vec3& colour) {
     if (std::abs(p.x) > 0.8f || std::abs(p.y) > 0.8f || std::abs(p.y) < 0.25f) return 0;  // off the seam and the wrapping border
@@ -216,20 +230,12 @@ TEST_F(RenderTest, TextureTransformTurnsTheTextureInEveryConsumer) {
       expectTurned("path tracer", glm::vec3(f.position[i]), glm::vec3(ref[i]));
     }
   EXPECT_GT(n, 500);
-  gi::VoxelScene voxels(context(), gi::VoxelSettings{.resolution = 64});
-  gi::ManyLights ml(context(), voxels, gi::ManyLightsOptions{.vpl = {.vplCount = 1024}});
-  render::Renderer renderer(context());
-  renderer.addFeature(&voxels);
-  renderer.addFeature(&ml);
-  renderer.resize(32, 32);
-  renderer.render(render::extractSnapshot(w, assets, 0));
+  ManyLightsRun run(context(), w, assets, 1024);
   int vpls = 0;
-  for (const gi::VplReadback& v : gi::readbackVpls(ml)) vpls += v.bounce == 0 ? expectTurned("RSM VPL", v.position, v.flux) : 0;
+  for (const gi::VplReadback& v : gi::readbackVpls(run.ml)) vpls += v.bounce == 0 ? expectTurned("RSM VPL", v.position, v.flux) : 0;
   EXPECT_GT(vpls, 100);
   int fragments = 0;
-  const gi::VoxelVolume& vol = voxels.volume();
-  for (const gi::VoxelFragment& fr : gi::VoxelProbe(voxels).readbackFragments())
-    fragments += expectTurned("voxel fragment", vol.origin + (glm::vec3(fr.cell) + 0.5f) * vol.voxelSize, glm::vec3(fr.albedo));
+  for (const auto& [p, albedo] : run.voxelAlbedos()) fragments += expectTurned("voxel fragment", p, albedo);
   EXPECT_GT(fragments, 100);
   gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 2000}, .reshootBudget = 100000});
   paths.update(render::extractSnapshot(w, assets, 0), bvh, assets, {});
@@ -291,12 +297,7 @@ TEST_F(RenderTest, AlphaMaskCutsTheSurfaceInEveryConsumer) {
   constexpr uint32_t kSize = 96;
   Frame f = render(w, assets, kSize, kSize);
   gi::EmbreeScene bvh;
-  bvh.sync(w, assets, 0);
-  gi::PathTracerSettings pts;
-  pts.spp = 4;
-  pts.bounces = 0;
-  pts.pixelJitter = false;
-  const render::ImageRgba ref = gi::pathTrace(f.snapshot, bvh, assets, kSize, kSize, pts);
+  const render::ImageRgba ref = directPathTraced(f, bvh, w, assets);
   dumpTestImage("alpha_mask_raster", f.hdr, kSize, kSize);
   dumpTestImage("alpha_mask_path", ref, kSize, kSize);
   size_t fencePixels = 0, litFloor[3] = {0, 0, 0}, floorPixels[3] = {0, 0, 0}, disagree = 0, covered = 0;
@@ -326,26 +327,19 @@ TEST_F(RenderTest, AlphaMaskCutsTheSurfaceInEveryConsumer) {
   EXPECT_LE(disagree, covered / 50) << "edges only";
 
   // The GI's views of the scene: voxels, RSM VPLs, path VPLs.
-  gi::VoxelScene voxels(context(), gi::VoxelSettings{.resolution = 64});
-  gi::ManyLights ml(context(), voxels, gi::ManyLightsOptions{.vpl = {.vplCount = 2048}});
-  render::Renderer renderer(context());
-  renderer.addFeature(&voxels);
-  renderer.addFeature(&ml);
-  renderer.resize(32, 32);
-  renderer.render(render::extractSnapshot(w, assets, 0));
+  ManyLightsRun run(context(), w, assets, 2048);
   auto onCutHalf = [](const glm::vec3& p, float tolerance) {
     return std::abs(p.y - kFenceHeight) < tolerance && p.x < -tolerance && std::abs(p.z) < 1.0f;
   };
-  const gi::VoxelVolume& vol = voxels.volume();
+  const float voxelSize = run.voxels.volume().voxelSize;
   size_t fenceFragments = 0;
-  for (const gi::VoxelFragment& fr : gi::VoxelProbe(voxels).readbackFragments()) {
-    const glm::vec3 c = vol.origin + (glm::vec3(fr.cell) + 0.5f) * vol.voxelSize;
-    EXPECT_FALSE(onCutHalf(c, vol.voxelSize)) << "a voxel on the cut half at x " << c.x;
-    fenceFragments += std::abs(c.y - kFenceHeight) < vol.voxelSize;
+  for (const auto& [c, albedo] : run.voxelAlbedos()) {
+    EXPECT_FALSE(onCutHalf(c, voxelSize)) << "a voxel on the cut half at x " << c.x;
+    fenceFragments += std::abs(c.y - kFenceHeight) < voxelSize;
   }
   EXPECT_GT(fenceFragments, 50u) << "the solid half is voxelized";
   size_t rsmOnFence = 0, rsmUnderSolid = 0;
-  for (const gi::VplReadback& v : gi::readbackVpls(ml)) {
+  for (const gi::VplReadback& v : gi::readbackVpls(run.ml)) {
     if (v.bounce != 0) continue;
     EXPECT_FALSE(onCutHalf(v.position, 1e-2f)) << "an RSM VPL on the cut half";
     rsmOnFence += std::abs(v.position.y - kFenceHeight) < 1e-2f;

@@ -301,13 +301,8 @@ TEST_F(RenderTest, VctEmissiveOnlySceneLightsTheRoom) {
       {"floor", {0, 1, 0}}, {"left wall", {1, 0, 0}}, {"right wall", {-1, 0, 0}}, {"back wall", {0, 0, 1}}};
   size_t checked = 0;
   for (const auto& [name, normal] : surfaces) {
-    std::vector<uint8_t> mask(f.hdr.size(), 0);
     size_t n = 0;
-    for (size_t i = 0; i < mask.size(); ++i) {
-      const bool onSurface = f.position[i].w > 0.5f && glm::dot(glm::vec3(f.normal[i]), normal) > 0.95f && f.hdr[i].r < 1.0f;
-      mask[i] = onSurface;
-      n += onSurface;
-    }
+    const std::vector<uint8_t> mask = surfaceFacing(f, normal, n);
     if (n < 100) continue;
     const double a = lum(render::meanOver(f.hdr, &mask)), b = lum(render::meanOver(ref, &mask));
     std::printf("emissive-only %-11s vct %.4f  path %.4f  ratio %.3f  (%zu px)\n", name, a, b, a / b, n);
