@@ -44,7 +44,8 @@ uint32_t materialTextureBits(const scene::Material& m) {
   return (m.baseColorTexture != scene::kNoTexture ? DYNGI_MATERIAL_BASE_COLOR_TEX : 0u) |
          (m.emissiveTexture != scene::kNoTexture ? DYNGI_MATERIAL_EMISSIVE_TEX : 0u) |
          (m.metallicRoughnessTexture != scene::kNoTexture ? DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX : 0u) |
-         (m.occlusionTexture != scene::kNoTexture ? DYNGI_MATERIAL_OCCLUSION_TEX : 0u) | (m.alphaMask ? DYNGI_MATERIAL_ALPHA_MASK : 0u);
+         (m.occlusionTexture != scene::kNoTexture ? DYNGI_MATERIAL_OCCLUSION_TEX : 0u) | (m.alphaMask ? DYNGI_MATERIAL_ALPHA_MASK : 0u) |
+         (m.normalTexture != scene::kNoTexture ? DYNGI_MATERIAL_NORMAL_TEX : 0u);
 }
 
 float alphaMaskThreshold(const scene::Material& m) { return m.alphaCutoff / std::max(m.baseColor.a, 1e-6f); }

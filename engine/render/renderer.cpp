@@ -129,6 +129,14 @@ GpuMesh* Renderer::meshFor(const scene::AssetStore& assets, scene::MeshId id) {
   if (!g.indices.valid() || g.indices.size() < ibytes)
     g.indices = Buffer(ctx_, ibytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "mesh indices");
   g.vertices.upload(verts.data(), vbytes);
+  if (m.tangents.size() == m.positions.size() && !m.tangents.empty()) {
+    const VkDeviceSize tbytes = m.tangents.size() * sizeof(glm::vec4);
+    if (!g.tangents.valid() || g.tangents.size() < tbytes)
+      g.tangents = Buffer(ctx_, tbytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryUsage::GpuOnly, "mesh tangents");
+    g.tangents.upload(m.tangents.data(), tbytes);
+  } else {
+    g.tangents.reset();
+  }
   g.indices.upload(m.indices.data(), ibytes);
   g.indexCount = uint32_t(m.indices.size());
   g.version = m.version;
@@ -161,6 +169,7 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
     textures(d.material.emissiveTexture);
     textures(d.material.metallicRoughnessTexture);
     textures(d.material.occlusionTexture);
+    textures(d.material.normalTexture);
   }
   for (RenderFeature* f : features_) f->prepare(ctx_, snapshot);
   shadow_->prepare(snapshot);

@@ -89,6 +89,8 @@ void skinMesh(const MeshData& bind, const std::vector<glm::mat4>& jointMatrices,
   const size_t n = bind.positions.size();
   out.positions.resize(n);
   out.normals.resize(n);
+  const bool tangents = bind.tangents.size() == n;  // a normal-textured mesh: its frame turns with it
+  out.tangents.resize(tangents ? n : 0);
   for (size_t i = 0; i < n; ++i) {
     glm::mat4 m(0.0f);
     float wsum = 0.0f;
@@ -105,6 +107,11 @@ void skinMesh(const MeshData& bind, const std::vector<glm::mat4>& jointMatrices,
     glm::vec3 nrm = glm::mat3(m) * (i < bind.normals.size() ? bind.normals[i] : glm::vec3(0, 1, 0));
     float len = glm::length(nrm);
     out.normals[i] = len > 0.0f ? nrm / len : glm::vec3(0, 1, 0);
+    if (tangents) {
+      const glm::vec3 t = glm::mat3(m) * glm::vec3(bind.tangents[i]);
+      const float tl = glm::length(t);
+      out.tangents[i] = glm::vec4(tl > 0.0f ? t / tl : glm::vec3(1, 0, 0), bind.tangents[i].w);
+    }
   }
   out.computeBounds();
 }

@@ -110,6 +110,32 @@ MeshData makeSphere(float radius, int segments, int rings) {
   return m;
 }
 
+void MeshData::computeTangents() {
+  tangents.clear();
+  if (uvs.size() != positions.size() || normals.size() != positions.size()) return;
+  std::vector<glm::vec3> t(positions.size(), glm::vec3(0.0f)), b(positions.size(), glm::vec3(0.0f));
+  for (size_t k = 0; k + 2 < indices.size(); k += 3) {
+    const uint32_t i0 = indices[k], i1 = indices[k + 1], i2 = indices[k + 2];
+    const glm::vec3 e1 = positions[i1] - positions[i0], e2 = positions[i2] - positions[i0];
+    const glm::vec2 d1 = uvs[i1] - uvs[i0], d2 = uvs[i2] - uvs[i0];
+    const float det = d1.x * d2.y - d2.x * d1.y;
+    if (!(std::abs(det) > 1e-12f)) continue;  // no uv area: no frame from this triangle
+    const glm::vec3 tu = (e1 * d2.y - e2 * d1.y) / det, tv = (e2 * d1.x - e1 * d2.x) / det;
+    for (uint32_t i : {i0, i1, i2}) t[i] += tu, b[i] += tv;
+  }
+  tangents.resize(positions.size());
+  for (size_t i = 0; i < positions.size(); ++i) {
+    const glm::vec3 n = normals[i];
+    glm::vec3 tt = t[i] - n * glm::dot(n, t[i]);
+    if (!(glm::dot(tt, tt) > 1e-20f)) {  // no uv frame here: any direction across the normal
+      tt = glm::cross(n, std::abs(n.x) > 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0));
+    }
+    tt = glm::normalize(tt);
+    const float sign = glm::dot(glm::cross(n, tt), b[i]) < 0.0f ? -1.0f : 1.0f;
+    tangents[i] = glm::vec4(tt, sign);
+  }
+}
+
 namespace {
 float srgbToLinear(uint8_t v) {
   const float c = float(v) / 255.0f;

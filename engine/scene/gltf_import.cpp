@@ -170,7 +170,7 @@ class Importer {
     for (const auto& m : model_.materials) {
       for (int t : {m.pbrMetallicRoughness.baseColorTexture.index, m.emissiveTexture.index})
         if (t >= 0) colourUse[size_t(t)] = true;
-      for (int t : {m.pbrMetallicRoughness.metallicRoughnessTexture.index, m.occlusionTexture.index})
+      for (int t : {m.pbrMetallicRoughness.metallicRoughnessTexture.index, m.occlusionTexture.index, m.normalTexture.index})
         if (t >= 0) dataUse[size_t(t)] = true;
     }
     for (size_t t = 0; t < model_.textures.size(); ++t) {
@@ -218,6 +218,12 @@ class Importer {
         p.mesh.uvs = AccessorReader(model_, it->second, "TEXCOORD_0").readVec<2>();
         if (p.mesh.uvs.size() != n) fail(where + " TEXCOORD_0 count differs from POSITION count");
       }
+      if (auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end()) {
+        p.mesh.tangents = AccessorReader(model_, it->second, "TANGENT").readVec<4>();
+        if (p.mesh.tangents.size() != n) fail(where + " TANGENT count differs from POSITION count");
+        for (auto& t : p.mesh.tangents)
+          if (!finite(glm::vec3(t)) || !std::isfinite(t.w)) fail(where + " has a non-finite tangent");
+      }
       if (auto jt = prim.attributes.find("JOINTS_0"), wt = prim.attributes.find("WEIGHTS_0");
           jt != prim.attributes.end() && wt != prim.attributes.end()) {
         AccessorReader jr(model_, jt->second, "JOINTS_0");
@@ -252,6 +258,15 @@ class Importer {
         if (!finite(nrm) || glm::dot(nrm, nrm) < 1e-12f) badNormals = true;
       if (badNormals) p.mesh.generateNormals();
       else for (auto& nrm : p.mesh.normals) nrm = glm::normalize(nrm);
+      // A normal texture needs a tangent frame: the file's, else one from the uvs (glTF asks for
+      // MikkTSpace; this per-vertex sum agrees on flat and smoothly mapped surfaces).
+      const bool normalMapped = p.material >= 0 && size_t(p.material) < model_.materials.size() &&
+                                model_.materials[size_t(p.material)].normalTexture.index >= 0;
+      bool badTangents = p.mesh.tangents.size() != n || badNormals;
+      for (const auto& t : p.mesh.tangents) badTangents |= !(glm::dot(glm::vec3(t), glm::vec3(t)) > 1e-12f);
+      if (normalMapped && badTangents) p.mesh.computeTangents();
+      else if (!normalMapped) p.mesh.tangents.clear();
+      else for (auto& t : p.mesh.tangents) t = glm::vec4(glm::normalize(glm::vec3(t)), t.w < 0.0f ? -1.0f : 1.0f);
       p.mesh.computeBounds();
       if (p.mesh.indices.empty()) continue;  // only degenerate triangles: nothing to draw
       out.push_back(std::move(p));
@@ -330,6 +345,7 @@ class Importer {
       checkTex(m.emissiveTexture.index, where);
       checkTex(m.pbrMetallicRoughness.metallicRoughnessTexture.index, where);
       checkTex(m.occlusionTexture.index, where);
+      checkTex(m.normalTexture.index, where);
     }
     for (auto& prims : meshes_)
       for (auto& p : prims)
@@ -425,6 +441,7 @@ class Importer {
     consider(m.pbrMetallicRoughness.metallicRoughnessTexture.index, m.pbrMetallicRoughness.metallicRoughnessTexture.extensions);
     consider(m.emissiveTexture.index, m.emissiveTexture.extensions);
     consider(m.occlusionTexture.index, m.occlusionTexture.extensions);
+    consider(m.normalTexture.index, m.normalTexture.extensions);
     if (transform) mat.uvTransform = *transform;
     if (m.alphaMode == "MASK") {
       mat.alphaMask = true;
@@ -445,6 +462,10 @@ class Importer {
     for (int i = 0; i < 3 && size_t(i) < m.emissiveFactor.size(); ++i) mat.emissive[i] = float(m.emissiveFactor[size_t(i)]) * strength;
     if (m.emissiveTexture.index >= 0) mat.emissiveTexture = textureIds_[size_t(m.emissiveTexture.index)];
     if (pbr.metallicRoughnessTexture.index >= 0) mat.metallicRoughnessTexture = linearTextureIds_[size_t(pbr.metallicRoughnessTexture.index)];
+    if (m.normalTexture.index >= 0) {
+      mat.normalTexture = linearTextureIds_[size_t(m.normalTexture.index)];
+      mat.normalScale = std::isfinite(m.normalTexture.scale) ? float(m.normalTexture.scale) : 1.0f;
+    }
     if (m.occlusionTexture.index >= 0) {
       mat.occlusionTexture = linearTextureIds_[size_t(m.occlusionTexture.index)];
       mat.occlusionStrength = std::clamp(float(m.occlusionTexture.strength), 0.0f, 1.0f);

@@ -1,12 +1,14 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
+#include "shared/normal_map.h"
 
 layout(set = 0, binding = DYNGI_GBUFFER_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = DYNGI_GBUFFER_BINDING_BASE_COLOR_TEX) uniform sampler2D baseColorTex;
 layout(set = 0, binding = DYNGI_GBUFFER_BINDING_EMISSIVE_TEX) uniform sampler2D emissiveTex;
 layout(set = 0, binding = DYNGI_GBUFFER_BINDING_METALLIC_ROUGHNESS_TEX) uniform sampler2D metallicRoughnessTex;
 layout(set = 0, binding = DYNGI_GBUFFER_BINDING_OCCLUSION_TEX) uniform sampler2D occlusionTex;
+layout(set = 0, binding = DYNGI_GBUFFER_BINDING_NORMAL_TEX) uniform sampler2D normalTex;
 layout(push_constant) uniform Push { GBufferPush pc; };
 // Material variants (GBufferPass::pipelineFor): the texture lookups are compiled in only when used.
 layout(constant_id = 0) const bool kBaseColorTexture = true;
@@ -14,10 +16,12 @@ layout(constant_id = 1) const bool kEmissiveTexture = true;
 layout(constant_id = 2) const bool kMetallicRoughnessTexture = true;
 layout(constant_id = 3) const bool kOcclusionTexture = true;
 layout(constant_id = 4) const bool kAlphaMask = false;  // alphaMode MASK: pc.baseColor.a is the texture-alpha threshold
+layout(constant_id = 5) const bool kNormalTexture = false;  // with gbuffer_tangent.vert
 
 layout(location = 0) in vec3 inWorldPos;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
+layout(location = 3) in vec4 inTangent;
 
 layout(location = 0) out vec4 outPosition;  // xyz world, w 1 = geometry
 layout(location = 1) out vec4 outNormal;    // xyz world normal facing the camera, w roughness
@@ -36,11 +40,15 @@ void main() {
     roughness *= mr.g;
     metallic *= mr.b;
   }
+  vec2 occlusionStrengthNormalScale = unpackHalf2x16(floatBitsToUint(pc.emissive.w));
   float occlusion = 1.0;
-  if (kOcclusionTexture) occlusion = 1.0 + pc.emissive.w * (texture(occlusionTex, inUv).r - 1.0);
+  if (kOcclusionTexture) occlusion = 1.0 + occlusionStrengthNormalScale.x * (texture(occlusionTex, inUv).r - 1.0);
   vec3 n = normalize(inNormal);
-  // Surfaces are lit on the side the camera sees (glTF double-sided / thin walls).
-  if (dot(n, frame.cameraPos.xyz - inWorldPos) < 0.0) n = -n;
+  // Surfaces are lit on the side the camera sees (glTF double-sided / thin walls): decided on the
+  // interpolated normal, applied to the normal texture's too.
+  bool back = dot(n, frame.cameraPos.xyz - inWorldPos) < 0.0;
+  if (kNormalTexture) n = perturbNormal(n, inTangent, texture(normalTex, inUv).rgb, occlusionStrengthNormalScale.y);
+  if (back) n = -n;
   outPosition = vec4(inWorldPos, 1.0);
   outNormal = vec4(n, roughness);
   outAlbedo = vec4(base.rgb, metallic);

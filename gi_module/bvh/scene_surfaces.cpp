@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shared/normal_map.h"
 #include "shared/uv_transform.h"
 
 namespace dyngi::gi {
@@ -30,16 +31,23 @@ bool SceneSurfaces::at(const RayHit& h, const glm::vec3& origin, const glm::vec3
   glm::vec3 ns = m.normals.size() == m.positions.size()
                      ? glm::normalize(normalMatrix * (w0 * m.normals[i0] + h.u * m.normals[i1] + h.v * m.normals[i2]))
                      : ng;
-  // Lit on the side the ray arrives from (as the G-buffer does for the camera).
-  if (glm::dot(ng, dir) > 0.0f) ng = -ng;
-  if (glm::dot(ns, ng) < 0.0f) ns = -ns;
-  out.geometricNormal = ng;
-  out.shadingNormal = ns;
   const scene::Material& mat = d.material;
-  glm::vec3 base(mat.baseColor);
   glm::vec2 uv(0.0f);
   if (m.uvs.size() == m.positions.size()) uv = w0 * m.uvs[i0] + h.u * m.uvs[i1] + h.v * m.uvs[i2];
   uv = gpu::applyUvTransform(mat.uvTransform.linear(), mat.uvTransform.offset, uv);  // KHR_texture_transform
+  // Lit on the side the ray arrives from (as the G-buffer does for the camera): decided on the
+  // interpolated normal, applied to the normal texture's too.
+  if (glm::dot(ng, dir) > 0.0f) ng = -ng;
+  const bool back = glm::dot(ns, ng) < 0.0f;
+  if (mat.normalTexture != scene::kNoTexture && mat.normalTexture < assets_.textureCount() && m.tangents.size() == m.positions.size()) {
+    const glm::vec4 tangent = w0 * m.tangents[i0] + h.u * m.tangents[i1] + h.v * m.tangents[i2];
+    const glm::vec4 worldTangent(glm::mat3(d.model) * glm::vec3(tangent), m.tangents[i0].w);
+    ns = gpu::perturbNormal(ns, worldTangent, texel(mat.normalTexture, uv), mat.normalScale);
+  }
+  if (back) ns = -ns;
+  out.geometricNormal = ng;
+  out.shadingNormal = ns;
+  glm::vec3 base(mat.baseColor);
   if (mat.baseColorTexture != scene::kNoTexture && mat.baseColorTexture < assets_.textureCount()) base *= texel(mat.baseColorTexture, uv);
   float metallic = mat.metallic;
   if (mat.metallicRoughnessTexture != scene::kNoTexture && mat.metallicRoughnessTexture < assets_.textureCount())

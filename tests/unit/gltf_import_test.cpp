@@ -453,3 +453,35 @@ TEST(GltfImport, AlphaMaskIsImportedAndBlendNoted) {
   ASSERT_EQ(blend->report.notes.size(), 1u);
   EXPECT_NE(blend->report.notes[0].find("BLEND"), std::string::npos);
 }
+
+// A normal texture reaches the Material (linear, with its scale) and gives its mesh tangents: the uvs'
+// frame (u grows along +x on the writer's quad) when the file has none.
+TEST(GltfImport, NormalTextureGivesTheMeshTangents) {
+  TempDir dir;
+  ASSERT_EQ(render::writePng(dir.file("n.png"), 1, 1, {128, 128, 255, 255}), "");
+  GltfSpec s = oneQuad();
+  s.meshes[0][0].uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  s.meshes[0][0].material = 0;
+  s.imagesJson = {R"({"uri":"n.png"})"};
+  s.texturesJson = {R"({"source":0})"};
+  s.materialsJson = {R"({"normalTexture":{"index":0,"scale":0.5}})"};
+  auto l = loadSpec(dir, s);
+  ASSERT_EQ(l->error, "");
+  const Material* m = nullptr;
+  MeshId mesh = 0;
+  l->world.each<Material>([&](Entity e, const Material& mat) { m = &mat, mesh = l->world.get<MeshInstance>(e).mesh; });
+  ASSERT_NE(m, nullptr);
+  ASSERT_NE(m->normalTexture, kNoTexture);
+  EXPECT_FALSE(l->assets.texture(m->normalTexture).srgb);
+  EXPECT_FLOAT_EQ(m->normalScale, 0.5f);
+  const MeshData& md = l->assets.mesh(mesh);
+  ASSERT_EQ(md.tangents.size(), md.positions.size());
+  for (size_t i = 0; i < md.positions.size(); ++i) {
+    // The tangent follows u across the quad; whatever its direction, it lies in the surface.
+    EXPECT_NEAR(glm::dot(glm::vec3(md.tangents[i]), md.normals[i]), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(glm::vec3(md.tangents[i])), 1.0f, 1e-5f);
+    EXPECT_EQ(std::abs(md.tangents[i].w), 1.0f);
+    const glm::vec3 du = md.positions[1] - md.positions[0];  // from uv (0,0) to (1,0)
+    EXPECT_GT(glm::dot(glm::vec3(md.tangents[i]), glm::normalize(du)), 0.999f);
+  }
+}

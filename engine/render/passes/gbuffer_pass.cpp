@@ -1,20 +1,27 @@
+#include <bit>
+
+#include <glm/gtc/packing.hpp>
+
 #include "dyngi/engine/render/draw_pass.h"
 #include "shared/gpu_types.h"
 #include "passes.h"
 #include "spirv/gbuffer.frag.spv.h"
 #include "spirv/gbuffer.vert.spv.h"
+#include "spirv/gbuffer_tangent.vert.spv.h"
 
 namespace dyngi::render {
 
 GBufferPass::GBufferPass(VulkanContext& ctx) : ctx_(ctx) {}
 
 Pipeline& GBufferPass::pipelineFor(uint32_t textureBits) {
-  Pipeline& pipeline = pipelines_[textureBits & 31u];
+  Pipeline& pipeline = pipelines_[textureBits & 63u];
   if (pipeline.handle()) return pipeline;
   Pipeline::GraphicsDesc d;
-  d.vertex = DYNGI_SHADER(spv_gbuffer_vert);
+  const bool tangents = textureBits & DYNGI_MATERIAL_NORMAL_TEX;
+  d.vertex = tangents ? DYNGI_SHADER(spv_gbuffer_tangent_vert) : DYNGI_SHADER(spv_gbuffer_vert);
   d.fragment = DYNGI_SHADER(spv_gbuffer_frag);
   setMeshVertexInput(d, /*normal=*/true, /*uv=*/true);
+  if (tangents) setMeshTangentInput(d);
   d.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8G8B8A8_UNORM,
                     VK_FORMAT_R16G16B16A16_SFLOAT};
   d.depthFormat = VK_FORMAT_D32_SFLOAT;
@@ -24,10 +31,11 @@ Pipeline& GBufferPass::pipelineFor(uint32_t textureBits) {
                 {DYNGI_GBUFFER_BINDING_BASE_COLOR_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_GBUFFER_BINDING_EMISSIVE_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_GBUFFER_BINDING_METALLIC_ROUGHNESS_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {DYNGI_GBUFFER_BINDING_OCCLUSION_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+                {DYNGI_GBUFFER_BINDING_OCCLUSION_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_GBUFFER_BINDING_NORMAL_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
   auto bit = [&](uint32_t b) { return (textureBits & b) ? 1u : 0u; };
   d.fragmentSpecialization = {bit(DYNGI_MATERIAL_BASE_COLOR_TEX), bit(DYNGI_MATERIAL_EMISSIVE_TEX), bit(DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX),
-                              bit(DYNGI_MATERIAL_OCCLUSION_TEX), bit(DYNGI_MATERIAL_ALPHA_MASK)};
+                              bit(DYNGI_MATERIAL_OCCLUSION_TEX), bit(DYNGI_MATERIAL_ALPHA_MASK), bit(DYNGI_MATERIAL_NORMAL_TEX)};
   d.name = "gbuffer";
   pipeline = Pipeline::graphics(ctx_, d);
   return pipeline;
@@ -52,14 +60,17 @@ void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
     drawEach(
         frame, std::nullopt,
         [&](const DrawItem& d) -> const Pipeline& {
-          return pipelineFor(materialTextureBits(d.material));
+          // A normal texture needs the mesh's tangents; without them it is not used.
+          uint32_t bits = materialTextureBits(d.material);
+          if ((bits & DYNGI_MATERIAL_NORMAL_TEX) && frame.snapshot.assets->mesh(d.mesh).tangents.empty()) bits &= ~DYNGI_MATERIAL_NORMAL_TEX;
+          return pipelineFor(bits);
         },
         [&](VkCommandBuffer c, const DrawItem& d, const Pipeline& pipeline) {
           const scene::Material& m = d.material;
           gpu::GBufferPush pc;
           pc.model = d.model;
           pc.baseColor = glm::vec4(glm::vec3(m.baseColor), m.alphaMask ? alphaMaskThreshold(m) : 1.0f);
-          pc.emissive = glm::vec4(m.emissive, m.occlusionStrength);
+          pc.emissive = glm::vec4(m.emissive, std::bit_cast<float>(glm::packHalf2x16(glm::vec2(m.occlusionStrength, m.normalScale))));
           pc.params = glm::vec4(m.metallic, m.roughness, m.uvTransform.offset);
           pc.uvLinear = m.uvTransform.linear();
           DescriptorWrites()
@@ -69,6 +80,7 @@ void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
               .sampledImage(DYNGI_GBUFFER_BINDING_METALLIC_ROUGHNESS_TEX, textures(m.metallicRoughnessTexture), frame.linearSampler,
                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
               .sampledImage(DYNGI_GBUFFER_BINDING_OCCLUSION_TEX, textures(m.occlusionTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+              .sampledImage(DYNGI_GBUFFER_BINDING_NORMAL_TEX, textures(m.normalTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
               .push(ctx_, c, pipeline);
           vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
         });

@@ -99,7 +99,7 @@ class GBufferPass {
   VulkanContext& ctx_;
   // One pipeline per material kind (base-colour texture or not, emissive texture or not), made on first
   // use: lavapipe runs both sides of a branch, so an untextured material would pay for the lookups.
-  Pipeline pipelines_[32];  // by the material's texture bits (DYNGI_MATERIAL_*)
+  Pipeline pipelines_[64];  // by the material's texture bits (DYNGI_MATERIAL_*)
   Pipeline& pipelineFor(uint32_t textureBits);
 };
 

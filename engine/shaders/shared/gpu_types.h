@@ -54,7 +54,7 @@ DYNGI_GPU_STRUCT(GpuLight) {
 DYNGI_GPU_STRUCT(GBufferPush) {
   mat4 model;
   vec4 baseColor;       // rgb linear factor; a: alphaMaskThreshold() in the alpha-mask variant (alpha is not stored)
-  vec4 emissive;        // rgb outgoing radiance factor, w the occlusion texture's strength
+  vec4 emissive;        // rgb outgoing radiance factor, w's bits: packHalf2x16(occlusion strength, normal scale)
   vec4 params;          // x metallic, y roughness, zw the texture coordinates' offset (KHR_texture_transform)
   vec4 uvLinear;        // the texture coordinates' linear map (shared/uv_transform.h)
 };
@@ -67,6 +67,7 @@ DYNGI_GPU_STRUCT(GBufferPush) {
 #define DYNGI_GBUFFER_BINDING_EMISSIVE_TEX 2
 #define DYNGI_GBUFFER_BINDING_METALLIC_ROUGHNESS_TEX 3
 #define DYNGI_GBUFFER_BINDING_OCCLUSION_TEX 4
+#define DYNGI_GBUFFER_BINDING_NORMAL_TEX 5
 // shadow (alpha-masked casters)
 #define DYNGI_SHADOW_BINDING_BASE_COLOR_TEX 0
 // The material's textures, as bits of a pipeline variant (the G-buffer's; the voxelization and the RSMs
@@ -76,6 +77,7 @@ DYNGI_GPU_STRUCT(GBufferPush) {
 #define DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX 4u
 #define DYNGI_MATERIAL_OCCLUSION_TEX 8u
 #define DYNGI_MATERIAL_ALPHA_MASK 16u  // not a texture: the alpha test's variant
+#define DYNGI_MATERIAL_NORMAL_TEX 32u  // set only for meshes with tangents (GBufferPass)
 // lighting
 #define DYNGI_LIGHTING_BINDING_FRAME 0
 #define DYNGI_LIGHTING_BINDING_G_POSITION 1

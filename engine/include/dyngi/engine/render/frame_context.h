@@ -46,9 +46,15 @@ inline void setMeshVertexInput(Pipeline::GraphicsDesc& d, bool normal, bool uv) 
   if (normal) d.vertexAttributes.push_back({1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, normal)});
   if (uv) d.vertexAttributes.push_back({2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv)});
 }
+// Adds the tangents (GpuMesh::tangents, binding 1) at location 3.
+inline void setMeshTangentInput(Pipeline::GraphicsDesc& d) {
+  d.vertexBindings.push_back({1, sizeof(float) * 4, VK_VERTEX_INPUT_RATE_VERTEX});
+  d.vertexAttributes.push_back({3, 1, VK_FORMAT_R32G32B32A32_SFLOAT, 0});
+}
 
 struct GpuMesh {
   Buffer vertices;
+  Buffer tangents;  // vec4 per vertex at binding 1 (location 3), for meshes with tangents (normal textures)
   Buffer indices;
   uint32_t indexCount = 0;
   uint32_t version = 0;
@@ -67,6 +73,10 @@ inline void drawMesh(VkCommandBuffer cmd, const GpuMesh& mesh) {
   VkDeviceSize offset = 0;
   VkBuffer vertices = mesh.vertices.handle();
   vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
+  if (mesh.tangents.valid()) {  // read by the pipelines that declare binding 1 (setMeshTangentInput)
+    VkBuffer tangents = mesh.tangents.handle();
+    vkCmdBindVertexBuffers(cmd, 1, 1, &tangents, &offset);
+  }
   vkCmdBindIndexBuffer(cmd, mesh.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
   vkCmdDrawIndexed(cmd, mesh.indexCount, 1, 0, 0, 0);
 }

@@ -31,6 +31,9 @@ struct MeshData {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;
   std::vector<glm::vec2> uvs;  // empty when the mesh has none
+  // Per vertex: xyz the tangent (the direction u grows), w the bitangent's sign (glTF TANGENT); empty
+  // when the mesh has none (a normal texture then has no frame and is not used).
+  std::vector<glm::vec4> tangents;
   std::vector<uint32_t> indices;
   // Skinning attributes (JOINTS_0 / WEIGHTS_0), empty for rigid meshes. Joint indices refer to the
   // skin's joint list.
@@ -44,6 +47,9 @@ struct MeshData {
 
   size_t triangleCount() const { return indices.size() / 3; }
   void computeBounds();
+  // Tangents from the positions, normals and uvs (per-triangle frames summed at the vertices, then
+  // made orthogonal to the normal); nothing without uvs.
+  void computeTangents();
   // Area-weighted vertex normals; used when the source has none.
   void generateNormals();
 };

@@ -88,6 +88,9 @@ struct Material {
   // tracer (it traces the occlusion the texture approximates).
   TextureId occlusionTexture = kNoTexture;
   float occlusionStrength = 1.0f;
+  // glTF's normal texture (linear, tangent space, xy x normalScale), on meshes with tangents.
+  TextureId normalTexture = kNoTexture;
+  float normalScale = 1.0f;
   TextureTransform uvTransform;
   // glTF alphaMode MASK: where base colour alpha x the texture's alpha < alphaCutoff the surface is not
   // there (foliage, fences): cut from the G-buffer, the shadow maps, the voxels, the RSMs and the rays.
