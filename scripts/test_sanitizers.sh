@@ -38,5 +38,10 @@ ctest --output-on-failure -j"$(nproc)" -L 'unit|gi|e2e' "$@"
 #   QualityFlickerUnderACameraPan (camera motion, reprojection): RenderTest.CameraMotionStaysCloseAndNeverLeavesHoles;
 #   QualityGhostingBehindAMovingBox (an object moving every frame): RenderTest.MovedObjectChangesIndirectWherePathTracerSays,
 #     RenderTest.IncrementalAccumulationEqualsFullReprojection.
+# So are two accuracy measurements that run a technique many times over (12 and 6 runs):
+#   BounceTailBringsBothVplTechniquesToThePathTracersManyBounces (the bounce tail): VplPaths.BounceTailRatio...,
+#     ManyLightsTest.BounceTailScalesTheLastBounceByWhatItsProbesMeasure;
+#   EmissivePanelLightsTheRoomThroughBothVplTechniques (emitters as VPL sources): RenderTest.SharedEmissiveCornellBox...,
+#     RenderTest.EmissivePanelSwitchedOffTakesItsIndirectLightAway, VplPaths.Emi*.
 DYNGI_SYNC_VALIDATION=0 ctest --output-on-failure -j1 -L render \
-  -E 'RenderTest\.Quality(FlickerAndSettleTime|FlickerUnderACameraPan|GhostingBehindAMovingBox)PerTechnique' "$@"
+  -E 'RenderTest\.(Quality(FlickerAndSettleTime|FlickerUnderACameraPan|GhostingBehindAMovingBox)PerTechnique|BounceTailBringsBothVplTechniquesToThePathTracersManyBounces|EmissivePanelLightsTheRoomThroughBothVplTechniques)' "$@"
