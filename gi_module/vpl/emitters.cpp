@@ -8,24 +8,15 @@ namespace {
 constexpr float kPi = 3.14159265358979f;
 constexpr float kTwoPi = 2.0f * kPi;
 
-// The mean of an emissive texture, from a 16 x 16 grid of its texels (bilinear, linear colour): the
-// triangles' power estimate only steers which one is sampled, the sample's own radiance is exact.
+// The mean of an emissive texture, from a 16 x 16 grid of lookups: the triangles' power estimate only
+// steers which one is sampled, the sample's own radiance is exact.
 glm::vec3 textureMean(const scene::AssetStore& assets, scene::TextureId id) {
   if (id == scene::kNoTexture || id >= assets.textureCount()) return glm::vec3(1.0f);
-  const scene::TextureData& t = assets.texture(id);
-  if (t.width == 0 || t.height == 0) return glm::vec3(1.0f);
   glm::dvec3 sum(0.0);
   constexpr int kGrid = 16;
   for (int y = 0; y < kGrid; ++y)
-    for (int x = 0; x < kGrid; ++x) {
-      uint32_t tx = uint32_t((x + 0.5) * t.width / kGrid), ty = uint32_t((y + 0.5) * t.height / kGrid);
-      const uint8_t* p = &t.rgba8[(size_t(ty) * t.width + tx) * 4];
-      glm::vec3 c(p[0], p[1], p[2]);
-      c /= 255.0f;
-      if (t.srgb)
-        for (int k = 0; k < 3; ++k) c[k] = c[k] <= 0.04045f ? c[k] / 12.92f : std::pow((c[k] + 0.055f) / 1.055f, 2.4f);
-      sum += glm::dvec3(c);
-    }
+    for (int x = 0; x < kGrid; ++x)
+      sum += glm::dvec3(scene::sampleTexture(assets.texture(id), (glm::vec2(x, y) + 0.5f) / float(kGrid)));
   return glm::vec3(sum / double(kGrid * kGrid));
 }
 }  // namespace

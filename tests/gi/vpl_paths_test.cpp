@@ -499,3 +499,33 @@ TEST(VplPaths, EmitterPathsShareByPowerAndFollowTheEmitter) {
   EXPECT_EQ(fromPanel(), 0u);
   EXPECT_EQ(paths.stats().valid, 4000u);
 }
+
+// Textured emission: a panel whose emissive texture is black on one half (x < 0) and white on the other
+// starts its paths' light from the white half only, with the flux of that half (2 pi (A / 2) L): each
+// sample carries the texel it lands on.
+TEST(VplPaths, TexturedEmitterStartsItsLightWhereItsTextureEmits) {
+  EmitterRoom room(false);
+  TextureData t;
+  t.width = t.height = 8;
+  for (uint32_t y = 0; y < 8; ++y)
+    for (uint32_t x = 0; x < 8; ++x) {
+      const uint8_t v = x < 4 ? 0 : 255;
+      t.rgba8.insert(t.rgba8.end(), {v, v, v, 255});
+    }
+  room.world.write<Material>(room.panel).emissiveTexture = room.assets.addTexture(t);
+  auto snap = room.frame();
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 4000, .bounces = 1}, .reshootBudget = 100000});
+  paths.update(snap, room.bvh, room.assets, {});
+  glm::dvec3 flux(0.0);
+  for (const gi::PathVpl& v : paths.vpls()) {
+    if (!v.placed) continue;
+    // The panel's quad: u runs along +x; the bilinear lookup (wrapping) blends the halves within half a
+    // texel (2.5 cm) of the seam and of the panel's edges.
+    if (v.position.x < -0.03f && v.position.x > -0.17f) {
+      EXPECT_EQ(luminance(v.flux), 0.0f) << "light from the black half at x " << v.position.x;
+    }
+    flux += glm::dvec3(v.flux);
+  }
+  const glm::dvec3 expected = glm::dvec3(EmitterRoom::kRadiance) * (2.0 * 3.14159265358979 * EmitterRoom::kSide * EmitterRoom::kSide / 2.0);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(flux[c] / expected[c], 1.0, 0.08) << c;
+}
