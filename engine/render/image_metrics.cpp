@@ -38,6 +38,24 @@ double relativeMse(const ImageRgba& a, const ImageRgba& ref, const std::vector<u
   return n ? sum / double(n) : 0.0;
 }
 
+double relativeLuminanceErrorQuantile(const ImageRgba& a, const ImageRgba& ref, double q, const std::vector<uint8_t>* mask) {
+  auto lum = [](const glm::vec4& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
+  const size_t n = std::min(a.size(), ref.size());
+  double mean = 0;
+  size_t counted_ = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (counted(mask, i)) mean += lum(ref[i]), ++counted_;
+  if (counted_ == 0 || !(mean > 0)) return 0.0;
+  const double floor = 0.1 * mean / double(counted_);
+  std::vector<double> errors;
+  errors.reserve(counted_);
+  for (size_t i = 0; i < n; ++i)
+    if (counted(mask, i)) errors.push_back(std::abs(lum(a[i]) - lum(ref[i])) / std::max(lum(ref[i]), floor));
+  const size_t k = std::min(errors.size() - 1, size_t(std::clamp(q, 0.0, 1.0) * double(errors.size() - 1) + 0.5));
+  std::nth_element(errors.begin(), errors.begin() + long(k), errors.end());
+  return errors[k];
+}
+
 double relativeL1(const ImageRgba& a, const ImageRgba& ref, const std::vector<uint8_t>* mask) {
   double diff = 0, level = 0;
   for (size_t i = 0; i < std::min(a.size(), ref.size()); ++i) {

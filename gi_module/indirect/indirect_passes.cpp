@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "spirv/filter.comp.spv.h"
+#include "spirv/filter_columns.comp.spv.h"
+#include "spirv/filter_rows.comp.spv.h"
 #include "spirv/gather.comp.spv.h"
 
 #include "gpu_aliases.h"
@@ -64,27 +65,54 @@ IndirectFilterPass::IndirectFilterPass(render::VulkanContext& ctx) : ctx_(ctx) {
 
 void IndirectFilterPass::record(render::FrameContext& frame, render::Image& input, uint32_t K, float planeTolerance) {
   K = std::clamp(K, 1u, 8u);
-  render::Pipeline& pipeline = pipelines_[K - 1];
-  if (!pipeline.handle()) {
+  const uint32_t spec[] = {K};
+  render::Pipeline& rows = rows_[K - 1];
+  if (!rows.handle()) {
+    const Binding b[] = {{DYNGI_FILTER_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
+                         {DYNGI_FILTER_BINDING_FILTER_INPUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
+                         {DYNGI_FILTER_BINDING_OUT_ROWS, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
+    rows = render::Pipeline::compute(ctx_, DYNGI_SHADER(spv_filter_rows_comp), b, sizeof(gpu::IndirectFilterPush), "indirect_filter_rows", spec);
+  }
+  render::Pipeline& columns = columns_[K - 1];
+  if (!columns.handle()) {
     const Binding b[] = {{DYNGI_FILTER_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
                          {DYNGI_FILTER_BINDING_FILTER_INPUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
                          {DYNGI_FILTER_BINDING_OUT_INDIRECT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
-    const uint32_t spec[] = {K};
-    pipeline = render::Pipeline::compute(ctx_, DYNGI_SHADER(spv_filter_comp), b, sizeof(gpu::IndirectFilterPush), "indirect_filter", spec);
+    columns = render::Pipeline::compute(ctx_, DYNGI_SHADER(spv_filter_columns_comp), b, sizeof(gpu::IndirectFilterPush),
+                                        "indirect_filter_columns", spec);
+  }
+  render::RenderTargets& t = frame.targets;
+  if (!rowsResult_.valid() || rowsResult_.desc().width != t.width || rowsResult_.desc().height != t.height) {
+    render::ImageDesc d;
+    d.width = t.width;
+    d.height = t.height;
+    d.format = VK_FORMAT_R32G32B32A32_UINT;
+    d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+    d.name = "indirect filter rows";
+    rowsResult_ = render::Image(ctx_, d);
   }
   render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "filter");
   VkCommandBuffer cmd = frame.cmd;
-  render::RenderTargets& t = frame.targets;
+  const gpu::IndirectFilterPush pc{planeTolerance};
   input.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-  t.indirect.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+  rowsResult_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, rows.handle());
   DescriptorWrites()
       .uniformBuffer(DYNGI_FILTER_BINDING_FRAME, frame.frameUniforms.handle())
       .storageImage(DYNGI_FILTER_BINDING_FILTER_INPUT, input.view())
+      .storageImage(DYNGI_FILTER_BINDING_OUT_ROWS, rowsResult_.view())
+      .push(ctx_, cmd, rows);
+  vkCmdPushConstants(cmd, rows.layout(), kCS, 0, sizeof(pc), &pc);
+  vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
+  rowsResult_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  t.indirect.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, columns.handle());
+  DescriptorWrites()
+      .uniformBuffer(DYNGI_FILTER_BINDING_FRAME, frame.frameUniforms.handle())
+      .storageImage(DYNGI_FILTER_BINDING_FILTER_INPUT, rowsResult_.view())
       .storageImage(DYNGI_FILTER_BINDING_OUT_INDIRECT, t.indirect.view())
-      .push(ctx_, cmd, pipeline);
-  const gpu::IndirectFilterPush pc{planeTolerance};
-  vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(pc), &pc);
+      .push(ctx_, cmd, columns);
+  vkCmdPushConstants(cmd, columns.layout(), kCS, 0, sizeof(pc), &pc);
   vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // The passes the VPL techniques share: the interleaved gather (shaders/gather.glsl) and the
-// geometry-aware merge filter (shaders/filter.comp). A technique that needs more from the gather (the
+// geometry-aware merge filter (shaders/filter_tent.glsl: filter_rows.comp, filter_columns.comp). A technique that needs more from the gather (the
 // temporal technique accumulates inside it) brings its own gather shader built on gather.glsl and
 // declares its extra bindings here; no technique binds images it does not use.
 #include <functional>
@@ -42,12 +42,14 @@ class IndirectFilterPass {
  public:
   explicit IndirectFilterPass(render::VulkanContext& ctx);
   // Filters `input` (interleaved K x K, K in 1..8; rgba32ui packed as in filter_input.glsl) into
-  // frame.targets.indirect ("filter" in stats).
+  // frame.targets.indirect ("filter" in stats): a separable geometry-aware tent (shaders/filter_tent.glsl).
   void record(render::FrameContext& frame, render::Image& input, uint32_t K, float planeTolerance);
 
  private:
   render::VulkanContext& ctx_;
-  render::Pipeline pipelines_[8];  // per K, made on first use: K is a specialization constant
+  // Per K, made on first use (K is a specialization constant): along rows, then columns.
+  render::Pipeline rows_[8], columns_[8];
+  render::Image rowsResult_;  // rgba32ui packed as the input (filter_input.glsl), the frame's size
 };
 
 }  // namespace dyngi::gi

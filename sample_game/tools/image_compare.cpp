@@ -25,7 +25,8 @@ int main(int argc, char** argv) {
   }
   glm::dvec3 a = meanOver(img), b = meanOver(ref);
   double la = 0.2126 * a.r + 0.7152 * a.g + 0.0722 * a.b, lb = 0.2126 * b.r + 0.7152 * b.g + 0.0722 * b.b;
-  std::printf("{\"rmse\": %.6f, \"rel_mse\": %.6f, \"psnr\": %.3f, \"ssim\": %.5f, \"mean_ratio\": %.5f}\n", rmse(img, ref),
-              relativeMse(img, ref), psnr(img, ref), ssim(img, ref, w0, h0), lb > 0 ? la / lb : 0.0);
+  std::printf("{\"rmse\": %.6f, \"rel_mse\": %.6f, \"psnr\": %.3f, \"ssim\": %.5f, \"mean_ratio\": %.5f, \"p99_rel_lum\": %.5f}\n",
+              rmse(img, ref), relativeMse(img, ref), psnr(img, ref), ssim(img, ref, w0, h0), lb > 0 ? la / lb : 0.0,
+              relativeLuminanceErrorQuantile(img, ref, 0.99));
   return 0;
 }

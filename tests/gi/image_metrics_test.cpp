@@ -110,3 +110,18 @@ TEST(ImageMetrics, ReprojectedChangeFollowsTheSurfaceNotThePixel) {
   EXPECT_NEAR(reprojectedChange(changedThere, curPos, prev, occluded, previousViewProj, W, H, 1e-3f), 0.0, 1e-7);
   EXPECT_GT(reprojectedChange(changedThere, curPos, prev, prevPos, previousViewProj, W, H, 1e-3f), 1.0);
 }
+
+// The error's tail: 98 pixels right and two 3x too bright is a 99th percentile of 2 (the 99th of the 100
+// sorted errors) and a 97th of 0; a dark reference pixel counts against a tenth of the mean.
+TEST(ImageMetrics, RelativeLuminanceErrorQuantileReadsTheTail) {
+  ImageRgba ref(100, glm::vec4(1.0f)), a = ref;
+  a[42] = a[43] = glm::vec4(3.0f);
+  EXPECT_NEAR(relativeLuminanceErrorQuantile(a, ref, 0.97), 0.0, 1e-12);
+  EXPECT_NEAR(relativeLuminanceErrorQuantile(a, ref, 0.99), 2.0, 1e-12);
+  EXPECT_NEAR(relativeLuminanceErrorQuantile(a, ref, 1.0), 2.0, 1e-12);
+  ImageRgba dark = ref, b = ref;
+  dark[7] = glm::vec4(0.0f);  // mean 0.99: its floor is 0.099
+  b[7] = glm::vec4(0.099f);
+  EXPECT_NEAR(relativeLuminanceErrorQuantile(b, dark, 1.0), 1.0, 1e-6);
+  EXPECT_EQ(relativeLuminanceErrorQuantile(a, ImageRgba(100, glm::vec4(0.0f)), 0.99), 0.0);
+}

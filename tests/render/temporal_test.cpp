@@ -354,3 +354,37 @@ TEST_F(RenderTest, MaterialEditRecoloursTheVplsOnThatSurfaceAndTheLightFollows) 
   EXPECT_GE(followed, 5) << "the edit is seen beyond the wall itself";
   EXPECT_NEAR(blueOverRed(f.hdr, regions.masks.at("red wall")) / blueOverRed(refAfter, regions.masks.at("red wall")), 1.0, 0.05);
 }
+
+// The merge filter without tiles (issue 16): one VPL lights the back wall through one sub-image of the
+// K x K interleaving only. A K x K box filter turns that sub-image's samples into K x K plateaus (each
+// pixel takes the one sample in its window: most horizontal neighbours equal), the
+// "tiles" around hot VPLs. The separable tent of width 2K - 1 (filter_tent.glsl) interpolates between the
+// samples instead: no plateaus, and the light still sums every sub-image with equal weight. (Measured
+// with the box put back in filter_tent.glsl: 242 of 434 neighbour pairs equal; with the tent, none.)
+TEST_F(RenderTest, MergeFilterInterpolatesASubImageInsteadOfMakingTiles) {
+  gi::GiSettings s = settings(1);
+  s.temporal.vpl.vplCount = 1;
+  s.temporal.reshootBudget = 1;
+  s.temporal.vpl.interleave = 4;
+  GiRun run(context(), s);
+  run.step(3);
+  const Frame f = run.readFrame();
+  const render::ImageRgba indirect = run.indirect();
+  const Regions regions = cornellRegions(f, run.assets, kSize);
+  ASSERT_TRUE(regions.masks.count("back wall"));
+  const std::vector<uint8_t>& wall = regions.masks.at("back wall");
+  size_t pairs = 0, equal = 0;
+  double peak = 0;
+  for (size_t i = 0; i < indirect.size(); ++i) peak = std::max(peak, double(wall[i] ? indirect[i].g : 0.0f));
+  ASSERT_GT(peak, 0.0) << "the VPL lights the back wall";
+  for (uint32_t y = 0; y < kSize; ++y)
+    for (uint32_t x = 0; x + 1 < kSize; ++x) {
+      const size_t i = size_t(y) * kSize + x;
+      if (!wall[i] || !wall[i + 1] || indirect[i].g < 0.05 * peak) continue;
+      ++pairs;
+      equal += std::abs(indirect[i].g - indirect[i + 1].g) <= 1e-6f * float(peak);
+    }
+  std::printf("back wall: %zu lit neighbour pairs, %zu equal (a K x K box in its place: 242 of 434)\n", pairs, equal);
+  ASSERT_GT(pairs, 200u);
+  EXPECT_LT(double(equal) / double(pairs), 0.1);
+}

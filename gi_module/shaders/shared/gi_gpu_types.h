@@ -112,7 +112,8 @@ struct RsmPush {
 // filter
 #define DYNGI_FILTER_BINDING_FRAME 0
 #define DYNGI_FILTER_BINDING_FILTER_INPUT 1
-#define DYNGI_FILTER_BINDING_OUT_INDIRECT 2
+#define DYNGI_FILTER_BINDING_OUT_INDIRECT 2  // filter_columns
+#define DYNGI_FILTER_BINDING_OUT_ROWS 3      // filter_rows: the packed intermediate
 // many_lights_debug
 #define DYNGI_MANY_LIGHTS_DEBUG_BINDING_FRAME 0
 #define DYNGI_MANY_LIGHTS_DEBUG_BINDING_G_ALBEDO 1

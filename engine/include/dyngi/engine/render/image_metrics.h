@@ -21,6 +21,11 @@ double ssim(const ImageRgba& a, const ImageRgba& reference, uint32_t width, uint
 // Sum over pixels of |a - ref| (RGB) over the sum of ref (RGB): the error relative to the image's own
 // level, not dominated by dim pixels. 0 when both are black; 1 for an image against black.
 double relativeL1(const ImageRgba& a, const ImageRgba& reference, const std::vector<uint8_t>* mask = nullptr);
+// The q-quantile (0.99: the 99th percentile) over pixels of the relative luminance error
+// |L(a) - L(ref)| / max(L(ref), 0.1 x the reference's mean luminance): the tail that averages hide (hot
+// pixels, blocks, streaks). Pixels darker than a tenth of the mean count against that tenth, so black
+// corners do not dominate. 0 for an empty or black reference.
+double relativeLuminanceErrorQuantile(const ImageRgba& a, const ImageRgba& reference, double q, const std::vector<uint8_t>* mask = nullptr);
 // Flicker of a sequence of frames of a static scene: the mean absolute frame-to-frame change, relative
 // to the frames' mean level (the mean over consecutive pairs of relativeL1(frame i, frame i-1)).
 double flicker(const std::vector<ImageRgba>& frames);
