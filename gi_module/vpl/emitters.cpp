@@ -22,7 +22,7 @@ glm::vec3 textureMean(const scene::AssetStore& assets, scene::TextureId id) {
 }  // namespace
 
 EmitterSet::EmitterSet(const render::RenderSnapshot& snapshot, const scene::AssetStore& assets)
-    : snap_(snapshot), assets_(assets), surfaces_(snapshot, assets) {
+    : snap_(snapshot), assets_(assets) {
   for (size_t d = 0; d < snapshot.draws.size(); ++d) {
     const render::DrawItem& draw = snapshot.draws[d];
     const glm::vec3 factor = draw.material.emissive;
@@ -43,8 +43,9 @@ EmitterSet::EmitterSet(const render::RenderSnapshot& snapshot, const scene::Asse
       entityTotal += power;
       triangles_.push_back({d, uint32_t(t / 3), area, total_});
     }
-    if (entityTotal > 0.0f) entityPower_.emplace_back(draw.entity, entityTotal);
+    if (entityTotal > 0.0f) sources_.push_back({draw.entity, entityTotal, factor});
   }
+  if (!triangles_.empty()) surfaces_.emplace(snapshot, assets);
 }
 
 float lightPower(const render::LightItem& l, const scene::Aabb& bounds) {
@@ -62,8 +63,8 @@ float lightPower(const render::LightItem& l, const scene::Aabb& bounds) {
 }
 
 float EmitterSet::power(ecs::Entity entity) const {
-  for (const auto& [e, p] : entityPower_)
-    if (e == entity) return p;
+  for (const EmitterSource& s : sources_)
+    if (s.entity == entity) return s.power;
   return 0.0f;
 }
 
@@ -98,7 +99,7 @@ EmitterSample EmitterSet::sample(float u0, float u1, float u2, float u3) const {
   // The surface as the path tracer reads it (textured emission, shading normal) seen from that side.
   h.t = 1.0f;
   SurfaceHit sh;
-  if (!surfaces_.at(h, point + side, -side, sh)) return s;
+  if (!surfaces_->at(h, point + side, -side, sh)) return s;
   s.position = point;
   s.normal = sh.shadingNormal;
   s.flux = sh.emission * (kTwoPi * tri.area / p);

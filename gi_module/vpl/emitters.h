@@ -5,12 +5,14 @@
 // light on the scene (the path tracer's first bounce off an emissive hit) and its children the bounces
 // after. Emitters are two-sided, as the path tracer and the rasterizer treat them: a sample emits from a
 // side picked at random.
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "dyngi/engine/render/snapshot.h"
 #include "dyngi/gi/scene_surfaces.h"
+#include "dyngi/gi/vpl_paths.h"  // EmitterSource
 
 namespace dyngi::gi {
 
@@ -28,6 +30,7 @@ class EmitterSet {
   // Emitted power (luminance of the flux, both sides), what competes with the lights' power for paths.
   float totalPower() const { return total_; }
   float power(ecs::Entity entity) const;  // one entity's share of totalPower (0: it does not emit)
+  const std::vector<EmitterSource>& sources() const { return sources_; }
   // u0 picks the triangle, u1 u2 the point, u3 the side.
   EmitterSample sample(float u0, float u1, float u2, float u3) const;
 
@@ -40,9 +43,9 @@ class EmitterSet {
   };
   const render::RenderSnapshot& snap_;
   const scene::AssetStore& assets_;
-  SceneSurfaces surfaces_;
+  std::optional<SceneSurfaces> surfaces_;  // made only when something emits (it maps every draw)
   std::vector<Triangle> triangles_;
-  std::vector<std::pair<ecs::Entity, float>> entityPower_;
+  std::vector<EmitterSource> sources_;
   float total_ = 0.0f;
 };
 

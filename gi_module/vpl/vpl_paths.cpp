@@ -45,22 +45,21 @@ VplPaths::VplPaths(const TemporalOptions& s) : settings_(s) {
 
 void VplPaths::update(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
                       const std::unordered_set<ecs::Entity>& moved) {
-  cacheEmitterPowers(snapshot, EmitterSet(snapshot, assets));  // what invalidate() compares the paths from emitters with
+  const EmitterSet emitters(snapshot, assets);  // once a frame: what invalidate() compares with, what replace() samples
+  cacheEmitters(emitters);
   invalidate(snapshot, bvh, moved);
-  replace(snapshot, bvh, assets);
+  replaceWith(snapshot, bvh, assets, emitters);
 }
 
-void VplPaths::cacheEmitterPowers(const render::RenderSnapshot& snapshot, const EmitterSet& emitters) {
-  emitterPowers_.clear();
-  for (const auto& d : snapshot.draws)
-    if (float p = emitters.power(d.entity); p > 0.0f) emitterPowers_.push_back({d.entity, p});
+void VplPaths::cacheEmitters(const EmitterSet& emitters) {
+  emitterSources_ = emitters.sources();
   emitterTotal_ = emitters.totalPower();
 }
 
-float VplPaths::emitterPower(ecs::Entity entity) const {
-  for (const EmitterPower& e : emitterPowers_)
-    if (e.entity == entity) return e.power;
-  return 0.0f;
+const EmitterSource* VplPaths::emitterSource(ecs::Entity entity) const {
+  for (const EmitterSource& e : emitterSources_)
+    if (e.entity == entity) return &e;
+  return nullptr;
 }
 
 void VplPaths::refreshMaterials(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
@@ -157,11 +156,9 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
     const LightState& ls = pathLight_[path];
     if (ls.type == kEmitterSource) {
       // From an emissive surface: it must still emit what it did, with the same share of the power.
-      const render::DrawItem* draw = nullptr;
-      for (const auto& d : snapshot.draws)
-        if (d.entity == ls.entity) draw = &d;
-      const float power = emitterPower(ls.entity), share = totalPower > 0.0f ? power / totalPower : 0.0f;
-      const bool emits = draw && power > 0.0f && draw->material.emissive == ls.radiant;
+      const EmitterSource* source = emitterSource(ls.entity);
+      const float share = source && totalPower > 0.0f ? source->power / totalPower : 0.0f;
+      const bool emits = source && source->emissive == ls.radiant;
       if (!emits || std::abs(share - ls.probability) > kShareTolerance * ls.probability) {
         invalidateIndex(path * settings_.vpl.bounces, /*hard=*/true);
         if (!emits) pathLight_[path].entity = {};
@@ -290,9 +287,10 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
         if (settings_.vpl.bounceTail && settings_.vpl.bounces == 1) shootProbe(v, rng, scale, bvh, surfaces);
       }
       glm::vec3 emissive(0.0f);
-      for (const auto& d : snapshot.draws)
-        if (d.entity == e.entity) emissive = d.material.emissive;
-      pathLight_[path] = LightState{e.entity, {}, {}, emissive, 0, 0, 0, kEmitterSource, emitters.power(e.entity) / total};
+      float power = 0.0f;
+      for (const EmitterSource& src : emitters.sources())
+        if (src.entity == e.entity) emissive = src.emissive, power = src.power;
+      pathLight_[path] = LightState{e.entity, {}, {}, emissive, 0, 0, 0, kEmitterSource, power / total};
       vpls_[index] = v;
       return true;
     }
@@ -379,6 +377,13 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
 }
 
 void VplPaths::replace(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets) {
+  const EmitterSet emitters(snapshot, assets);
+  cacheEmitters(emitters);
+  replaceWith(snapshot, bvh, assets, emitters);
+}
+
+void VplPaths::replaceWith(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
+                           const EmitterSet& emitters) {
   auto t0 = Clock::now();
   stats_.replacedThisFrame = 0;
   const uint32_t n = uint32_t(vpls_.size());
@@ -391,8 +396,6 @@ void VplPaths::replace(const render::RenderSnapshot& snapshot, const EmbreeScene
     budget = std::max(budget, std::min(invalid, settings_.reshootBurst));
   }
   SceneSurfaces surfaces(snapshot, assets);
-  const EmitterSet emitters(snapshot, assets);
-  cacheEmitterPowers(snapshot, emitters);
   for (uint32_t visited = 0; visited < n && budget > 0; ++visited) {
     uint32_t i = cursor_;
     cursor_ = (cursor_ + 1) % n;

@@ -49,6 +49,14 @@ struct PathVpl {
   ecs::Entity probeSurface{};
 };
 
+// One emissive entity a path can start from (gi_module/vpl/emitters.h lists them): its power
+// (luminance, both sides) and the emission factor it was drawn with.
+struct EmitterSource {
+  ecs::Entity entity{};
+  float power = 0.0f;
+  glm::vec3 emissive{0.0f};
+};
+
 struct VplPathStats {
   uint32_t count = 0, valid = 0;
   uint32_t invalidatedThisFrame = 0, replacedThisFrame = 0;
@@ -114,12 +122,11 @@ class VplPaths {
   };
   // Paths whose source is an emissive surface (vpl/emitters.h) rather than a light: LightState::type.
   static constexpr uint32_t kEmitterSource = 3;
-  struct EmitterPower {
-    ecs::Entity entity;
-    float power;
-  };
-  float emitterPower(ecs::Entity entity) const;
-  void cacheEmitterPowers(const render::RenderSnapshot& snapshot, const class EmitterSet& emitters);
+  // The emissive surface a path started from, as the last EmitterSet listed it (null: it emits no more).
+  const EmitterSource* emitterSource(ecs::Entity entity) const;
+  void cacheEmitters(const class EmitterSet& emitters);
+  void replaceWith(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
+                   const class EmitterSet& emitters);
   void invalidateIndex(uint32_t index, bool hard = false);
   void markChanged(uint32_t index, bool hard);  // counts a VPL once per set rendering (and once more if hard)
   bool lightJumped(const LightState& from, glm::vec3 position, glm::vec3 direction, float scale) const;
@@ -133,7 +140,7 @@ class VplPaths {
   std::vector<PathVpl> vpls_;
   std::vector<LightState> pathLight_;   // per path: the light state its bounce-0 VPL was shot from
   // The emissive surfaces' power at the last update() (what invalidate() compares paths against).
-  std::vector<EmitterPower> emitterPowers_;
+  std::vector<EmitterSource> emitterSources_;
   float emitterTotal_ = 0.0f;
   std::vector<uint8_t> changedSinceRendered_;  // per VPL: 0 no, 1 soft, 2 hard change since its set was rendered
   std::vector<uint32_t> setChanges_;           // per set: its VPLs changed since it was rendered
