@@ -1,14 +1,23 @@
 // dyngi_imgcmp: compares two linear EXR images (same size) with dyngi's image metrics.
-// usage: dyngi_imgcmp REFERENCE.exr IMAGE.exr   -> one JSON line on stdout; exit 2 on bad input
+// usage: dyngi_imgcmp REFERENCE.exr IMAGE.exr [--error-map FILE.png]
+//   -> one JSON line on stdout; exit 2 on bad input. The error map shows where the p99_rel_lum tail lies:
+//   red where IMAGE is brighter, blue where darker, full at a relative luminance error of 1 (the same
+//   measure as p99_rel_lum), grey where the error is under 1 percent (the reference's luminance).
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
 
 #include "dyngi/engine/render/image_io.h"
 #include "dyngi/engine/render/image_metrics.h"
 
 int main(int argc, char** argv) {
   using namespace dyngi::render;
-  if (argc != 3) {
-    std::fprintf(stderr, "usage: dyngi_imgcmp REFERENCE.exr IMAGE.exr\n");
+  const bool withMap = argc == 5 && std::strcmp(argv[3], "--error-map") == 0;
+  if (argc != 3 && !withMap) {
+    std::fprintf(stderr, "usage: dyngi_imgcmp REFERENCE.exr IMAGE.exr [--error-map FILE.png]\n");
     return 2;
   }
   uint32_t w0, h0, w1, h1;
@@ -22,6 +31,29 @@ int main(int argc, char** argv) {
   if (w0 != w1 || h0 != h1) {
     std::fprintf(stderr, "dyngi_imgcmp: sizes differ (%ux%u vs %ux%u)\n", w0, h0, w1, h1);
     return 2;
+  }
+  auto lum = [](const glm::vec4& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
+  if (withMap) {
+    double mean = 0;
+    for (const glm::vec4& c : ref) mean += lum(c);
+    const double floor = 0.1 * mean / double(std::max<size_t>(ref.size(), 1));  // as relativeLuminanceErrorQuantile
+    std::vector<uint8_t> rgba(ref.size() * 4);
+    for (size_t i = 0; i < ref.size(); ++i) {
+      const double e = (lum(img[i]) - lum(ref[i])) / std::max(lum(ref[i]), floor);
+      const double m = std::min(1.0, std::abs(e));
+      const double base = 0.25 + 0.5 * std::min(1.0, std::sqrt(std::max(0.0, lum(ref[i]) / std::max(4.0 * floor, 1e-12))));
+      uint8_t grey = uint8_t(std::clamp(base * 255.0 * (1.0 - m), 0.0, 255.0));
+      uint8_t hot = uint8_t(std::clamp(255.0 * m + grey, 0.0, 255.0));
+      rgba[i * 4 + 0] = e > 0 ? hot : grey;
+      rgba[i * 4 + 1] = grey;
+      rgba[i * 4 + 2] = e < 0 ? hot : grey;
+      rgba[i * 4 + 3] = 255;
+    }
+    err = writePng(argv[4], w0, h0, rgba);
+    if (!err.empty()) {
+      std::fprintf(stderr, "dyngi_imgcmp: %s\n", err.c_str());
+      return 2;
+    }
   }
   glm::dvec3 a = meanOver(img), b = meanOver(ref);
   double la = 0.2126 * a.r + 0.7152 * a.g + 0.0722 * a.b, lb = 0.2126 * b.r + 0.7152 * b.g + 0.0722 * b.b;

@@ -18,7 +18,9 @@ const OptionTable<PathTracerSettings>& PathTracerSettings::table() {
       OptionTable<PathTracerSettings>()
           .add({"spp", "path tracer samples per pixel", 1, 1000000}, &PathTracerSettings::spp)
           .add({"bounces", "indirect bounces (0: direct light only)", 0, 64}, &PathTracerSettings::bounces)
-          .add({"seed", "seed of the path tracer's random numbers", 0, 4294967295.0}, &PathTracerSettings::seed);
+          .add({"seed", "seed of the path tracer's random numbers", 0, 4294967295.0}, &PathTracerSettings::seed)
+          .add({"pixel-jitter", "samples spread over the pixel (off: through its centre, as the rasterizer samples: the reference for a GI image)", 0, 1},
+               &PathTracerSettings::pixelJitter);
   return t;
 }
 namespace {

@@ -22,7 +22,7 @@ struct PathTracerSettings {
   bool pixelJitter = true;      // false: every sample through the pixel centre (as the rasterizer samples)
   glm::vec3 background{0.0f};   // radiance of rays that leave the scene
 
-  static const OptionTable<PathTracerSettings>& table();  // spp, bounces, seed
+  static const OptionTable<PathTracerSettings>& table();  // spp, bounces, seed, pixel-jitter
 };
 
 struct PathTracerStats {
