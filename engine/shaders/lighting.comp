@@ -39,16 +39,6 @@ vec3 specularColour(vec3 f0, float roughness, float nDotV) {
   return f0 * ab.x + ab.y;
 }
 
-// Irradiance from light L at p (normal n), shadowed.
-vec3 directLight(GpuLight L, vec3 p, vec3 n) {
-  if (L.radiance.w == 0.0) return vec3(0.0);
-  vec3 l;
-  float dist;
-  vec3 e = lightIrradiance(L, p, n, l, dist);
-  if (max(e.r, max(e.g, e.b)) <= 0.0) return vec3(0.0);
-  return e * shadowFactor(L, p, n, dist);
-}
-
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return;
@@ -68,7 +58,7 @@ void main() {
   // which here would cost a whole light (shadow lookups included) per pixel.
   uint count = frame.sizeAndCount.z, i = 0u;
   do {
-    if (i < count) radiance += diffuse * directLight(lights[i], pos.xyz, n);
+    if (i < count) radiance += diffuse * shadowedIrradiance(lights[i], pos.xyz, n);
   } while (++i < count);
   if (hasIndirect != 0u) radiance += occlusion * albedoMetal.rgb * (1.0 - albedoMetal.a) * imageLoad(indirect, px).rgb;
   if (kSpecular) {

@@ -45,4 +45,15 @@ float shadowFactor(GpuLight L, vec3 p, vec3 n, float dist) {
   return sum;
 }
 
+// Irradiance from light L at p (normal n), shadowed: what the lighting pass multiplies by albedo / pi.
+// Needs shared/lighting.glsl included before.
+vec3 shadowedIrradiance(GpuLight L, vec3 p, vec3 n) {
+  if (L.radiance.w == 0.0) return vec3(0.0);
+  vec3 l;
+  float dist;
+  vec3 e = lightIrradiance(L, p, n, l, dist);
+  if (max(e.r, max(e.g, e.b)) <= 0.0) return vec3(0.0);
+  return e * shadowFactor(L, p, n, dist);
+}
+
 #endif

@@ -9,6 +9,7 @@
 //   uniform sampler3D vctAniso;     (anisotropic) the six-direction atlas of half resolution, with mips
 #ifndef DYNGI_VCT_CONE_GLSL
 #define DYNGI_VCT_CONE_GLSL
+#include "shared/hemisphere.glsl"
 
 const float kVctPi = 3.14159265358979;
 const int kVctMaxSteps = DYNGI_VCT_MAX_STEPS;
@@ -113,37 +114,16 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, out 
   return vec4(colour, alpha);
 }
 
-// Direction k of N spread over the hemisphere around +z by cosine (a spiral with the golden angle). Each
-// cone gets the solid angle whose projection is its share, pi / N: Omega = pi / (N cos theta), so the
-// cones tile the hemisphere (the mean of 1 / cos theta under that spread is 2) and a cone's mean radiance,
-// weighted by its projected solid angle over pi, is its part of E / pi both for light from everywhere
-// and for a source smaller than the cone. (Equal solid angles, 2 pi / N, would halve a small source seen
-// along the normal.)
-vec3 vctDiffuseDirection(uint k, uint n) {
-  float u = (float(k) + 0.5) / float(n);
-  float r = sqrt(u);
-  float phi = float(k) * 2.39996323;
-  return vec3(r * cos(phi), r * sin(phi), sqrt(max(1.0 - u, 0.0)));
-}
-
-// An orthonormal basis around unit n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited").
-mat3 vctBasis(vec3 n) {
-  float s = n.z >= 0.0 ? 1.0 : -1.0;
-  float a = -1.0 / (s + n.z);
-  float b = n.x * n.y * a;
-  return mat3(vec3(1.0 + s * n.x * n.x * a, s * b, -s * n.x), vec3(b, s + n.y * n.y * a, -n.y), n);
-}
-
 // E / pi at a surface point (voxel units) with unit normal n from N diffuse cones; `ao` the mean of the
 // cones' unoccluded fraction within aoDistance.
 vec3 vctDiffuse(vec3 p, vec3 n, out float ao) {
-  mat3 basis = vctBasis(n);
+  mat3 basis = basisAround(n);
   vec3 origin = p + n * coneOffset;
   vec3 sum = vec3(0.0);
   float occluded = 0.0, total = 0.0;
   for (uint k = 0u; k < cones; ++k) {
     float occ;
-    vec3 d = vctDiffuseDirection(k, cones);
+    vec3 d = cosineSpiral(k, cones);
     float cosHalf = max(1.0 - 1.0 / (2.0 * float(cones) * max(d.z, 1e-3)), 0.0);
     float coneTan = sqrt(1.0 - cosHalf * cosHalf) / max(cosHalf, 1e-3);
     // A cone tilted by theta keeps its half-angle under 90 - theta degrees (tan <= 0.9 cot theta): wider,
