@@ -48,5 +48,7 @@ ctest --output-on-failure -j"$(nproc)" -L 'unit|gi|e2e' "$@"
 #     moves the same knobs through the same setters;
 #   TemporalPathsMatchPathTracerPerRegionForEveryLightType (accuracy per light type): the light types' VPL shooting runs in
 #     VplPaths.* (gi label) and RenderTest.LightOffDrivesIndirectToZeroAndBack.
+# And one accuracy measurement that path traces twice at 512 spp: VplImageErrorTailStaysWithinTwiceThePathTracersOwnNoise
+#   (the clamp compensation with 3 bounces): RenderTest.ClampCompensationGivesTheCornersTheirLightBack runs the same passes.
 DYNGI_SYNC_VALIDATION=0 ctest --output-on-failure -j1 -L render \
-  -E 'RenderTest\.(Quality(FlickerAndSettleTime|FlickerUnderACameraPan|GhostingBehindAMovingBox)PerTechnique|BounceTailBringsBothVplTechniquesToThePathTracersManyBounces|EmissivePanelLightsTheRoomThroughBothVplTechniques|EveryQualityKnobAtItsFloorKeepsTheMeanIndirectLight|TemporalPathsMatchPathTracerPerRegionForEveryLightType)' "$@"
+  -E 'RenderTest\.(Quality(FlickerAndSettleTime|FlickerUnderACameraPan|GhostingBehindAMovingBox)PerTechnique|BounceTailBringsBothVplTechniquesToThePathTracersManyBounces|EmissivePanelLightsTheRoomThroughBothVplTechniques|EveryQualityKnobAtItsFloorKeepsTheMeanIndirectLight|TemporalPathsMatchPathTracerPerRegionForEveryLightType|VplImageErrorTailStaysWithinTwiceThePathTracersOwnNoise)' "$@"

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <vector>
 
+#include "dyngi/gi/vpl_options.h"
+#include "spirv/compensate.comp.spv.h"
+#include "spirv/compensate_blur.comp.spv.h"
 #include "spirv/filter_columns.comp.spv.h"
 #include "spirv/filter_rows.comp.spv.h"
 #include "spirv/gather.comp.spv.h"
@@ -63,57 +66,121 @@ void IndirectGatherPass::record(render::FrameContext& frame, render::Image& raw,
 
 IndirectFilterPass::IndirectFilterPass(render::VulkanContext& ctx) : ctx_(ctx) {}
 
-void IndirectFilterPass::record(render::FrameContext& frame, render::Image& input, uint32_t K, float planeTolerance) {
+void IndirectFilterPass::record(render::FrameContext& frame, render::Image& input, uint32_t K, const VplOptions& vpl) {
   K = std::clamp(K, 1u, 8u);
-  const uint32_t spec[] = {K};
+  const bool compensate = vpl.compensationRays > 0 && vpl.distanceClamp > 0.0f;
+  const uint32_t spec[] = {K, compensate ? 1u : 0u};
   render::Pipeline& rows = rows_[K - 1];
   if (!rows.handle()) {
-    const Binding b[] = {{DYNGI_FILTER_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
-                         {DYNGI_FILTER_BINDING_FILTER_INPUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
-                         {DYNGI_FILTER_BINDING_OUT_ROWS, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
-    rows = render::Pipeline::compute(ctx_, DYNGI_SHADER(spv_filter_rows_comp), b, sizeof(gpu::IndirectFilterPush), "indirect_filter_rows", spec);
+    const Binding b[] = {{DYNGI_FILTER_BINDING_FRAME, kUBO, kCS},
+                         {DYNGI_FILTER_BINDING_FILTER_INPUT, kStorageImage, kCS},
+                         {DYNGI_FILTER_BINDING_OUT_ROWS, kStorageImage, kCS}};
+    rows = render::Pipeline::compute(ctx_, DYNGI_SHADER(spv_filter_rows_comp), std::span(b), sizeof(gpu::IndirectFilterPush),
+                                     "indirect_filter_rows", std::span(spec, 1));
   }
-  render::Pipeline& columns = columns_[K - 1];
+  render::Pipeline& columns = columns_[K - 1][compensate ? 1 : 0];
   if (!columns.handle()) {
-    const Binding b[] = {{DYNGI_FILTER_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
-                         {DYNGI_FILTER_BINDING_FILTER_INPUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS},
-                         {DYNGI_FILTER_BINDING_OUT_INDIRECT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kCS}};
+    const Binding b[] = {{DYNGI_FILTER_BINDING_FRAME, kUBO, kCS},
+                         {DYNGI_FILTER_BINDING_FILTER_INPUT, kStorageImage, kCS},
+                         {DYNGI_FILTER_BINDING_OUT_INDIRECT, kStorageImage, kCS},
+                         {DYNGI_FILTER_BINDING_COMPENSATION, kStorageImage, kCS}};
     columns = render::Pipeline::compute(ctx_, DYNGI_SHADER(spv_filter_columns_comp), b, sizeof(gpu::IndirectFilterPush),
                                         "indirect_filter_columns", spec);
   }
   render::RenderTargets& t = frame.targets;
-  if (!rowsResult_.valid() || rowsResult_.desc().width != t.width || rowsResult_.desc().height != t.height) {
+  auto screenImage = [&](render::Image& img, uint32_t width, uint32_t height, const char* name) {
+    if (img.valid() && img.desc().width == width && img.desc().height == height) return;
     render::ImageDesc d;
-    d.width = t.width;
-    d.height = t.height;
+    d.width = width;
+    d.height = height;
     d.format = VK_FORMAT_R32G32B32A32_UINT;
     d.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-    d.name = "indirect filter rows";
-    rowsResult_ = render::Image(ctx_, d);
-  }
-  render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "filter");
+    d.name = name;
+    img = render::Image(ctx_, d);
+  };
+  screenImage(rowsResult_, t.width, t.height, "indirect filter rows");
+  constexpr uint32_t S = DYNGI_COMPENSATE_SCALE;
+  screenImage(compensation_, (t.width + S - 1) / S, (t.height + S - 1) / S, "clamp compensation");  // bound by both variants
+  if (compensate) screenImage(traced_, (t.width + S - 1) / S, (t.height + S - 1) / S, "clamp compensation traced");
   VkCommandBuffer cmd = frame.cmd;
-  const gpu::IndirectFilterPush pc{planeTolerance};
-  input.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-  rowsResult_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, rows.handle());
-  DescriptorWrites()
-      .uniformBuffer(DYNGI_FILTER_BINDING_FRAME, frame.frameUniforms.handle())
-      .storageImage(DYNGI_FILTER_BINDING_FILTER_INPUT, input.view())
-      .storageImage(DYNGI_FILTER_BINDING_OUT_ROWS, rowsResult_.view())
-      .push(ctx_, cmd, rows);
-  vkCmdPushConstants(cmd, rows.layout(), kCS, 0, sizeof(pc), &pc);
-  vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
-  rowsResult_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  const gpu::IndirectFilterPush pc{vpl.filterPlaneTolerance};
+  {
+    render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "filter");
+    input.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    rowsResult_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, rows.handle());
+    DescriptorWrites()
+        .uniformBuffer(DYNGI_FILTER_BINDING_FRAME, frame.frameUniforms.handle())
+        .storageImage(DYNGI_FILTER_BINDING_FILTER_INPUT, input.view())
+        .storageImage(DYNGI_FILTER_BINDING_OUT_ROWS, rowsResult_.view())
+        .push(ctx_, cmd, rows);
+    vkCmdPushConstants(cmd, rows.layout(), kCS, 0, sizeof(pc), &pc);
+    vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
+    rowsResult_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  }
+  if (compensate) recordCompensation(frame, vpl);
+  render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "filter");
+  compensation_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   t.indirect.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, columns.handle());
   DescriptorWrites()
       .uniformBuffer(DYNGI_FILTER_BINDING_FRAME, frame.frameUniforms.handle())
       .storageImage(DYNGI_FILTER_BINDING_FILTER_INPUT, rowsResult_.view())
       .storageImage(DYNGI_FILTER_BINDING_OUT_INDIRECT, t.indirect.view())
+      .storageImage(DYNGI_FILTER_BINDING_COMPENSATION, compensation_.view())
       .push(ctx_, cmd, columns);
   vkCmdPushConstants(cmd, columns.layout(), kCS, 0, sizeof(pc), &pc);
   vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
+}
+
+void IndirectFilterPass::recordCompensation(render::FrameContext& frame, const VplOptions& vpl) {
+  if (!compensate_.handle()) {
+    const Binding b[] = {{DYNGI_COMPENSATE_BINDING_FRAME, kUBO, kCS},           {DYNGI_COMPENSATE_BINDING_POSITION, kStorageImage, kCS},
+                         {DYNGI_COMPENSATE_BINDING_NORMAL, kStorageImage, kCS},   {DYNGI_COMPENSATE_BINDING_ALBEDO, kStorageImage, kCS},
+                         {DYNGI_COMPENSATE_BINDING_EMISSIVE, kStorageImage, kCS}, {DYNGI_COMPENSATE_BINDING_ROWS, kStorageImage, kCS},
+                         {DYNGI_COMPENSATE_BINDING_LIGHTS, kSSBO, kCS},           {DYNGI_COMPENSATE_BINDING_SHADOW_MATRICES, kSSBO, kCS},
+                         {DYNGI_COMPENSATE_BINDING_SHADOW_MAPS, kStorageImage, kCS}, {DYNGI_COMPENSATE_BINDING_OUT, kStorageImage, kCS}};
+    compensate_ = render::Pipeline::compute(ctx_, DYNGI_SHADER(spv_compensate_comp), b, sizeof(gpu::CompensatePush), "compensate");
+    const Binding blur[] = {{DYNGI_COMPENSATE_BINDING_FRAME, kUBO, kCS},
+                            {DYNGI_COMPENSATE_BINDING_TRACED, kStorageImage, kCS},
+                            {DYNGI_COMPENSATE_BINDING_OUT, kStorageImage, kCS}};
+    compensateBlur_ = render::Pipeline::compute(ctx_, DYNGI_SHADER(spv_compensate_blur_comp), blur, sizeof(gpu::CompensatePush), "compensate_blur");
+  }
+  render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "compensate");
+  VkCommandBuffer cmd = frame.cmd;
+  render::RenderTargets& t = frame.targets;
+  const render::LightInputs& lights = frame.lights;
+  for (render::Image* img : {&t.position, &t.normal, &t.albedo, &t.emissive, lights.shadowMaps})
+    img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  traced_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, compensate_.handle());
+  DescriptorWrites()
+      .uniformBuffer(DYNGI_COMPENSATE_BINDING_FRAME, frame.frameUniforms.handle())
+      .storageImage(DYNGI_COMPENSATE_BINDING_POSITION, t.position.view())
+      .storageImage(DYNGI_COMPENSATE_BINDING_NORMAL, t.normal.view())
+      .storageImage(DYNGI_COMPENSATE_BINDING_ALBEDO, t.albedo.view())
+      .storageImage(DYNGI_COMPENSATE_BINDING_EMISSIVE, t.emissive.view())
+      .storageImage(DYNGI_COMPENSATE_BINDING_ROWS, rowsResult_.view())
+      .storageBuffer(DYNGI_COMPENSATE_BINDING_LIGHTS, lights.lights->handle())
+      .storageBuffer(DYNGI_COMPENSATE_BINDING_SHADOW_MATRICES, lights.shadowMatrices->handle())
+      .storageImage(DYNGI_COMPENSATE_BINDING_SHADOW_MAPS, lights.shadowMaps->view())
+      .storageImage(DYNGI_COMPENSATE_BINDING_OUT, traced_.view())
+      .push(ctx_, cmd, compensate_);
+  const gpu::CompensatePush pc{vpl.distanceClamp, vpl.compensationRays, (vpl.bounces > 1 || vpl.bounceTail) ? 1u : 0u, lights.count,
+                               vpl.filterPlaneTolerance};
+  vkCmdPushConstants(cmd, compensate_.layout(), kCS, 0, sizeof(pc), &pc);
+  const uint32_t groupsX = dispatchGroups(traced_.desc().width, 8), groupsY = dispatchGroups(traced_.desc().height, 8);
+  vkCmdDispatch(cmd, groupsX, groupsY, 1);
+  traced_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  compensation_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, compensateBlur_.handle());
+  DescriptorWrites()
+      .uniformBuffer(DYNGI_COMPENSATE_BINDING_FRAME, frame.frameUniforms.handle())
+      .storageImage(DYNGI_COMPENSATE_BINDING_TRACED, traced_.view())
+      .storageImage(DYNGI_COMPENSATE_BINDING_OUT, compensation_.view())
+      .push(ctx_, cmd, compensateBlur_);
+  vkCmdPushConstants(cmd, compensateBlur_.layout(), kCS, 0, sizeof(pc), &pc);
+  vkCmdDispatch(cmd, groupsX, groupsY, 1);
 }
 
 }  // namespace dyngi::gi

@@ -42,14 +42,21 @@ class IndirectFilterPass {
  public:
   explicit IndirectFilterPass(render::VulkanContext& ctx);
   // Filters `input` (interleaved K x K, K in 1..8; rgba32ui packed as in filter_input.glsl) into
-  // frame.targets.indirect ("filter" in stats): a separable geometry-aware tent (shaders/filter_tent.glsl).
-  void record(render::FrameContext& frame, render::Image& input, uint32_t K, float planeTolerance);
+  // frame.targets.indirect ("filter" in stats): a separable geometry-aware tent (shaders/filter_tent.glsl),
+  // with vpl.filterPlaneTolerance. Between its passes, unless vpl.compensationRays or vpl.distanceClamp is
+  // 0, it traces the light the gather's distance clamp dropped (shaders/compensate.comp, "compensate" in
+  // stats: short screen-space rays for one pixel in 4 x 4), which the second pass adds.
+  void record(render::FrameContext& frame, render::Image& input, uint32_t K, const struct VplOptions& vpl);
 
  private:
+  void recordCompensation(render::FrameContext& frame, const VplOptions& vpl);
+
   render::VulkanContext& ctx_;
-  // Per K, made on first use (K is a specialization constant): along rows, then columns.
-  render::Pipeline rows_[8], columns_[8];
-  render::Image rowsResult_;  // rgba32ui packed as the input (filter_input.glsl), the frame's size
+  // Per K, made on first use (K is a specialization constant): along rows, then columns (without and
+  // with the compensation).
+  render::Pipeline rows_[8], columns_[8][2], compensate_, compensateBlur_;
+  render::Image rowsResult_;   // rgba32ui packed as the input (filter_input.glsl), the frame's size
+  render::Image traced_, compensation_;  // one texel per DYNGI_COMPENSATE_SCALE^2 pixels, packed likewise: traced, blurred
 };
 
 }  // namespace dyngi::gi

@@ -11,6 +11,8 @@ const OptionTable<VplOptions>& VplOptions::table() {
                &VplOptions::bounceTail)
           .add({"interleave", "K: the gather splits the image into K x K sub-images", 1, 8}, &VplOptions::interleave)
           .add({"clamp", "distance clamp B in world units^2: G = cos cos / max(B, d^2)", 0, 100}, &VplOptions::distanceClamp)
+          .add({"clamp-compensation", "screen-space rays per traced pixel (one in 4 x 4) that give back the light the distance clamp drops (0: off)", 0, 64},
+               &VplOptions::compensationRays)
           .add({"luminance-threshold", "skip VPLs dimmer than this fraction of a first-bounce VPL", 0, 1}, &VplOptions::luminanceThreshold)
           .add({"lift-voxels", "SVO visibility: segment ends leave their surface by this many voxels", 0, 8}, &VplOptions::liftVoxels)
           .add({"filter-plane-tolerance", "filter taps count within this fraction of the view distance off the pixel's plane", 0, 1},

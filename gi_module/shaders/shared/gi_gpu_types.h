@@ -114,6 +114,21 @@ struct RsmPush {
 #define DYNGI_FILTER_BINDING_FILTER_INPUT 1
 #define DYNGI_FILTER_BINDING_OUT_INDIRECT 2  // filter_columns
 #define DYNGI_FILTER_BINDING_OUT_ROWS 3      // filter_rows: the packed intermediate
+// compensate (the distance clamp's lost light: compensate.comp traces it between the merge filter's
+// passes, filter_columns.comp adds it)
+#define DYNGI_COMPENSATE_BINDING_FRAME 0
+#define DYNGI_COMPENSATE_BINDING_POSITION 1
+#define DYNGI_COMPENSATE_BINDING_NORMAL 2
+#define DYNGI_COMPENSATE_BINDING_ALBEDO 3
+#define DYNGI_COMPENSATE_BINDING_EMISSIVE 4
+#define DYNGI_COMPENSATE_BINDING_ROWS 5             // the merge filter's rows pass: the indirect light where a ray lands
+#define DYNGI_COMPENSATE_BINDING_LIGHTS 6
+#define DYNGI_COMPENSATE_BINDING_SHADOW_MATRICES 7
+#define DYNGI_COMPENSATE_BINDING_SHADOW_MAPS 8
+#define DYNGI_COMPENSATE_BINDING_OUT 9              // one texel per DYNGI_COMPENSATE_SCALE^2 pixels, packed as filter_input.glsl
+#define DYNGI_COMPENSATE_BINDING_TRACED 10          // compensate_blur: compensate.comp's output
+#define DYNGI_FILTER_BINDING_COMPENSATION 4         // filter_columns: that image, read
+#define DYNGI_COMPENSATE_SCALE 4                    // the compensation is traced for one pixel in 4 x 4
 // many_lights_debug
 #define DYNGI_MANY_LIGHTS_DEBUG_BINDING_FRAME 0
 #define DYNGI_MANY_LIGHTS_DEBUG_BINDING_G_ALBEDO 1
@@ -390,6 +405,12 @@ struct TemporalQueue {
   uint count;        /* VPLs per bounce */
 #define DYNGI_MANY_LIGHTS_DEBUG_PUSH uint mode; uint K; uint vplCount;
 #define DYNGI_INDIRECT_FILTER_PUSH float planeTolerance;
+#define DYNGI_COMPENSATE_PUSH                                                        \
+  float distanceClamp;   /* B: the gather's G = cos cos / max(B, d^2) */            \
+  uint rays;             /* per traced texel */                                     \
+  uint includeIndirect;  /* 1: the VPLs carry light that bounced before (bounces > 1 or the tail) */ \
+  uint lightCount;                                                              \
+  float planeTolerance;  /* blur: taps within this fraction of the view distance off the texel's plane */
 // The cone parameters every VCT pass that marches cones shares (vct_cone.glsl reads them by name).
 #define DYNGI_VCT_CONE_PARAMS                                                        \
   vec4 volume;       /* xyz world origin, w voxel size */                          \
@@ -429,6 +450,7 @@ struct VplBouncePush { DYNGI_VPL_BOUNCE_PUSH };
 struct VplTailPush { DYNGI_VPL_TAIL_PUSH };
 struct ManyLightsDebugPush { DYNGI_MANY_LIGHTS_DEBUG_PUSH };
 struct IndirectFilterPush { DYNGI_INDIRECT_FILTER_PUSH };
+struct CompensatePush { DYNGI_COMPENSATE_PUSH };
 struct VctInjectPush { DYNGI_VCT_INJECT_PUSH };
 struct VctBouncePush { DYNGI_VCT_BOUNCE_PUSH };
 struct VctMipsPush { DYNGI_VCT_MIPS_PUSH };
@@ -452,7 +474,7 @@ static_assert(sizeof(SvoCounters) == 16);
 static_assert(sizeof(SvoMarkPush) == 8 && sizeof(SvoLevelPush) == 4 && sizeof(SvoExpandPush) == 8);
 static_assert(sizeof(SvoLeafAttributesPush) == 12 && sizeof(SvoMarchPush) == 32 && sizeof(VoxelDebugPush) == 28);
 static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && sizeof(VplSamplePush) == 16);
-static_assert(sizeof(VplTailPush) == 8);
+static_assert(sizeof(VplTailPush) == 8 && sizeof(CompensatePush) == 20);
 static_assert(sizeof(VplBouncePush) == 40 && sizeof(ManyLightsDebugPush) == 12 && sizeof(IndirectFilterPush) == 4);
 static_assert(sizeof(VctInjectPush) == 40 && sizeof(VctBouncePush) == 52 && sizeof(VctMipsPush) == 8);
 static_assert(sizeof(VctTracePush) == 48 && sizeof(VctUpsamplePush) == 4 && sizeof(VctDebugPush) == 48 && sizeof(VctProbePush) == 48);

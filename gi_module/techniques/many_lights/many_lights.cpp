@@ -329,7 +329,7 @@ bool ManyLights::record(render::FrameContext& frame) {
     pc.visibility = settings_.visibility ? DYNGI_VISIBILITY_SVO : DYNGI_VISIBILITY_NONE;
     pc.svoDepth = vol.depth();
     gatherPass_->record(frame, raw_, in);
-    filterPass_->record(frame, raw_, K, settings_.vpl.filterPlaneTolerance);
+    filterPass_->record(frame, raw_, K, settings_.vpl);
   }
   return true;
 }

@@ -276,7 +276,7 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     }
     recordReprojection(frame, acc, incremental);
   }
-  filterPass_->record(frame, accumulated_, K, settings_.vpl.filterPlaneTolerance);
+  filterPass_->record(frame, accumulated_, K, settings_.vpl);
   return true;
 }
 

@@ -15,6 +15,10 @@ struct VplOptions {
   bool bounceTail = false;             // the last bounce's VPLs also carry the bounces after it (shaders/shared/bounce_tail.h)
   uint32_t interleave = 4;             // K: the G-buffer is split into K x K sub-images
   float distanceClamp = 0.01f;         // B (world units^2): G = cos cos / max(B, d^2)
+  // Screen-space rays per traced pixel (one in 4 x 4) that give back the light the clamp drops (0: off;
+  // indirect/shaders/compensate.comp). Off by default: it can only give back what the screen shows, and a
+  // larger B, where it pays, then loses the light of hidden surfaces (a panel lamp's top, docs/QUALITY.md).
+  uint32_t compensationRays = 0;
   float luminanceThreshold = 0.01f;    // skip VPLs dimmer than this fraction of a first-bounce VPL
   float liftVoxels = 1.5f;             // SVO visibility: segment ends leave their surface by this many voxels
   float filterPlaneTolerance = 0.02f;  // filter: taps on the pixel's plane within this fraction of the view distance

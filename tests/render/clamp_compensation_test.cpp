@@ -1,0 +1,116 @@
+// The distance clamp without its lost energy (issue 16): the gather's G = cos cos / max(B, d^2) drops the
+// light of VPLs closer than sqrt(B); the compensation (indirect/shaders/compensate.comp, added by the
+// merge filter's second pass) gives it back from short screen-space rays. Checked against the path
+// tracer: the room's corner strips (where the clamp takes most), and the tail of the per-pixel error
+// against the path tracer's own seed-to-seed noise (the issue's 99th-percentile target).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "dyngi/engine/render/image_metrics.h"
+#include "render/cornell_regions.h"
+#include "render/gi_run.h"
+#include "render/render_fixture.h"
+
+using namespace dyngi;
+using namespace dyngi::test;
+
+namespace {
+constexpr uint32_t kSize = 128;
+
+gi::GiSettings temporalSettings(uint32_t bounces, float clamp, uint32_t rays) {
+  gi::GiSettings s;
+  s.technique = "temporal";
+  s.temporal.vpl.vplCount = 1024;
+  s.temporal.vpl.bounces = bounces;
+  s.temporal.vpl.distanceClamp = clamp;
+  s.temporal.vpl.compensationRays = rays;
+  return s;
+}
+
+// The corner strips of the built-in Cornell box: surface points within `reach` of a second plane of the
+// room (the floor, the ceiling, the back and side walls), the boxes' bases included (within reach of the
+// floor on a vertical face).
+std::vector<uint8_t> cornerStrips(const Frame& f, float reach, size_t& count) {
+  std::vector<uint8_t> mask(f.position.size(), 0);
+  count = 0;
+  for (size_t i = 0; i < mask.size(); ++i) {
+    const glm::vec4 p = f.position[i];
+    if (p.w == 0.0f) continue;
+    const glm::vec3 n = glm::vec3(f.normal[i]);
+    int near = 0;
+    // Planes the point is close to but not on (its own plane is where its normal points away from).
+    if (p.y < reach && std::abs(n.y) < 0.5f) ++near;                  // the floor, seen from a vertical face
+    if (p.y > 2.0f - reach && std::abs(n.y) < 0.5f) ++near;           // the ceiling
+    if (p.z < -1.0f + reach && std::abs(n.z) < 0.5f) ++near;          // the back wall
+    if (std::abs(p.x) > 1.0f - reach && std::abs(n.x) < 0.5f) ++near;  // a side wall
+    if (near > 0) mask[i] = 1, ++count;
+  }
+  return mask;
+}
+
+double ratioOver(const render::ImageRgba& a, const render::ImageRgba& ref, const std::vector<uint8_t>& mask) {
+  return luminance(render::meanOver(a, &mask)) / luminance(render::meanOver(ref, &mask));
+}
+}  // namespace
+
+TEST_F(RenderTest, ClampCompensationGivesTheCornersTheirLightBack) {
+  // One bounce: the VPLs stand for the direct light where they lie, which the compensation's rays read
+  // from the same surfaces (emission + shadowed direct light).
+  render::ImageRgba reference;
+  double corner[2] = {0, 0}, image[2] = {0, 0};
+  for (uint32_t rays : {0u, 8u}) {
+    GiRun run(context(), temporalSettings(1, 0.08f, rays), "cornell", kSize, kSize);
+    run.step(20);
+    Frame f = run.readFrame();
+    if (reference.empty()) reference = run.pathTraced(256, 1);
+    size_t n = 0;
+    std::vector<uint8_t> strips = cornerStrips(f, 0.15f, n);
+    ASSERT_GT(n, 500u);
+    corner[rays > 0] = ratioOver(f.hdr, reference, strips);
+    image[rays > 0] = luminance(render::meanOver(f.hdr)) / luminance(render::meanOver(reference));
+    std::printf("compensation rays %u: corner strips (%zu px) %.3f, image %.3f of the path tracer's\n", rays, n, corner[rays > 0],
+                image[rays > 0]);
+  }
+  // Measured: 0.857 -> 0.927 of the path tracer in the strips, image 0.970 -> 0.981. Not all of it: rays
+  // that leave the screen or pass behind an edge find nothing (the compensation never invents light).
+  EXPECT_LT(corner[0], 0.9) << "without the compensation the clamp darkens the corners";
+  EXPECT_GT(corner[1], corner[0] + 0.05) << "the compensation gives the corners most of their light back";
+  EXPECT_LT(corner[1], 1.03) << "and no more";
+  EXPECT_LT(std::abs(image[1] - 1.0), std::abs(image[0] - 1.0));
+}
+
+TEST_F(RenderTest, VplImageErrorTailStaysWithinTwiceThePathTracersOwnNoise) {
+  // The issue's measure: the 99th percentile of the per-pixel relative luminance error of the default
+  // technique (temporal VPL paths, SVO visibility; 1024 VPLs, 3 bounces, converged) against the path
+  // tracer with the same bounces, at most 2x the path tracer's own seed-to-seed 99th percentile at the
+  // spp used, with B = 0.08 and the compensation; and both tail and relMSE better than with the default
+  // clamp (B = 0.01) without it. Measured: p99 0.693 (0.757 without), the path tracer's own 0.669;
+  // relMSE 0.00643 (0.00726).
+  GiRun run(context(), temporalSettings(3, 0.08f, 8), "cornell", kSize, kSize);
+  run.step(40);
+  const render::ImageRgba image = run.hdr();
+  gi::EmbreeScene bvh;
+  bvh.sync(run.world, run.assets, 0);
+  render::ImageRgba refs[2];
+  for (uint64_t seed : {1u, 2u}) {
+    gi::PathTracerSettings pts;
+    pts.spp = 512;
+    pts.bounces = 3;
+    pts.pixelJitter = false;
+    pts.seed = seed;
+    refs[seed - 1] = gi::pathTrace(render::extractSnapshot(run.world, run.assets, run.frame), bvh, run.assets, kSize, kSize, pts);
+  }
+  const double noise = render::relativeLuminanceErrorQuantile(refs[1], refs[0], 0.99);
+  const double tail = render::relativeLuminanceErrorQuantile(image, refs[0], 0.99);
+  GiRun before(context(), temporalSettings(3, 0.01f, 0), "cornell", kSize, kSize);
+  before.step(40);
+  const render::ImageRgba old = before.hdr();
+  const double tailBefore = render::relativeLuminanceErrorQuantile(old, refs[0], 0.99);
+  const double relMse = render::relativeMse(image, refs[0]), relMseBefore = render::relativeMse(old, refs[0]);
+  std::printf("p99 relative luminance error: %.3f (B 0.01 without compensation: %.3f); path tracer seed to seed %.3f; relMSE %.5f (before %.5f)\n",
+              tail, tailBefore, noise, relMse, relMseBefore);
+  EXPECT_LE(tail, 2.0 * noise);
+  EXPECT_LT(tail, tailBefore);
+  EXPECT_LE(relMse, relMseBefore);
+}
