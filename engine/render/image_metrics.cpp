@@ -38,19 +38,28 @@ double relativeMse(const ImageRgba& a, const ImageRgba& ref, const std::vector<u
   return n ? sum / double(n) : 0.0;
 }
 
-double relativeLuminanceErrorQuantile(const ImageRgba& a, const ImageRgba& ref, double q, const std::vector<uint8_t>* mask) {
+std::vector<double> relativeLuminanceErrors(const ImageRgba& a, const ImageRgba& ref, const std::vector<uint8_t>* mask) {
   auto lum = [](const glm::vec4& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
   const size_t n = std::min(a.size(), ref.size());
+  std::vector<double> errors(n, 0.0);
   double mean = 0;
   size_t counted_ = 0;
   for (size_t i = 0; i < n; ++i)
     if (counted(mask, i)) mean += lum(ref[i]), ++counted_;
-  if (counted_ == 0 || !(mean > 0)) return 0.0;
+  if (counted_ == 0 || !(mean > 0)) return errors;
   const double floor = 0.1 * mean / double(counted_);
-  std::vector<double> errors;
-  errors.reserve(counted_);
   for (size_t i = 0; i < n; ++i)
-    if (counted(mask, i)) errors.push_back(std::abs(lum(a[i]) - lum(ref[i])) / std::max(lum(ref[i]), floor));
+    if (counted(mask, i)) errors[i] = (lum(a[i]) - lum(ref[i])) / std::max(lum(ref[i]), floor);
+  return errors;
+}
+
+double relativeLuminanceErrorQuantile(const ImageRgba& a, const ImageRgba& ref, double q, const std::vector<uint8_t>* mask) {
+  const std::vector<double> signedErrors = relativeLuminanceErrors(a, ref, mask);
+  std::vector<double> errors;
+  errors.reserve(signedErrors.size());
+  for (size_t i = 0; i < signedErrors.size(); ++i)
+    if (counted(mask, i)) errors.push_back(std::abs(signedErrors[i]));
+  if (errors.empty()) return 0.0;
   const size_t k = std::min(errors.size() - 1, size_t(std::clamp(q, 0.0, 1.0) * double(errors.size() - 1) + 0.5));
   std::nth_element(errors.begin(), errors.begin() + long(k), errors.end());
   return errors[k];

@@ -2,7 +2,7 @@
 // usage: dyngi_imgcmp REFERENCE.exr IMAGE.exr [--error-map FILE.png]
 //   -> one JSON line on stdout; exit 2 on bad input. The error map shows where the p99_rel_lum tail lies:
 //   red where IMAGE is brighter, blue where darker, full at a relative luminance error of 1 (the same
-//   measure as p99_rel_lum), grey where the error is under 1 percent (the reference's luminance).
+//   measure as p99_rel_lum, render::relativeLuminanceErrors), over a grey that shows the reference itself.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -34,14 +34,15 @@ int main(int argc, char** argv) {
   }
   auto lum = [](const glm::vec4& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
   if (withMap) {
-    double mean = 0;
-    for (const glm::vec4& c : ref) mean += lum(c);
-    const double floor = 0.1 * mean / double(std::max<size_t>(ref.size(), 1));  // as relativeLuminanceErrorQuantile
+    const std::vector<double> errors = relativeLuminanceErrors(img, ref);
+    double refMax = 0;
+    for (const glm::vec4& c : ref) refMax = std::max(refMax, lum(c));
     std::vector<uint8_t> rgba(ref.size() * 4);
     for (size_t i = 0; i < ref.size(); ++i) {
-      const double e = (lum(img[i]) - lum(ref[i])) / std::max(lum(ref[i]), floor);
+      const double e = errors[i];
       const double m = std::min(1.0, std::abs(e));
-      const double base = 0.25 + 0.5 * std::min(1.0, std::sqrt(std::max(0.0, lum(ref[i]) / std::max(4.0 * floor, 1e-12))));
+      // The reference's own brightness as the grey underneath (square root, so dim walls still show).
+      const double base = 0.25 + 0.5 * (refMax > 0 ? std::sqrt(std::max(0.0, lum(ref[i]) / refMax)) : 0.0);
       uint8_t grey = uint8_t(std::clamp(base * 255.0 * (1.0 - m), 0.0, 255.0));
       uint8_t hot = uint8_t(std::clamp(255.0 * m + grey, 0.0, 255.0));
       rgba[i * 4 + 0] = e > 0 ? hot : grey;

@@ -124,4 +124,11 @@ TEST(ImageMetrics, RelativeLuminanceErrorQuantileReadsTheTail) {
   b[7] = glm::vec4(0.099f);
   EXPECT_NEAR(relativeLuminanceErrorQuantile(b, dark, 1.0), 1.0, 1e-6);
   EXPECT_EQ(relativeLuminanceErrorQuantile(a, ImageRgba(100, glm::vec4(0.0f)), 0.99), 0.0);
+  // Per pixel and signed (the error map's input): +2 where 3x too bright, -1 where black, 0 elsewhere.
+  ImageRgba c = a;
+  c[5] = glm::vec4(0.0f);
+  const std::vector<double> e = relativeLuminanceErrors(c, ref);
+  EXPECT_NEAR(e[42], 2.0, 1e-12);
+  EXPECT_NEAR(e[5], -1.0, 1e-12);
+  EXPECT_EQ(e[0], 0.0);
 }

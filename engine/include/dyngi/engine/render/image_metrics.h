@@ -26,6 +26,9 @@ double relativeL1(const ImageRgba& a, const ImageRgba& reference, const std::vec
 // pixels, blocks, streaks). Pixels darker than a tenth of the mean count against that tenth, so black
 // corners do not dominate. 0 for an empty or black reference.
 double relativeLuminanceErrorQuantile(const ImageRgba& a, const ImageRgba& reference, double q, const std::vector<uint8_t>* mask = nullptr);
+// That error per pixel, signed (positive where `a` is brighter), 0 outside the mask: what
+// relativeLuminanceErrorQuantile ranks and dyngi_imgcmp --error-map draws.
+std::vector<double> relativeLuminanceErrors(const ImageRgba& a, const ImageRgba& reference, const std::vector<uint8_t>* mask = nullptr);
 // Flicker of a sequence of frames of a static scene: the mean absolute frame-to-frame change, relative
 // to the frames' mean level (the mean over consecutive pairs of relativeL1(frame i, frame i-1)).
 double flicker(const std::vector<ImageRgba>& frames);
