@@ -10,6 +10,7 @@
 #include <cstring>
 #include <optional>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <glm/gtc/type_ptr.hpp>
 #include <stdexcept>
@@ -732,6 +733,33 @@ std::string oneLine(const std::string& message) {
 }  // namespace
 
 namespace {
+// External buffers and images are read through this instead of tinygltf's own reader, which sizes its
+// vector from tellg(): a uri naming a directory or a device (a fuzzed "%%%..." uri decoded to one) gave
+// -1, an allocation of 2^63 bytes. Only regular files up to 4 GiB are read; anything else is tinygltf's
+// usual "failed to load" error, one line.
+bool readRegularFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const bool regular = fs::is_regular_file(path, ec);
+  const uintmax_t bytes = regular ? fs::file_size(path, ec) : 0;
+  if (!regular || ec || bytes > (uintmax_t(1) << 32)) {
+    if (err) *err += path + (regular ? ": too large or unreadable\n" : ": not a regular file\n");
+    return false;
+  }
+  std::ifstream f(path, std::ios::binary);
+  out->resize(size_t(bytes));
+  if (bytes > 0 && !f.read(reinterpret_cast<char*>(out->data()), std::streamsize(bytes))) {
+    if (err) *err += path + ": could not be read\n";
+    return false;
+  }
+  return true;
+}
+
+// A loader whose file reads go through readRegularFile.
+void guardFileReads(tinygltf::TinyGLTF& loader) {
+  loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readRegularFile, &tinygltf::WriteWholeFile, nullptr});
+}
+
 std::string importGltfFile(const std::string& path, ecs::World& world, AssetStore& assets, ImportReport* report,
                            const ImportOptions& options) {
   namespace fs = std::filesystem;
@@ -739,6 +767,7 @@ std::string importGltfFile(const std::string& path, ecs::World& world, AssetStor
   if (!fs::exists(path, ec)) return path + ": file not found";
   if (fs::is_directory(path, ec)) return path + ": is a directory, not a glTF file";
   tinygltf::TinyGLTF loader;
+  guardFileReads(loader);
   tinygltf::Model model;
   std::string err, warn;
   std::string ext = fs::path(path).extension().string();
@@ -763,6 +792,7 @@ std::string importGltf(const std::string& path, ecs::World& world, AssetStore& a
 std::string importGltfFromMemory(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                                  ecs::World& world, AssetStore& assets, ImportReport* report, const ImportOptions& options) {
   tinygltf::TinyGLTF loader;
+  guardFileReads(loader);
   tinygltf::Model model;
   std::string err, warn;
   bool ok = false;
