@@ -48,7 +48,11 @@ uint32_t materialTextureBits(const scene::Material& m) {
          (m.normalTexture != scene::kNoTexture ? DYNGI_MATERIAL_NORMAL_TEX : 0u);
 }
 
-float alphaMaskThreshold(const scene::Material& m) { return m.alphaCutoff / std::max(m.baseColor.a, 1e-6f); }
+uint32_t drawTextureBits(const FrameContext& frame, const DrawItem& d) {
+  uint32_t bits = materialTextureBits(d.material);
+  if ((bits & DYNGI_MATERIAL_NORMAL_TEX) && frame.snapshot.assets->mesh(d.mesh).tangents.empty()) bits &= ~uint32_t(DYNGI_MATERIAL_NORMAL_TEX);
+  return bits;
+}
 
 void drawEach(const FrameContext& frame, std::optional<std::span<const size_t>> indices, const DrawPipelineFor& pipelineFor,
               const DrawSetup& setup) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "dyngi/engine/scene/alpha_cut.h"
 #include "dyngi/engine/scene/components.h"
 
 namespace dyngi::scene {
@@ -22,17 +23,17 @@ float rayBoxEntry(const Ray& r, const Aabb& b) {
   return t0;
 }
 
-// Moeller-Trumbore; the hit distance or +inf.
-float rayTriangle(const glm::vec3& o, const glm::vec3& d, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+// Moeller-Trumbore; the hit distance or +inf, and the barycentrics of b and c.
+float rayTriangle(const glm::vec3& o, const glm::vec3& d, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, float& u, float& v) {
   const glm::vec3 e1 = b - a, e2 = c - a, p = glm::cross(d, e2);
   const float det = glm::dot(e1, p);
   if (!(std::abs(det) > 1e-12f)) return std::numeric_limits<float>::infinity();
   const float inv = 1.0f / det;
   const glm::vec3 s = o - a;
-  const float u = glm::dot(s, p) * inv;
+  u = glm::dot(s, p) * inv;
   if (u < 0.0f || u > 1.0f) return std::numeric_limits<float>::infinity();
   const glm::vec3 q = glm::cross(s, e1);
-  const float v = glm::dot(d, q) * inv;
+  v = glm::dot(d, q) * inv;
   if (v < 0.0f || u + v > 1.0f) return std::numeric_limits<float>::infinity();
   const float t = glm::dot(e2, q) * inv;
   return t > 0.0f ? t : std::numeric_limits<float>::infinity();
@@ -60,6 +61,9 @@ std::optional<PickHit> pickClosest(const ecs::World& world, const AssetStore& as
     const MeshData& mesh = assets.mesh(mi.mesh);
     if (!mesh.usable || !mesh.bounds.valid()) return;
     if (!(rayBoxEntry(ray, mesh.bounds.transformed(wt.matrix)) < bestT)) return;
+    // A masked material's cut-outs let the ray through, as they do the renderer's and Embree's.
+    const Material* material = world.tryGet<Material>(e);
+    const AlphaCut cut = material ? AlphaCut::of(*material) : AlphaCut{};
     // In the mesh's own space: one inverse per instance instead of a transform per vertex. Distances
     // along the local ray are world distances because the direction is not renormalized.
     const glm::mat4 inv = glm::inverse(wt.matrix);
@@ -68,8 +72,9 @@ std::optional<PickHit> pickClosest(const ecs::World& world, const AssetStore& as
       const uint32_t ia = mesh.indices[i], ib = mesh.indices[i + 1], ic = mesh.indices[i + 2];
       if (ia >= mesh.positions.size() || ib >= mesh.positions.size() || ic >= mesh.positions.size()) continue;
       const glm::vec3 &a = mesh.positions[ia], &b = mesh.positions[ib], &c = mesh.positions[ic];
-      const float t = rayTriangle(o, d, a, b, c);
-      if (t < bestT) {
+      float u = 0.0f, v = 0.0f;
+      const float t = rayTriangle(o, d, a, b, c, u, v);
+      if (t < bestT && !cut.cuts(assets, mesh, i / 3, u, v)) {
         bestT = t;
         PickHit h;
         h.entity = e;

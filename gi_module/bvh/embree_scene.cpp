@@ -9,9 +9,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "dyngi/engine/render/draw_pass.h"
+#include "dyngi/engine/scene/alpha_cut.h"
 #include "dyngi/engine/scene/animation.h"
-#include "shared/uv_transform.h"
 #include "dyngi/engine/scene/components.h"
 #include "dyngi/gi/bvh.h"
 
@@ -32,32 +31,18 @@ struct EmbreeScene::Impl {
     bool refittable = false;
     bool filtered = false;  // the alpha cut's filter functions are set (a masked instance uses the mesh)
   };
-  // Per top-level geomID: an alpha-masked instance's cut (glTF alphaMode MASK), read by alphaFilter.
-  struct AlphaCut {
-    bool masked = false;
+  // Per top-level geomID: an alpha-masked instance's mesh and cut (glTF alphaMode MASK), read by alphaFilter.
+  struct MaskedInstance {
     scene::MeshId mesh = 0;
-    scene::TextureId texture = scene::kNoTexture;
-    glm::vec4 uvLinear{1.0f, 0.0f, 0.0f, 1.0f};
-    glm::vec2 uvOffset{0.0f};
-    float threshold = 0.0f;  // render::alphaMaskThreshold()
+    scene::AlphaCut cut;
   };
-  std::vector<AlphaCut> alphaByGeomId;
+  std::vector<MaskedInstance> alphaByGeomId;
   const scene::AssetStore* assets = nullptr;  // the last sync's (the filter reads meshes and textures there)
 
-  // True where the masked instance's surface is cut: the base colour texture's alpha at the hit's uv
-  // under the threshold, as the raster passes' alpha test decides.
-  bool cut(const AlphaCut& a, unsigned primitive, float u, float v) const {
+  // True where the masked instance's surface is cut, as the raster passes' alpha test decides.
+  bool cut(const MaskedInstance& a, unsigned primitive, float u, float v) const {
     if (!assets || a.mesh >= assets->meshCount()) return false;
-    float alpha = 1.0f;
-    if (a.texture != scene::kNoTexture && a.texture < assets->textureCount()) {
-      const scene::MeshData& m = assets->mesh(a.mesh);
-      const size_t t = size_t(primitive) * 3;
-      glm::vec2 uv(0.0f);
-      if (t + 2 < m.indices.size() && m.uvs.size() == m.positions.size())
-        uv = (1.0f - u - v) * m.uvs[m.indices[t]] + u * m.uvs[m.indices[t + 1]] + v * m.uvs[m.indices[t + 2]];
-      alpha = scene::sampleTexture(assets->texture(a.texture), gpu::applyUvTransform(a.uvLinear, a.uvOffset, uv)).a;
-    }
-    return alpha < a.threshold;
+    return a.cut.cuts(*assets, assets->mesh(a.mesh), primitive, u, v);
   }
   // Embree's filter (intersection and occlusion alike) on the meshes masked instances use: rejects the
   // candidate hits an instance's alpha cuts away, so the rays pass through the cut-outs.
@@ -66,7 +51,7 @@ struct EmbreeScene::Impl {
     for (unsigned i = 0; i < args->N; ++i) {
       if (args->valid[i] != -1) continue;
       const unsigned inst = RTCHitN_instID(args->hit, args->N, i, 0);
-      if (inst >= im->alphaByGeomId.size() || !im->alphaByGeomId[inst].masked) continue;
+      if (inst >= im->alphaByGeomId.size() || !im->alphaByGeomId[inst].cut.masked) continue;
       if (im->cut(im->alphaByGeomId[inst], RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
                   RTCHitN_v(args->hit, args->N, i)))
         args->valid[i] = 0;
@@ -336,12 +321,11 @@ const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetSto
   // The alpha cuts, from every instance's material as it is now (cheap: instances only). A mesh a masked
   // instance uses gets the filter functions once; its instances are committed again with the changed BLAS.
   im.assets = &assets;
-  im.alphaByGeomId.assign(im.byGeomId.size(), Impl::AlphaCut{});
+  im.alphaByGeomId.assign(im.byGeomId.size(), Impl::MaskedInstance{});
   for (auto& [e, inst] : im.instances) {
     const auto* mat = world.tryGet<scene::Material>(e);
     if (!mat || !mat->alphaMask) continue;
-    im.alphaByGeomId[inst.geomId] = {true, inst.mesh, mat->baseColorTexture, mat->uvTransform.linear(), mat->uvTransform.offset,
-                                     render::alphaMaskThreshold(*mat)};
+    im.alphaByGeomId[inst.geomId] = {inst.mesh, scene::AlphaCut::of(*mat)};
     Impl::Blas& b = im.blas.at(inst.mesh);
     if (b.filtered) continue;
     rtcSetGeometryUserData(b.geometry, &im);

@@ -48,6 +48,7 @@ std::vector<VoxelFragment> VoxelProbe::readbackFragments() {
     VoxelFragment v;
     v.cell = glm::uvec3(f[0] & 1023u, (f[0] >> 10) & 1023u, (f[0] >> 20) & 1023u);
     v.albedo = glm::unpackUnorm4x8(f[1]);
+    v.normal = glm::vec3(glm::unpackSnorm4x8(f[2]));
     // voxelize.frag's packEmission: rgb / 2^k as unorm8, k + 8 in the fourth byte (0: no emission).
     const glm::vec4 e = glm::unpackUnorm4x8(f[3]);
     v.emission = f[3] == 0 ? glm::vec3(0.0f) : glm::vec3(e) * std::exp2(float(int(f[3] >> 24) - 8));

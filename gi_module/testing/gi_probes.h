@@ -19,6 +19,7 @@ struct VoxelFragment {
   glm::uvec3 cell{0};
   glm::vec4 albedo{0.0f};    // linear base colour x (1 - metallic), a 1
   glm::vec3 emission{0.0f};  // emitted radiance (8-bit mantissas, shared power-of-two scale)
+  glm::vec3 normal{0.0f};    // the fragment's normal (snorm8): the face's, or the normal texture's
 };
 
 class VoxelProbe {

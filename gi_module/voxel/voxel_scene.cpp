@@ -16,6 +16,7 @@
 #include "spirv/voxelize.frag.spv.h"
 #include "spirv/voxelize.geom.spv.h"
 #include "spirv/voxelize.vert.spv.h"
+#include "spirv/voxelize_tangent.vert.spv.h"
 
 #include "gpu_aliases.h"
 
@@ -179,25 +180,27 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
 }
 
 render::Pipeline& VoxelScene::voxelizePipelineFor(uint32_t textureBits) {
-  const bool alphaMask = textureBits & DYNGI_MATERIAL_ALPHA_MASK;
+  const bool alphaMask = textureBits & DYNGI_MATERIAL_ALPHA_MASK, normalTexture = textureBits & DYNGI_MATERIAL_NORMAL_TEX;
   textureBits &= DYNGI_MATERIAL_BASE_COLOR_TEX | DYNGI_MATERIAL_EMISSIVE_TEX | DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX;  // what it reads
-  Pipeline& pipeline = voxelize_[textureBits | (alphaMask ? 8u : 0u)];
+  Pipeline& pipeline = voxelize_[textureBits | (alphaMask ? 8u : 0u) | (normalTexture ? 16u : 0u)];
   if (pipeline.handle()) return pipeline;
   Pipeline::GraphicsDesc d;
-  d.vertex = DYNGI_SHADER(spv_voxelize_vert);
+  d.vertex = normalTexture ? DYNGI_SHADER(spv_voxelize_tangent_vert) : DYNGI_SHADER(spv_voxelize_vert);
   d.geometry = DYNGI_SHADER(spv_voxelize_geom);
   d.fragment = DYNGI_SHADER(spv_voxelize_frag);
-  render::setMeshVertexInput(d, /*normal=*/false, /*uv=*/true);
+  render::setMeshVertexInput(d, /*normal=*/normalTexture, /*uv=*/true);
+  if (normalTexture) render::setMeshTangentInput(d);
   d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   d.pushConstantBytes = sizeof(gpu::VoxelizePush);
   d.bindings = {{DYNGI_VOXELIZE_BINDING_FRAGMENTS, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_VOXELIZE_BINDING_COUNTERS, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+                {DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_VOXELIZE_BINDING_NORMAL_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
   auto bit = [&](uint32_t b) { return (textureBits & b) ? 1u : 0u; };
   d.fragmentSpecialization = {bit(DYNGI_MATERIAL_BASE_COLOR_TEX), bit(DYNGI_MATERIAL_EMISSIVE_TEX), bit(DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX),
-                              alphaMask ? 1u : 0u};
+                              alphaMask ? 1u : 0u, normalTexture ? 1u : 0u};
   d.name = "voxelize";
   pipeline = Pipeline::graphics(ctx_, d);
   return pipeline;
@@ -223,7 +226,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
       render::RenderingScope rendering(cmd, res, res);
       const glm::mat4 toVoxel = volume_.worldToVoxelMatrix();
       auto pipelineFor = [&](const render::DrawItem& d) -> const Pipeline& {
-        return voxelizePipelineFor(render::materialTextureBits(d.material));
+        return voxelizePipelineFor(render::drawTextureBits(frame, d));
       };
       render::drawEach(frame, drawsToVoxelize_, pipelineFor, [&](VkCommandBuffer c, const render::DrawItem& d, const Pipeline& pipeline) {
         const Range& r = ranges_.at(d.entity);
@@ -236,7 +239,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
         pc.albedo = glm::vec4(glm::vec3(d.material.baseColor), d.material.metallic);
         pc.emission = glm::vec4(d.material.emissive, 0.0f);
         pc.uvLinear = d.material.uvTransform.linear();
-        pc.uvOffset = glm::vec4(d.material.uvTransform.offset, render::alphaMaskThreshold(d.material), 0.0f);
+        pc.uvOffset = glm::vec4(d.material.uvTransform.offset, render::alphaMaskThreshold(d.material), d.material.normalScale);
         DescriptorWrites()
             .storageBuffer(DYNGI_VOXELIZE_BINDING_FRAGMENTS, fragments_.handle())
             .storageBuffer(DYNGI_VOXELIZE_BINDING_COUNTERS, counters_.handle())
@@ -244,6 +247,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
             .sampledImage(DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, frame.textureView(d.material.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
             .sampledImage(DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX, frame.textureView(d.material.metallicRoughnessTexture), frame.linearSampler,
                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+            .sampledImage(DYNGI_VOXELIZE_BINDING_NORMAL_TEX, frame.textureView(d.material.normalTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
             .push(ctx_, c, pipeline);
         vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(pc), &pc);

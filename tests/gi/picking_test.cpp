@@ -8,8 +8,10 @@
 #include "dyngi/engine/render/snapshot.h"
 #include "dyngi/engine/scene/components.h"
 #include "dyngi/engine/scene/picking.h"
+#include "dyngi/engine/scene/transform_system.h"
 #include "dyngi/gi/bvh.h"
 #include "scenes/builtin_scenes.h"
+#include "support/fence_scene.h"
 
 using namespace dyngi;
 
@@ -93,4 +95,41 @@ TEST(Picking, DegenerateAndNonFiniteTrianglesNeverHit) {
   r.origin = {0.5f, 0.0f, 1.0f};
   r.direction = {0.0f, 0.0f, -1.0f};
   EXPECT_FALSE(scene::pickClosest(world, assets, r).has_value());
+}
+
+// A fence whose left half its base colour's alpha cuts away (alphaMode MASK): a click there picks the
+// floor behind it, as Embree (its alpha filter) and the G-buffer see it; on the solid half, the fence.
+TEST(Picking, AlphaCutOutsArePickedThroughAsEmbreeSeesThem) {
+  ecs::World world;
+  scene::AssetStore assets;
+  const test::FenceScene fence = test::floorUnderAFence(world, assets);
+  scene::TransformSystem().run(world, {});
+  gi::EmbreeScene bvh;
+  bvh.sync(world, assets, 0);
+  constexpr uint32_t kW = 96, kH = 64;
+  const render::RenderSnapshot snap = render::extractSnapshot(world, assets, 0);
+  const glm::mat4 viewProj = render::cameraUniforms(snap.camera, kW, kH).viewProj;
+  int onFence = 0, throughTheCut = 0;
+  for (uint32_t y = 0; y < kH; ++y)
+    for (uint32_t x = 0; x < kW; ++x) {
+      const scene::Ray r = scene::pixelRay(viewProj, kW, kH, x + 0.5, y + 0.5);
+      const auto pick = scene::pickClosest(world, assets, r);
+      const gi::RayHit ref = bvh.intersect(r.origin, r.direction, 0.0f, 1e30f);
+      ASSERT_EQ(pick.has_value(), ref.hit) << x << "," << y;
+      if (!ref.hit) continue;
+      EXPECT_EQ(pick->entity, ref.entity) << x << "," << y;
+      EXPECT_NEAR(pick->distance, ref.t, 1e-4f * ref.t) << x << "," << y;
+      onFence += pick->entity == fence.fence;
+      // The ray crosses the fence's plane over its cut half on the way to what it picked.
+      const float tPlane = (test::kFenceHeight - r.origin.y) / r.direction.y;
+      const glm::vec3 q = r.origin + tPlane * r.direction;
+      const bool overCut = tPlane > 0.0f && tPlane < pick->distance && q.x < -0.05f && q.x > -1.0f && std::abs(q.z) < 1.0f;
+      if (overCut) {
+        ++throughTheCut;
+        EXPECT_EQ(pick->entity, fence.floor) << x << "," << y;
+      }
+    }
+  std::printf("fence picked at %d pixels; %d pixels picked the floor through the cut half\n", onFence, throughTheCut);
+  EXPECT_GT(onFence, 200);
+  EXPECT_GT(throughTheCut, 50);
 }

@@ -14,6 +14,7 @@
 #include "dyngi/gi/vpl_paths.h"
 #include "render/gi_run.h"
 #include "render/render_fixture.h"
+#include "support/fence_scene.h"
 #include "testing/gi_probes.h"
 
 using namespace dyngi;
@@ -244,48 +245,6 @@ TEST_F(RenderTest, TextureTransformTurnsTheTextureInEveryConsumer) {
   EXPECT_GT(pathVpls, 100);
 }
 
-namespace {
-// A 4 m floor under a 2 m horizontal "fence" 1 m above it whose left half (x < 0) its base colour's alpha
-// cuts away (alphaMode MASK, cutoff 0.5), lit from above by the sun; the camera looks down from the side.
-constexpr float kFenceHeight = 1.0f;
-void floorUnderAFence(ecs::World& w, scene::AssetStore& a) {
-  const scene::Entity floor = w.create();
-  w.add(floor, scene::Transform{});
-  w.add(floor, scene::MeshInstance{a.addMesh(scene::makeQuad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4})), true});
-  w.add(floor, scene::Material{.baseColor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f)});
-  scene::TextureData t;
-  t.width = t.height = 8;
-  for (uint32_t y = 0; y < 8; ++y)
-    for (uint32_t x = 0; x < 8; ++x) t.rgba8.insert(t.rgba8.end(), {200, 120, 60, uint8_t(x < 4 ? 0 : 255)});
-  const scene::Entity fence = w.create();
-  w.add(fence, scene::Transform{});
-  // Both faces: the quad's uv u runs along +x.
-  scene::MeshData mesh = scene::makeQuad({-1, kFenceHeight, 1}, {2, 0, 0}, {0, 0, -2});
-  w.add(fence, scene::MeshInstance{a.addMesh(std::move(mesh)), true});
-  w.add(fence, scene::Material{.baseColorTexture = a.addTexture(t), .alphaMask = true, .alphaCutoff = 0.5f});
-  const scene::Entity sun = w.create();
-  scene::Transform st;
-  st.rotation = glm::quatLookAtRH(glm::normalize(glm::vec3(0.15f, -1.0f, 0.1f)), glm::vec3(0, 1, 0));
-  w.add(sun, st);
-  w.add(sun, scene::Light{.type = scene::LightType::Directional, .intensity = 2.0f});
-  const scene::Entity cam = w.create();
-  scene::Transform ct;
-  ct.translation = {3.5f, 3.5f, 0.5f};
-  ct.rotation = glm::quatLookAtRH(glm::normalize(glm::vec3(-3.5f, -3.5f, -0.5f)), glm::vec3(0, 1, 0));
-  w.add(cam, ct);
-  w.add(cam, scene::Camera{.yfov = 1.0f});
-  w.add(cam, scene::ActiveCamera{});
-}
-// Where the sun's ray down to floor point p crosses the fence's plane: over its cut half, its solid half,
-// or beside it.
-enum class Under { Hole, Solid, Open };
-Under underTheFence(const glm::vec3& p) {
-  const glm::vec3 toSun = -glm::normalize(glm::vec3(0.15f, -1.0f, 0.1f));
-  const glm::vec3 q = p + toSun * (kFenceHeight / toSun.y);
-  if (std::abs(q.x) > 1.0f || std::abs(q.z) > 1.0f) return Under::Open;
-  return q.x < 0.0f ? Under::Hole : Under::Solid;
-}
-}  // namespace
 
 // alphaMode MASK in every consumer: the G-buffer sees the floor through the cut half, the shadow map
 // lets the sun through it, the path tracer (Embree's filter) agrees pixel by pixel, and neither the
@@ -359,11 +318,11 @@ TEST_F(RenderTest, AlphaMaskCutsTheSurfaceInEveryConsumer) {
   EXPECT_GT(pathsThroughHole, 20u);
 }
 
-// A normal texture in the G-buffer and the path tracer: the quad's left half (u < 0.5) has its normals
-// turned 45 degrees towards +x (its tangent), the right half is flat; under a sun from +x+z the left
-// half receives E cos 0 and the right E cos 45, as the analytic case says, in the raster frame and the
-// path tracer alike.
-TEST_F(RenderTest, NormalTextureTurnsTheShadingNormalInTheGBufferAndThePathTracer) {
+// A normal texture in every consumer: the quad's left half (u < 0.5) has its normals turned 45 degrees
+// towards +x (its tangent), the right half is flat; under a sun from +x+z the left half receives
+// E cos 0 and the right E cos 45, as the analytic case says, in the raster frame and the path tracer
+// alike; the RSM VPLs, the voxels and the temporal paths' VPLs carry the texture's normals.
+TEST_F(RenderTest, NormalTextureTurnsTheShadingNormalInEveryConsumer) {
   ecs::World w;
   scene::AssetStore assets;
   scene::TextureData t;
@@ -403,4 +362,35 @@ TEST_F(RenderTest, NormalTextureTurnsTheShadingNormalInTheGBufferAndThePathTrace
     EXPECT_NEAR(raster / expected, 1.0, 0.01);
     EXPECT_NEAR(path / expected, 1.0, 0.01);
   }
+
+  // The GI's views of the quad carry the same normals: the RSM VPLs (their bounce leaves along it), the
+  // voxels (averaged from their fragments) and the temporal paths' VPLs (SceneSurfaces).
+  const auto expectedAt = [&](const glm::vec3& p) { return p.x > 0 ? texelNormal(128, 128, 255) : texelNormal(218, 128, 218); };
+  // Away from the seam and the border, where the bilinear lookup (wrapping) blends the halves.
+  const auto inHalf = [](const glm::vec3& p) { return std::abs(p.x) > 0.25f && std::abs(p.x) < 0.8f && std::abs(p.y) < 0.8f; };
+  ManyLightsRun run(context(), w, assets, 2048);
+  size_t rsmChecked = 0, voxelsChecked = 0, pathsChecked = 0;
+  for (const gi::VplReadback& v : gi::readbackVpls(run.ml)) {
+    if (v.bounce != 0 || !inHalf(v.position)) continue;
+    ++rsmChecked;
+    EXPECT_LT(glm::length(v.normal - expectedAt(v.position)), 0.01f) << "RSM VPL at x " << v.position.x;
+  }
+  const float voxelSize = run.voxels.volume().voxelSize;
+  for (const gi::VoxelFragment& fr : gi::VoxelProbe(run.voxels).readbackFragments()) {
+    const glm::vec3 c = run.voxels.volume().origin + (glm::vec3(fr.cell) + 0.5f) * voxelSize;
+    if (!inHalf(c)) continue;
+    ++voxelsChecked;
+    EXPECT_LT(glm::length(fr.normal - expectedAt(c)), 0.02f) << "voxel fragment at x " << c.x;  // snorm8
+  }
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 2000}, .reshootBudget = 100000});
+  paths.update(render::extractSnapshot(w, assets, 0), bvh, assets, {});
+  for (const gi::PathVpl& v : paths.vpls()) {
+    if (!v.placed || !inHalf(v.position)) continue;
+    ++pathsChecked;
+    EXPECT_LT(glm::length(v.normal - expectedAt(v.position)), 0.01f) << "path VPL at x " << v.position.x;
+  }
+  std::printf("normals checked: %zu RSM VPLs, %zu voxel fragments, %zu path VPLs\n", rsmChecked, voxelsChecked, pathsChecked);
+  EXPECT_GT(rsmChecked, 200u);
+  EXPECT_GT(voxelsChecked, 100u);
+  EXPECT_GT(pathsChecked, 200u);
 }

@@ -59,12 +59,7 @@ void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
                              depthAttachment(t.depth.view()));
     drawEach(
         frame, std::nullopt,
-        [&](const DrawItem& d) -> const Pipeline& {
-          // A normal texture needs the mesh's tangents; without them it is not used.
-          uint32_t bits = materialTextureBits(d.material);
-          if ((bits & DYNGI_MATERIAL_NORMAL_TEX) && frame.snapshot.assets->mesh(d.mesh).tangents.empty()) bits &= ~DYNGI_MATERIAL_NORMAL_TEX;
-          return pipelineFor(bits);
-        },
+        [&](const DrawItem& d) -> const Pipeline& { return pipelineFor(drawTextureBits(frame, d)); },
         [&](VkCommandBuffer c, const DrawItem& d, const Pipeline& pipeline) {
           const scene::Material& m = d.material;
           gpu::GBufferPush pc;

@@ -77,7 +77,7 @@ DYNGI_GPU_STRUCT(GBufferPush) {
 #define DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX 4u
 #define DYNGI_MATERIAL_OCCLUSION_TEX 8u
 #define DYNGI_MATERIAL_ALPHA_MASK 16u  // not a texture: the alpha test's variant
-#define DYNGI_MATERIAL_NORMAL_TEX 32u  // set only for meshes with tangents (GBufferPass)
+#define DYNGI_MATERIAL_NORMAL_TEX 32u  // set only for meshes with tangents (render::drawTextureBits)
 // lighting
 #define DYNGI_LIGHTING_BINDING_FRAME 0
 #define DYNGI_LIGHTING_BINDING_G_POSITION 1

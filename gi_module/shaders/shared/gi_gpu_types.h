@@ -35,7 +35,7 @@ struct VoxelizePush {
   vec4 albedo;          // rgb base colour factor, a metallic factor (diffuse = base x (1 - metallic))
   vec4 emission;        // rgb emitted radiance (a unused)
   vec4 uvLinear;        // KHR_texture_transform (engine/shaders/shared/uv_transform.h): the linear map,
-  vec4 uvOffset;        // and in xy the offset; z the alpha mask's threshold (alphaMaskThreshold())
+  vec4 uvOffset;        // and in xy the offset; z the alpha mask's threshold (alphaMaskThreshold()), w the normal scale
 };
 
 // Per-level bookkeeping of the SVO build (storage buffer, one per level).
@@ -102,7 +102,7 @@ struct RsmPush {
   mat4 model;
   vec4 baseColor;       // rgb linear base colour factor, a metallic factor (diffuse = base x (1 - metallic))
   vec4 uvLinear;        // KHR_texture_transform (engine/shaders/shared/uv_transform.h): the linear map,
-  vec4 uvOffset;        // and in xy the offset; z the alpha mask's threshold (alphaMaskThreshold())
+  vec4 uvOffset;        // and in xy the offset; z the alpha mask's threshold (alphaMaskThreshold()), w the normal scale
   uint layer;           // the RsmLayer drawn
   uint pad0, pad1, pad2;
 };
@@ -141,6 +141,7 @@ struct RsmPush {
 #define DYNGI_RSM_BINDING_LIGHTS 1
 #define DYNGI_RSM_BINDING_BASE_COLOR_TEX 2
 #define DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX 3
+#define DYNGI_RSM_BINDING_NORMAL_TEX 4
 // vpl_bounce
 #define DYNGI_VPL_BOUNCE_BINDING_VPLS 0
 #define DYNGI_VPL_BOUNCE_BINDING_NODES 1
@@ -216,6 +217,7 @@ struct RsmPush {
 #define DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX 2
 #define DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX 3
 #define DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX 4
+#define DYNGI_VOXELIZE_BINDING_NORMAL_TEX 5
 
 // Voxel cone tracing (techniques/vct/): the passes over the occupied voxels (SVO leaves) and the screen.
 // vct_inject: direct light and emission of each occupied voxel into the radiance volume

@@ -10,6 +10,7 @@
 #include "spirv/many_lights_debug.comp.spv.h"
 #include "spirv/rsm.frag.spv.h"
 #include "spirv/rsm.vert.spv.h"
+#include "spirv/rsm_tangent.vert.spv.h"
 #include "spirv/vpl_bounce.comp.spv.h"
 #include "spirv/vpl_cdf_rows.comp.spv.h"
 #include "spirv/vpl_cdf_total.comp.spv.h"
@@ -176,13 +177,14 @@ void ManyLights::prepare(render::VulkanContext&, const render::RenderSnapshot& s
 
 render::Pipeline& ManyLights::rsmPipelineFor(uint32_t textureBits) {
   const bool baseColorTexture = textureBits & DYNGI_MATERIAL_BASE_COLOR_TEX, mrTexture = textureBits & DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX;
-  const bool alphaMask = textureBits & DYNGI_MATERIAL_ALPHA_MASK;
-  Pipeline& pipeline = rsm_[(baseColorTexture ? 1 : 0) | (mrTexture ? 2 : 0) | (alphaMask ? 4 : 0)];
+  const bool alphaMask = textureBits & DYNGI_MATERIAL_ALPHA_MASK, normalTexture = textureBits & DYNGI_MATERIAL_NORMAL_TEX;
+  Pipeline& pipeline = rsm_[(baseColorTexture ? 1 : 0) | (mrTexture ? 2 : 0) | (alphaMask ? 4 : 0) | (normalTexture ? 8 : 0)];
   if (pipeline.handle()) return pipeline;
   Pipeline::GraphicsDesc d;
-  d.vertex = DYNGI_SHADER(spv_rsm_vert);
+  d.vertex = normalTexture ? DYNGI_SHADER(spv_rsm_tangent_vert) : DYNGI_SHADER(spv_rsm_vert);
   d.fragment = DYNGI_SHADER(spv_rsm_frag);
   render::setMeshVertexInput(d, /*normal=*/true, /*uv=*/true);
+  if (normalTexture) render::setMeshTangentInput(d);
   d.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT};
   d.depthFormat = VK_FORMAT_D32_SFLOAT;
   d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -190,8 +192,9 @@ render::Pipeline& ManyLights::rsmPipelineFor(uint32_t textureBits) {
   d.bindings = {{DYNGI_RSM_BINDING_LAYERS, kSSBO, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_RSM_BINDING_LIGHTS, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_RSM_BINDING_BASE_COLOR_TEX, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT}};
-  d.fragmentSpecialization = {baseColorTexture ? 1u : 0u, mrTexture ? 1u : 0u, alphaMask ? 1u : 0u};
+                {DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_RSM_BINDING_NORMAL_TEX, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  d.fragmentSpecialization = {baseColorTexture ? 1u : 0u, mrTexture ? 1u : 0u, alphaMask ? 1u : 0u, normalTexture ? 1u : 0u};
   d.name = "rsm";
   pipeline = Pipeline::graphics(ctx_, d);
   return pipeline;
@@ -220,14 +223,14 @@ bool ManyLights::record(render::FrameContext& frame) {
                                        render::depthAttachment(rsmDepth_.layerView(layer), VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_DONT_CARE));
       if (layer < rsmLayersUsed_) {
         auto pipelineFor = [&](const render::DrawItem& dr) -> const Pipeline& {
-          return rsmPipelineFor(render::materialTextureBits(dr.material));
+          return rsmPipelineFor(render::drawTextureBits(frame, dr));
         };
         render::drawEach(frame, std::nullopt, pipelineFor, [&](VkCommandBuffer c, const render::DrawItem& dr, const Pipeline& pipeline) {
           gpu::RsmPush pc{};
           pc.model = dr.model;
           pc.baseColor = glm::vec4(glm::vec3(dr.material.baseColor), dr.material.metallic);
           pc.uvLinear = dr.material.uvTransform.linear();
-          pc.uvOffset = glm::vec4(dr.material.uvTransform.offset, render::alphaMaskThreshold(dr.material), 0.0f);
+          pc.uvOffset = glm::vec4(dr.material.uvTransform.offset, render::alphaMaskThreshold(dr.material), dr.material.normalScale);
           pc.layer = layer;
           DescriptorWrites()
               .storageBuffer(DYNGI_RSM_BINDING_LAYERS, layers_.handle())
@@ -235,6 +238,7 @@ bool ManyLights::record(render::FrameContext& frame) {
               .sampledImage(DYNGI_RSM_BINDING_BASE_COLOR_TEX, frame.textureView(dr.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
               .sampledImage(DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX, frame.textureView(dr.material.metallicRoughnessTexture), frame.linearSampler,
                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+              .sampledImage(DYNGI_RSM_BINDING_NORMAL_TEX, frame.textureView(dr.material.normalTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
               .push(ctx_, c, pipeline);
           vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
         });

@@ -4,6 +4,7 @@
 // (coord, albedo, normal, emission) for each voxel the triangle overlaps into this entity's range.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
+#include "shared/normal_map.h"
 #include "tri_box.glsl"
 
 layout(push_constant) uniform Push { VoxelizePush pc; };
@@ -12,11 +13,13 @@ layout(constant_id = 0) const bool kBaseColorTexture = true;
 layout(constant_id = 1) const bool kEmissiveTexture = true;
 layout(constant_id = 2) const bool kMetallicRoughnessTexture = true;
 layout(constant_id = 3) const bool kAlphaMask = false;  // alphaMode MASK: voxels where the texture's alpha is cut stay empty
+layout(constant_id = 4) const bool kNormalTexture = false;  // with voxelize_tangent.vert
 layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_FRAGMENTS) buffer Fragments { uvec4 fragments[]; };
 layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_COUNTERS) buffer Counters { uint counters[]; };
 layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX) uniform sampler2D baseColorTex;
 layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX) uniform sampler2D emissiveTex;
 layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX) uniform sampler2D metallicRoughnessTex;
+layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_NORMAL_TEX) uniform sampler2D normalTex;
 
 layout(location = 0) flat in vec3 v0;
 layout(location = 1) flat in vec3 v1;
@@ -25,6 +28,12 @@ layout(location = 3) flat in vec2 uv0;
 layout(location = 4) flat in vec2 uv1;
 layout(location = 5) flat in vec2 uv2;
 layout(location = 6) flat in uint axis;
+layout(location = 7) flat in vec3 n0;  // with a normal texture: the vertices' normals and tangents
+layout(location = 8) flat in vec3 n1;
+layout(location = 9) flat in vec3 n2;
+layout(location = 10) flat in vec4 t0;
+layout(location = 11) flat in vec4 t1;
+layout(location = 12) flat in vec4 t2;
 
 const float kEps = 1e-4;  // voxel units: touching counts as overlapping, so nothing is missed
 
@@ -72,7 +81,8 @@ void main() {
     float metallic = pc.albedo.a;
     emission = pc.emission.rgb;
     float alpha = 1.0;
-    if (kBaseColorTexture || kEmissiveTexture || kMetallicRoughnessTexture) {
+    vec3 normal = nrm;
+    if (kBaseColorTexture || kEmissiveTexture || kMetallicRoughnessTexture || kNormalTexture) {
       // Barycentrics of the voxel centre's projection onto the triangle (clamped) for texturing.
       vec3 p = center - dot(center - v0, nrm) * nrm;
       vec3 e0 = v1 - v0, e1 = v2 - v0, ep = p - v0;
@@ -90,12 +100,20 @@ void main() {
       }
       if (kEmissiveTexture) emission *= textureLod(emissiveTex, uv, 0.0).rgb;
       if (kMetallicRoughnessTexture) metallic *= textureLod(metallicRoughnessTex, uv, 0.0).b;
+      if (kNormalTexture) {
+        // The shading normal at the voxel centre's projection, kept on the face normal's side (the side
+        // the fragments' normals are averaged on); the voxel's normal is then the mean of its fragments'.
+        vec3 ns = normalize(bary.x * n0 + bary.y * n1 + bary.z * n2);
+        vec4 tangent = vec4(bary.x * t0.xyz + bary.y * t1.xyz + bary.z * t2.xyz, t0.w);
+        normal = perturbNormal(ns, tangent, textureLod(normalTex, uv, 0.0).rgb, pc.uvOffset.w);
+        if (dot(ns, nrm) < 0.0) normal = -normal;
+      }
     }
     if (kAlphaMask && alpha < pc.uvOffset.z) continue;  // cut out at the voxel's centre
     albedo.rgb *= 1.0 - metallic;  // the diffuse share
     uint slot = atomicAdd(counters[pc.counterIndex], 1u);
     if (slot >= pc.capacity) continue;  // over capacity: counted, so the host grows the range
     uint coord = uint(v.x) | (uint(v.y) << 10) | (uint(v.z) << 20);
-    fragments[pc.firstSlot + slot] = uvec4(coord, packUnorm4x8(albedo), packSnorm4x8(vec4(nrm, 0.0)), packEmission(emission));
+    fragments[pc.firstSlot + slot] = uvec4(coord, packUnorm4x8(albedo), packSnorm4x8(vec4(normal, 0.0)), packEmission(emission));
   }
 }

@@ -9,6 +9,8 @@ layout(triangle_strip, max_vertices = 4) out;
 layout(push_constant) uniform Push { VoxelizePush pc; };
 layout(location = 0) in vec3 inVoxelPos[];
 layout(location = 1) in vec2 inUv[];
+layout(location = 2) in vec3 inNormal[];   // the normal texture's frame (voxelize_vertex.glsl), 0 without one
+layout(location = 3) in vec4 inTangent[];
 layout(location = 0) flat out vec3 v0;
 layout(location = 1) flat out vec3 v1;
 layout(location = 2) flat out vec3 v2;
@@ -16,6 +18,12 @@ layout(location = 3) flat out vec2 uv0;
 layout(location = 4) flat out vec2 uv1;
 layout(location = 5) flat out vec2 uv2;
 layout(location = 6) flat out uint axis;
+layout(location = 7) flat out vec3 n0;
+layout(location = 8) flat out vec3 n1;
+layout(location = 9) flat out vec3 n2;
+layout(location = 10) flat out vec4 t0;
+layout(location = 11) flat out vec4 t1;
+layout(location = 12) flat out vec4 t2;
 
 // Projects a voxel-space point to the plane of the dominant axis: returns (u, v) in voxel units.
 vec2 project(vec3 p, uint a) { return a == 0u ? p.yz : (a == 1u ? p.zx : p.xy); }
@@ -32,6 +40,8 @@ void main() {
   for (int i = 0; i < 4; ++i) {
     v0 = a; v1 = b; v2 = c;
     uv0 = inUv[0]; uv1 = inUv[1]; uv2 = inUv[2];
+    n0 = inNormal[0]; n1 = inNormal[1]; n2 = inNormal[2];
+    t0 = inTangent[0]; t1 = inTangent[1]; t2 = inTangent[2];
     axis = ax;
     gl_Position = vec4(corners[i] / res * 2.0 - 1.0, 0.5, 1.0);
     EmitVertex();

@@ -62,7 +62,7 @@ class ManyLights final : public render::RenderFeature {
   render::Image raw_;
   // One RSM pipeline per material kind (which textures it binds), made on first use: lavapipe would
   // run the lookup of a branch not taken.
-  render::Pipeline rsm_[8];  // by the base-colour and metallic-roughness texture bits and the alpha mask
+  render::Pipeline rsm_[16];  // by the base-colour, metallic-roughness and normal texture bits and the alpha mask
   render::Pipeline& rsmPipelineFor(uint32_t textureBits);
   render::Pipeline cdfRows_, cdfTotal_, sample_, bounce_, tail_, debug_;
   std::unique_ptr<class IndirectGatherPass> gatherPass_;

@@ -122,7 +122,7 @@ class VoxelScene final : public render::RenderFeature {
   uint64_t frameIndex_ = 0;
   // One voxelize pipeline per material kind (base-colour / emissive texture or not), made on first use:
   // lavapipe would run the texture lookups of a branch not taken.
-  render::Pipeline voxelize_[16];  // by the material's texture bits it reads (DYNGI_MATERIAL_*_TEX), + 8: alpha-masked
+  render::Pipeline voxelize_[32];  // by the material's texture bits it reads (DYNGI_MATERIAL_*_TEX), + 8: alpha-masked, + 16: a normal texture
   render::Pipeline& voxelizePipelineFor(uint32_t textureBits);
   std::unique_ptr<class VoxelDebugPass> debugPass_;  // voxel/voxel_debug_pass.h
   VoxelStats stats_;

@@ -5,18 +5,22 @@
 #include "shared/gpu_types.h"
 #include "shared/gi_gpu_types.h"
 #include "shared/lighting.glsl"
+#include "shared/normal_map.h"
 layout(set = 0, binding = DYNGI_RSM_BINDING_LAYERS) readonly buffer Layers { RsmLayer layers[]; };
 layout(set = 0, binding = DYNGI_RSM_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
 layout(set = 0, binding = DYNGI_RSM_BINDING_BASE_COLOR_TEX) uniform sampler2D baseColorTex;
 layout(set = 0, binding = DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX) uniform sampler2D metallicRoughnessTex;
+layout(set = 0, binding = DYNGI_RSM_BINDING_NORMAL_TEX) uniform sampler2D normalTex;
 layout(push_constant) uniform Push { RsmPush pc; };
 // Material variant (ManyLights::rsmPipelineFor): the lookup is compiled in only when a texture is bound.
 layout(constant_id = 0) const bool kBaseColorTexture = true;
 layout(constant_id = 1) const bool kMetallicRoughnessTexture = true;
 layout(constant_id = 2) const bool kAlphaMask = false;  // alphaMode MASK: cut texels do not reflect (the light passes)
+layout(constant_id = 3) const bool kNormalTexture = false;  // with rsm_tangent.vert
 layout(location = 0) in vec3 inWorld;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
+layout(location = 3) in vec4 inTangent;
 layout(location = 0) out vec4 outPosition;  // xyz world, w 1
 layout(location = 1) out vec4 outNormal;    // xyz facing the light
 layout(location = 2) out vec4 outFlux;      // rgb reflected flux (W), a luminance
@@ -37,9 +41,13 @@ void main() {
   vec3 n = normalize(inNormal);
   vec3 radiant = L.radiance.rgb * L.radiance.w;
   vec3 flux;
+  // The VPL's normal faces the light: decided on the interpolated normal, applied to the normal
+  // texture's too (as the G-buffer does for the camera and SceneSurfaces for a path).
+  vec3 toSurface = layer.orthographic == 1u ? L.directionRange.xyz : inWorld - L.positionType.xyz;
+  float facing = dot(n, toSurface) > 0.0 ? -1.0 : 1.0;
+  if (kNormalTexture) n = perturbNormal(n, inTangent, texture(normalTex, inUv).rgb, pc.uvOffset.w);
+  n *= facing;
   if (layer.orthographic == 1u) {
-    vec3 dir = L.directionRange.xyz;
-    if (dot(n, dir) > 0.0) n = -n;
     // Irradiance E on a plane facing the light times the texel's area across the beam.
     float texelSide = layer.axis.w / float(layer.resolution);
     flux = albedo * radiant * texelSide * texelSide;
@@ -47,7 +55,6 @@ void main() {
     vec3 d = inWorld - L.positionType.xyz;
     float dist = length(d);
     vec3 w = d / max(dist, 1e-6);
-    if (dot(n, w) > 0.0) n = -n;
     float cosAxis = max(dot(w, layer.axis.xyz), 1e-4);
     float texel = layer.axis.w / float(layer.resolution);
     float solidAngle = texel * texel * cosAxis * cosAxis * cosAxis;

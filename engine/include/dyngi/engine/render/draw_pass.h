@@ -8,6 +8,7 @@
 #include <span>
 
 #include "dyngi/engine/render/frame_context.h"
+#include "dyngi/engine/scene/alpha_cut.h"
 
 namespace dyngi::render {
 
@@ -52,9 +53,12 @@ using DrawPipelineFor = std::function<const Pipeline&(const DrawItem&)>;
 // The textures a material binds, as DYNGI_MATERIAL_*_TEX bits (shared/gpu_types.h): what the raster
 // passes' pipeline variants are chosen by (a lookup not taken still costs on lavapipe).
 uint32_t materialTextureBits(const scene::Material& material);
-// A masked material's cut, as a threshold on the base-colour texture's alpha: cutoff / the alpha factor
-// (above 1, every fragment is cut). Shaders: `if (textureAlpha < threshold) discard;`.
-float alphaMaskThreshold(const scene::Material& material);
+// A draw's bits: its material's, less the normal texture when its mesh has no tangents (the frame a
+// normal texture turns needs them, GpuMesh::tangents).
+uint32_t drawTextureBits(const FrameContext& frame, const DrawItem& draw);
+// A masked material's cut, as a threshold on the base-colour texture's alpha (scene/alpha_cut.h).
+// Shaders: `if (textureAlpha < threshold) discard;`.
+using scene::alphaMaskThreshold;
 // Records a draw's descriptors and push constants; drawEach then binds its mesh and draws it.
 using DrawSetup = std::function<void(VkCommandBuffer, const DrawItem&, const Pipeline&)>;
 

@@ -27,7 +27,8 @@ struct PickHit {
 // with this view-projection (Vulkan clip space: depth 0..1, y down on screen).
 Ray pixelRay(const glm::mat4& viewProj, uint32_t width, uint32_t height, double x, double y);
 
-// The closest mesh instance the ray hits, if any. Degenerate and non-finite triangles never hit.
+// The closest mesh instance the ray hits, if any; an alpha-masked material's cut-outs are passed
+// through (scene/alpha_cut.h). Degenerate and non-finite triangles never hit.
 std::optional<PickHit> pickClosest(const ecs::World& world, const AssetStore& assets, const Ray& ray);
 
 }  // namespace dyngi::scene
