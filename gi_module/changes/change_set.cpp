@@ -10,6 +10,7 @@ std::unordered_set<ecs::Entity> ChangeSet::geometryChanged() const {
   out.insert(deformed.begin(), deformed.end());
   out.insert(meshWritten.begin(), meshWritten.end());
   out.insert(removed.begin(), removed.end());
+  out.insert(cutChanged.begin(), cutChanged.end());
   return out;
 }
 
@@ -21,9 +22,17 @@ ChangeSet ChangeTracker::compute(const ecs::World& world, const scene::AssetStor
   });
   world.forEachChanged<scene::MeshInstance>(since, [&](ecs::Entity e) { c.meshWritten.push_back(e); });
   world.forEachChanged<scene::Material>(since, [&](ecs::Entity e) {
-    if (world.has<scene::MeshInstance>(e)) c.materials.push_back(e);
+    if (!world.has<scene::MeshInstance>(e)) return;
+    c.materials.push_back(e);
+    const scene::AlphaCut now = scene::AlphaCut::of(world.get<scene::Material>(e));
+    auto it = cuts_.find(e);
+    const scene::AlphaCut before = it == cuts_.end() ? scene::AlphaCut{} : it->second;
+    if (since > 0 && !(now == before)) c.cutChanged.push_back(e);
+    if (now.masked) cuts_[e] = now;
+    else if (it != cuts_.end()) cuts_.erase(it);
   });
   c.removed = world.removedSince<scene::MeshInstance>(since);
+  for (ecs::Entity e : c.removed) cuts_.erase(e);
   world.each<scene::SkinnedMesh, scene::MeshInstance>([&](ecs::Entity e, const scene::SkinnedMesh& sm, const scene::MeshInstance&) {
     if (sm.deformed >= assets.meshCount()) return;
     const uint32_t v = assets.mesh(sm.deformed).version;
@@ -45,6 +54,7 @@ void ChangeSet::merge(const ChangeSet& later) {
   add(meshWritten, later.meshWritten);
   add(removed, later.removed);
   add(materials, later.materials);
+  add(cutChanged, later.cutChanged);
 }
 
 }  // namespace dyngi::gi

@@ -137,6 +137,7 @@ void VplPaths::invalidateIndex(uint32_t index, bool hard) {
     uint32_t i = path * settings_.vpl.bounces + b;
     if (!vpls_[i].valid) continue;
     vpls_[i].valid = false;
+    if (hard) vpls_[i].seed = 0;  // its light changed: a new draw
     markChanged(i, hard);
     ++stats_.invalidatedThisFrame;
   }
@@ -149,6 +150,13 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
   const float eps = 1e-4f * scale;
   float totalPower = emitterTotal_;
   for (const auto& l : snapshot.lights) totalPower += lightPower(l, snapshot.sceneBounds);
+  // A ray that left the scene stays valid while nothing moved into it. Only a VPL's own ray counts: the
+  // later bounces of an escaped path have none (their parent decides).
+  auto escapedRayNowHits = [&](uint32_t i, uint32_t b) {
+    if (moved.empty() || (b > 0 && !vpls_[i - 1].placed)) return false;
+    const PathVpl& v = vpls_[i];
+    return bvh.occluded(Segment{v.rayOrigin, v.rayOrigin + v.rayDir * (4.0f * scale)}, eps);
+  };
   for (uint32_t i = 0; i < vpls_.size(); ++i) {
     PathVpl& v = vpls_[i];
     if (!v.valid) continue;
@@ -164,7 +172,10 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
         if (!emits) pathLight_[path].entity = {};
         continue;
       }
-      if (!v.placed) continue;
+      if (!v.placed) {
+        if (b > 0 && escapedRayNowHits(i, b)) invalidateIndex(i);
+        continue;
+      }
       if (!v.surface.isNull() && moved.count(v.surface)) {  // the emitter itself (b = 0) or a surface after it
         invalidateIndex(i);
         continue;
@@ -204,7 +215,10 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
       if (!light || !light->light.enabled) pathLight_[path].entity = {};
       continue;
     }
-    if (!v.placed) continue;  // escaped ray: nothing to see, valid while its parent is
+    if (!v.placed) {  // escaped ray: nothing to see, valid while its parent is and nothing moved into it
+      if (escapedRayNowHits(i, b)) invalidateIndex(i);
+      continue;
+    }
     if (!v.surface.isNull() && moved.count(v.surface)) {
       invalidateIndex(i);
       continue;
@@ -261,7 +275,10 @@ void VplPaths::shootProbe(PathVpl& v, uint64_t& rng, float scale, const EmbreeSc
 bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const SceneSurfaces& surfaces,
                      const EmitterSet& emitters) {
   uint32_t path = index / settings_.vpl.bounces, b = index % settings_.vpl.bounces;
-  uint64_t rng = mix64(settings_.vpl.seed * 0x51ED27ULL + (++shotCounter_) * 0x2545F4914F6CDD1DULL + index);
+  // Traced again with its own stream, unless it has none (PathVpl::seed).
+  uint64_t seed = vpls_[index].seed;
+  if (seed == 0) seed = mix64(settings_.vpl.seed * 0x51ED27ULL + (++shotCounter_) * 0x2545F4914F6CDD1DULL + index);
+  uint64_t rng = seed;
   const float scale = surfaces.sceneScale();
   glm::vec3 origin, dir, throughput;
   if (b == 0) {
@@ -291,6 +308,7 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
       for (const EmitterSource& src : emitters.sources())
         if (src.entity == e.entity) emissive = src.emissive, power = src.power;
       pathLight_[path] = LightState{e.entity, {}, {}, emissive, 0, 0, 0, kEmitterSource, power / total};
+      v.seed = seed;
       vpls_[index] = v;
       return true;
     }
@@ -341,6 +359,7 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
     PathVpl child;
     child.valid = true;
     if (!parent.placed || luminance(parent.flux) <= 0.0f) {  // nothing to carry on
+      child.seed = seed;
       vpls_[index] = child;
       return true;
     }
@@ -372,6 +391,7 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
     v.surface = sh.entity;
     if (settings_.vpl.bounceTail && b + 1 == settings_.vpl.bounces) shootProbe(v, rng, scale, bvh, surfaces);
   }
+  v.seed = seed;
   vpls_[index] = v;
   return true;
 }

@@ -10,6 +10,8 @@
 #include "scenes/builtin_scenes.h"
 #include "support/scene_triangles.h"
 #include "gi/skinned_bar_room.h"
+#include "dyngi/gi/change_set.h"
+#include "support/fence_scene.h"
 #include "dyngi/engine/scene/animation.h"
 
 using namespace dyngi;
@@ -83,7 +85,7 @@ TEST(VplPaths, OccluderInvalidatesExactlyWhatItBlocksAndDescendants) {
   const float eps = 1e-4f * glm::length(snap.sceneBounds.extent());
   const glm::vec3 lightPos = snap.lights[0].position;
   std::vector<bool> expectInvalid(before.size(), false);
-  int blocked = 0, blockedAfterBounce = 0;
+  int blocked = 0, blockedAfterBounce = 0, escapedNowBlocked = 0;
   for (uint32_t i = 0; i < before.size(); ++i) {
     const gi::PathVpl& v = before[i];
     uint32_t b = i % 3;
@@ -91,7 +93,14 @@ TEST(VplPaths, OccluderInvalidatesExactlyWhatItBlocksAndDescendants) {
       expectInvalid[i] = true;
       continue;
     }
-    if (!v.placed) continue;
+    if (!v.placed) {
+      // An escaped ray of its own (not a later bounce of an escaped path): invalid if the occluder now
+      // stands in it.
+      if (b > 0 && !before[i - 1].placed) continue;
+      const float t = test::bruteForceHit(occTris, v.rayOrigin, v.rayDir, eps, 4.0f * glm::length(snap.sceneBounds.extent()));
+      if (t > 0) expectInvalid[i] = true, ++escapedNowBlocked;
+      continue;
+    }
     glm::vec3 from = b == 0 ? lightPos : before[i - 1].position + before[i - 1].normal * eps * 10.0f;
     glm::vec3 to = v.position + v.normal * eps * 10.0f;
     float len = glm::length(to - from);
@@ -106,8 +115,9 @@ TEST(VplPaths, OccluderInvalidatesExactlyWhatItBlocksAndDescendants) {
     invalid += isInvalid;
     mismatches += isInvalid != expectInvalid[i];
   }
-  std::printf("occluder: %d VPLs blocked directly (%d from a parent VPL), %d invalid with descendants, %d mismatches\n", blocked,
-              blockedAfterBounce, invalid, mismatches);
+  std::printf("occluder: %d VPLs blocked directly (%d from a parent VPL), %d escaped rays it now stands in, %d invalid with "
+              "descendants, %d mismatches\n",
+              blocked, blockedAfterBounce, escapedNowBlocked, invalid, mismatches);
   EXPECT_EQ(mismatches, 0);
   EXPECT_EQ(paths.stats().invalidatedThisFrame, uint32_t(invalid));
 }
@@ -326,7 +336,7 @@ TEST(VplPaths, DeformingSkinnedMeshInvalidatesExactlyWhatItBlocksAndWhatLiesOnIt
   const float eps = 1e-4f * glm::length(snap.sceneBounds.extent());
   const glm::vec3 lightPos = snap.lights[0].position;
   std::vector<bool> expectInvalid(before.size(), false);
-  int blocked = 0, surface = 0;
+  int blocked = 0, surface = 0, escapedNowBlocked = 0;
   for (uint32_t i = 0; i < before.size(); ++i) {
     const gi::PathVpl& v = before[i];
     const uint32_t b = i % 3;
@@ -334,7 +344,13 @@ TEST(VplPaths, DeformingSkinnedMeshInvalidatesExactlyWhatItBlocksAndWhatLiesOnIt
       expectInvalid[i] = true;
       continue;
     }
-    if (!v.placed) continue;
+    if (!v.placed) {
+      // An escaped ray of its own: invalid if the folded bar now stands in it.
+      if (b > 0 && !before[i - 1].placed) continue;
+      if (test::bruteForceHit(allTris, v.rayOrigin, v.rayDir, eps, 4.0f * glm::length(snap.sceneBounds.extent())) > 0)
+        expectInvalid[i] = true, ++escapedNowBlocked;
+      continue;
+    }
     if (v.surface == bar.mesh) {
       expectInvalid[i] = true, ++surface;
       continue;
@@ -352,8 +368,8 @@ TEST(VplPaths, DeformingSkinnedMeshInvalidatesExactlyWhatItBlocksAndWhatLiesOnIt
     invalid += isInvalid;
     mismatches += isInvalid != expectInvalid[i];
   }
-  std::printf("skinned bar: %d VPLs on it, %d newly blocked, %d invalid with descendants, %d mismatches\n", surface, blocked, invalid,
-              mismatches);
+  std::printf("skinned bar: %d VPLs on it, %d newly blocked, %d escaped rays it now stands in, %d invalid with descendants, %d mismatches\n",
+              surface, blocked, escapedNowBlocked, invalid, mismatches);
   EXPECT_EQ(mismatches, 0);
 }
 
@@ -528,4 +544,85 @@ TEST(VplPaths, TexturedEmitterStartsItsLightWhereItsTextureEmits) {
   }
   const glm::dvec3 expected = glm::dvec3(EmitterRoom::kRadiance) * (2.0 * 3.14159265358979 * EmitterRoom::kSide * EmitterRoom::kSide / 2.0);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(flux[c] / expected[c], 1.0, 0.08) << c;
+}
+
+// An alpha cut switched on and off again: the change set counts it as geometry (to a ray the surface
+// vanished or appeared), so the paths that ended on the fence's now-cut half are redrawn and the sun
+// reaches the floor through it; switched off, the paths through the hole are blocked again.
+TEST(VplPaths, AnAlphaCutToggledRedrawsThePathsItChanges) {
+  ecs::World w;
+  AssetStore assets;
+  const test::FenceScene fence = test::floorUnderAFence(w, assets);
+  w.write<Material>(fence.fence).alphaMask = false;  // solid to start with
+  TransformSystem().run(w, {});
+  gi::ChangeTracker tracker;
+  tracker.compute(w, assets, 0);
+  gi::EmbreeScene bvh;
+  bvh.sync(w, assets, 0);
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 4000, .bounces = 2}, .reshootBudget = 100000});
+  paths.update(render::extractSnapshot(w, assets, 0), bvh, assets, {});
+  auto onCutHalf = [](const glm::vec3& p) { return std::abs(p.y - test::kFenceHeight) < 1e-3f && p.x < 0.0f; };
+  auto underHole = [](const glm::vec3& p) { return std::abs(p.y) < 1e-3f && test::underTheFence(p) == test::Under::Hole; };
+  struct Counts {
+    int onCut = 0, underHole = 0;
+  };
+  auto count = [&](bool firstBounceOnly) {
+    Counts c;
+    for (uint32_t i = 0; i < paths.vpls().size(); ++i) {
+      const gi::PathVpl& v = paths.vpls()[i];
+      if (!v.valid || !v.placed || (firstBounceOnly && i % 2 != 0)) continue;
+      c.onCut += onCutHalf(v.position);
+      c.underHole += underHole(v.position);
+    }
+    return c;
+  };
+  const Counts solid = count(true);
+  const std::vector<gi::PathVpl> before = paths.vpls();
+  ASSERT_GT(solid.onCut, 50) << "the sun lights the whole fence";
+  ASSERT_EQ(solid.underHole, 0) << "and nothing under it";
+
+  // The cut on: a material write, no transform.
+  auto toggle = [&](bool masked) {
+    const ecs::Tick since = w.tick();
+    w.advanceTick();
+    w.write<Material>(fence.fence).alphaMask = masked;
+    const gi::ChangeSet changes = tracker.compute(w, assets, since);
+    bvh.sync(w, assets, since);
+    EXPECT_TRUE(changes.moved.empty());
+    EXPECT_EQ(changes.cutChanged, std::vector<ecs::Entity>{fence.fence});
+    paths.invalidate(render::extractSnapshot(w, assets, 0), bvh, changes.geometryChanged());
+  };
+  toggle(true);
+  EXPECT_EQ(count(false).onCut, 0) << "no VPL left on the cut half";
+  paths.replace(render::extractSnapshot(w, assets, 0), bvh, assets);
+  const Counts cut = count(true);
+  EXPECT_EQ(cut.onCut, 0);
+  EXPECT_GT(cut.underHole, 30) << "the sun's paths pass the cut";
+  // The pool a fresh shot with the same seed draws in the cut scene, VPL for VPL: the redrawn paths keep
+  // their random streams, so the region that changed gets its full share, not the share of the reshot
+  // paths that happen to fall there.
+  const auto differences = [](const std::vector<gi::PathVpl>& a, const std::vector<gi::PathVpl>& b) {
+    int n = 0;
+    for (size_t i = 0; i < a.size(); ++i) n += a[i].placed != b[i].placed || glm::distance(a[i].position, b[i].position) > 1e-5f;
+    return n;
+  };
+  gi::VplPaths fresh(gi::TemporalOptions{.vpl = {.vplCount = 4000, .bounces = 2}, .reshootBudget = 100000});
+  fresh.update(render::extractSnapshot(w, assets, 0), bvh, assets, {});
+  EXPECT_EQ(differences(paths.vpls(), fresh.vpls()), 0) << "VPLs not where a fresh shot puts them";
+
+  // And off again: the paths through the hole are blocked (Embree sees the solid fence).
+  toggle(false);
+  EXPECT_EQ(count(false).underHole, 0);
+  paths.replace(render::extractSnapshot(w, assets, 0), bvh, assets);
+  EXPECT_GT(count(true).onCut, 50);
+  // Back where it started: the same pool, VPL for VPL.
+  EXPECT_EQ(differences(paths.vpls(), before), 0) << "VPLs not back where they were";
+
+  // A write that leaves the cut as it was (the colour) is a material change only.
+  const ecs::Tick since = w.tick();
+  w.advanceTick();
+  w.write<Material>(fence.fence).baseColor = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f);
+  const gi::ChangeSet recolour = tracker.compute(w, assets, since);
+  EXPECT_EQ(recolour.materials, std::vector<ecs::Entity>{fence.fence});
+  EXPECT_TRUE(recolour.cutChanged.empty());
 }

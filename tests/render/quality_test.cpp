@@ -57,8 +57,12 @@ std::vector<Config> configs() {
   // frames (it took 26 before the burst and the catch-up). A box moving into the light invalidates part
   // of the pool: those VPLs are reshot at once too, but the sets keep their light until each is gathered
   // again, one a frame: 14 frames (T = 16). Many lights rebuilds everything every frame.
-  // The temporal technique's trail stays 10-12 percent dark (its sets keep what they gathered while the
-  // box was there until each is gathered again); many lights has no history: 0.
+  // The temporal technique's trail is 27-28 percent dark when the box stops (its sets keep what they
+  // gathered while the box was beside it until each is gathered again, one a frame), and T = 16 frames
+  // later exactly the still run's: the invalidated paths are traced again with their own random streams,
+  // so the moving run's pool is the still run's, VPL for VPL. With new streams it measured 15-17 percent
+  // at the stop and never came back exactly: the moved region kept only the share of the reshot paths
+  // that fell there, a bias that partly offset the lag. Many lights has no history: 0.
   // Under a slow pan the indirect light changes 4.4 (temporal) and 3.5 (many lights) percent a frame
   // where the direct light changes 0.95 by resampling alone: most of it is the K x K pattern (K = 1 gives
   // 1.9 and 1.1).
@@ -69,8 +73,8 @@ std::vector<Config> configs() {
   // the wall. The goal of 5 percent is not met (vct_test.cpp compares isotropic voxels and 256^3).
   gi::GiSettings vct;
   vct.technique = "vct";
-  return {{"temporal (svo)", svo, 18, 5, 0.2, 0.055},
-          {"temporal (bvh)", bvh, 18, 5, 0.2, 0.055},
+  return {{"temporal (svo)", svo, 18, 5, 0.32, 0.055},
+          {"temporal (bvh)", bvh, 18, 5, 0.32, 0.055},
           {"many_lights", rsm, 1, 1, 0.01, 0.045, 0.05, kNoHistoryFrames},
           {"vct", vct, 1, 1, 0.02, 0.035, 0.35, kNoHistoryFrames}};
 }
@@ -301,5 +305,11 @@ TEST_F(RenderTest, QualityGhostingBehindAMovingBoxPerTechnique) {
                 100 * std::abs(errMoving - errStill), 100 * lag, 100 * seedToSeed);
     EXPECT_LT(std::abs(errMoving - errStill), 0.03) << "ghosting in the final image";
     EXPECT_LT(std::abs(lag), c.maxTrailLag) << "the trail's indirect light lags";
+    // Once every temporal set has been gathered again, nothing of the motion is left: the same light as
+    // the run where the box stood there all along.
+    moving.step(c.settings.temporal.temporalSets);
+    const double settled = lum(render::meanOver(moving.indirect(), &mask)) / lum(render::meanOver(stillIndirect, &mask)) - 1.0;
+    std::printf("quality-ghost| %s | %u frames later: %+.2f%%\n", c.label, c.settings.temporal.temporalSets, 100 * settled);
+    EXPECT_LT(std::abs(settled), 0.005) << "the motion left a lasting difference";
   }
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dyngi/engine/ecs/world.h"
+#include "dyngi/engine/scene/alpha_cut.h"
 #include "dyngi/engine/scene/assets.h"
 
 namespace dyngi::gi {
@@ -21,9 +22,13 @@ struct ChangeSet {
   std::vector<ecs::Entity> meshWritten;  // MeshInstance added or written (another mesh, shadow flag)
   std::vector<ecs::Entity> removed;      // MeshInstance removed or entity destroyed
   std::vector<ecs::Entity> materials;    // Material added or written on a mesh entity (base colour, emission, ...)
+  // Of those, the ones whose alpha cut changed (mask toggled, cutoff, texture or its transform): to a
+  // ray the surface appeared or vanished there, so it counts as geometry too.
+  std::vector<ecs::Entity> cutChanged;
   // Lights are not listed: the VPLs compare each light with the state their paths were shot from.
 
-  // Geometry (place or shape): what the BVH must update and what invalidates VPLs. Materials apart.
+  // Geometry (place, shape or alpha cut): what the BVH must update and what invalidates VPLs. Other
+  // material changes apart.
   std::unordered_set<ecs::Entity> geometryChanged() const;
   // Adds a later set's changes (each entity once per list): what changed over two runs.
   void merge(const ChangeSet& later);
@@ -37,6 +42,7 @@ class ChangeTracker {
 
  private:
   std::unordered_map<scene::MeshId, uint32_t> meshVersions_;
+  std::unordered_map<ecs::Entity, scene::AlphaCut> cuts_;  // masked mesh entities' cuts as last seen
 };
 
 }  // namespace dyngi::gi

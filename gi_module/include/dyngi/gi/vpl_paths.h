@@ -47,6 +47,11 @@ struct PathVpl {
   glm::vec3 probeDir{0.0f, 1.0f, 0.0f};
   glm::vec3 probeAlbedo{0.0f};
   ecs::Entity probeSurface{};
+  // The random stream it was shot with. Invalidated by a change of geometry (an occluder, a moved
+  // surface, a cut) it is traced again with the same stream, so the pool stays the one a fresh shot
+  // draws in the scene as it is now: a new stream would leave the changed region with only its share of
+  // the reshot paths. A change of its light (hard) draws a new one. 0: none yet.
+  uint64_t seed = 0;
 };
 
 // One emissive entity a path can start from (gi_module/vpl/emitters.h lists them): its power
