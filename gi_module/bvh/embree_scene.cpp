@@ -401,6 +401,20 @@ bool EmbreeScene::occluded(const Segment& s, float eps) const {
   return r.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
 }
 
+bool EmbreeScene::occluded(const glm::vec3& o, const glm::vec3& d, float tmin, float tmax) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  if (!finiteRay(o, d) || !(tmin <= tmax)) return false;
+  RTCRay r{};
+  r.org_x = o.x, r.org_y = o.y, r.org_z = o.z;
+  r.dir_x = d.x, r.dir_y = d.y, r.dir_z = d.z;
+  r.tnear = tmin;
+  r.tfar = tmax;
+  r.mask = 0xFFFFFFFFu;
+  rtcOccluded1(impl_->top, &ctx, &r);
+  return r.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
+}
+
 void EmbreeScene::occluded(const Segment* segs, size_t count, uint8_t* out, float eps, BatchMode mode) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);

@@ -150,12 +150,19 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
   const float eps = 1e-4f * scale;
   float totalPower = emitterTotal_;
   for (const auto& l : snapshot.lights) totalPower += lightPower(l, snapshot.sceneBounds);
+  // The VPL's own ray, as shoot() traced it (the same origin, direction and start), must still reach it:
+  // in a scene that did not change this always agrees with the shot. A segment from the parent, its
+  // direction recomputed, can graze an edge the ray passed, and the VPL, traced again with its own
+  // stream, would come back where it was and be redrawn every frame.
+  auto rayStillReaches = [&](const PathVpl& v) {
+    return !bvh.occluded(v.rayOrigin, v.rayDir, 0.0f, glm::dot(v.position - v.rayOrigin, v.rayDir) - eps);
+  };
   // A ray that left the scene stays valid while nothing moved into it. Only a VPL's own ray counts: the
   // later bounces of an escaped path have none (their parent decides).
   auto escapedRayNowHits = [&](uint32_t i, uint32_t b) {
     if (moved.empty() || (b > 0 && !vpls_[i - 1].placed)) return false;
     const PathVpl& v = vpls_[i];
-    return bvh.occluded(Segment{v.rayOrigin, v.rayOrigin + v.rayDir * (4.0f * scale)}, eps);
+    return bvh.occluded(v.rayOrigin, v.rayDir, 0.0f, 1e30f);
   };
   for (uint32_t i = 0; i < vpls_.size(); ++i) {
     PathVpl& v = vpls_[i];
@@ -181,8 +188,7 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
         continue;
       }
       if (b == 0) continue;  // on the emitter: no ray to it
-      const PathVpl& parent = vpls_[i - 1];
-      if (bvh.occluded(Segment{parent.position + parent.normal * eps * 10.0f, v.position + v.normal * eps * 10.0f}, eps)) invalidateIndex(i);
+      if (!rayStillReaches(v)) invalidateIndex(i);
       continue;
     }
     // The light it came from: gone, switched off, moved, turned or changed.
@@ -223,23 +229,14 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
       invalidateIndex(i);
       continue;
     }
-    // The parent must still see it.
-    glm::vec3 from;
-    if (b == 0) {
-      if (light->light.type == scene::LightType::Directional) from = v.position - light->direction * (2.0f * scale);
-      else from = light->position;
-      if (light->light.type == scene::LightType::Spot) {
-        glm::vec3 w = glm::normalize(v.position - light->position);
-        if (glm::dot(w, light->direction) < std::cos(light->light.outerConeAngle)) {
-          invalidateIndex(i);
-          continue;
-        }
-      }
-    } else {
-      const PathVpl& parent = vpls_[i - 1];
-      from = parent.position + parent.normal * eps * 10.0f;
+    // Still inside a spot's cone (it may have turned within the tolerance; a hair of slack for the
+    // cone's own edge), and still reached by its ray: nothing came between it and its light or parent.
+    if (b == 0 && light->light.type == scene::LightType::Spot &&
+        glm::dot(glm::normalize(v.position - light->position), light->direction) < std::cos(light->light.outerConeAngle) - 1e-5f) {
+      invalidateIndex(i);
+      continue;
     }
-    if (bvh.occluded(Segment{from, v.position + v.normal * eps * 10.0f}, eps)) invalidateIndex(i);
+    if (!rayStillReaches(v)) invalidateIndex(i);
   }
   stats_.invalidatedTotal += stats_.invalidatedThisFrame;
   uint32_t valid = 0;

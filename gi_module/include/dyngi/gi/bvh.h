@@ -61,6 +61,10 @@ class EmbreeScene {
   RayHit intersect(const glm::vec3& origin, const glm::vec3& direction, float tmin, float tmax) const;
   // True when something lies strictly between the segment's ends (ends shrunk by `epsilon`).
   bool occluded(const Segment& s, float epsilon = 1e-4f) const;
+  // True when the ray meets something in [tmin, tmax]: the same ray as intersect() with the same
+  // arguments, so the two agree exactly (a segment's recomputed direction can graze an edge the ray
+  // passed).
+  bool occluded(const glm::vec3& origin, const glm::vec3& direction, float tmin, float tmax) const;
   // Occlusion of many segments; out[i] = 1 when occluded. Stream: Embree's ray streams (rtcOccluded1M);
   // Packet8: 8-wide packets (rtcOccluded8), which pay off only for coherent rays.
   enum class BatchMode { Stream, Packet8 };
