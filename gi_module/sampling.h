@@ -17,6 +17,17 @@ inline uint64_t mix64(uint64_t x) {
   return x ^ (x >> 31);
 }
 
+// Point i of the R3 low-discrepancy sequence (Roberts 2018, "The unreasonable effectiveness of
+// quasirandom sequences"): fract(offset + i alpha), alpha_k = phi_3^-k with phi_3 the real root of
+// x^4 = x + 1. Any run of consecutive indices is evenly spread over the cube, whatever its start, and so
+// are its 2D projections; `offset` (a Cranley-Patterson rotation) makes a seed's own sequence.
+inline glm::vec3 r3Point(uint64_t i, const glm::vec3& offset) {
+  constexpr double a1 = 0.8191725133961645, a2 = 0.6710436067037893, a3 = 0.5497004779019703;
+  const double k = double(i);
+  auto frac = [](double v) { return float(v - std::floor(v)); };
+  return {frac(offset.x + k * a1), frac(offset.y + k * a2), frac(offset.z + k * a3)};
+}
+
 // Two unit vectors completing n to an orthonormal basis.
 inline void orthonormalBasis(const glm::vec3& n, glm::vec3& b1, glm::vec3& b2) {
   glm::vec3 t = std::abs(n.x) > 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);

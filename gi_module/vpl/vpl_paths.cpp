@@ -39,6 +39,8 @@ VplPaths::VplPaths(const TemporalOptions& s) : settings_(s) {
   setHardChanges_.assign(settings_.temporalSets, 0);
   for (uint32_t i = 0; i < n; ++i) ++setChanges_[setOf(i)], ++setHardChanges_[setOf(i)];
   reshootCounts_.assign(n, 0);
+  uint64_t seedState = mix64(uint64_t(settings_.vpl.seed) * 0x9E3779B97F4A7C15ULL + 0x5EEDULL);
+  sequenceOffset_ = {uniform01(seedState), uniform01(seedState), uniform01(seedState)};
   stats_.count = n;
   stats_.reshootBudget = reshootBudget_;
 }
@@ -276,6 +278,16 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
   uint64_t seed = vpls_[index].seed;
   if (seed == 0) seed = mix64(settings_.vpl.seed * 0x51ED27ULL + (++shotCounter_) * 0x2545F4914F6CDD1DULL + index);
   uint64_t rng = seed;
+  // A path's light pick and first direction come from the R3 sequence, not from rng: independent random
+  // paths clump and leave gaps, and a face lit by the few VPLs near it (a box's front over the floor)
+  // then comes out tens of percent off with one seed and the other way with the next. The paths with
+  // the same path % T share a temporal set (their first VPLs, path x bounces, are T x bounces apart in
+  // the pool) and take a consecutive run of the sequence (path % T, path / T -> (path % T) R + path / T),
+  // so a set alone is evenly spread and all sets together are too. (Indexing by the pool index instead
+  // strides each run by the bounce count: R3's second coordinate then moves by 3 x 0.671 = 2.013 per
+  // point, and the directions bunch.) The point belongs to the path: redrawn for any reason, it keeps it.
+  const uint32_t T = settings_.temporalSets, runLength = (paths_ + T - 1) / T;
+  const glm::vec3 seq = r3Point(uint64_t(path % T) * runLength + path / T, sequenceOffset_);
   const float scale = surfaces.sceneScale();
   glm::vec3 origin, dir, throughput;
   if (b == 0) {
@@ -284,11 +296,12 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
     for (const auto& l : snapshot.lights) lightsTotal += lightPower(l, snapshot.sceneBounds);
     const float total = lightsTotal + emitters.totalPower();
     if (total <= 0.0f) return false;
-    float u = uniform01(rng) * total, acc = 0.0f;
+    float u = seq.x * total, acc = 0.0f;
     if (u >= lightsTotal) {
       // A VPL on an emissive surface (vpl/emitters.h): the path's source and its bounce 0.
       const float pEmitters = emitters.totalPower() / total;
-      const EmitterSample e = emitters.sample(uniform01(rng), uniform01(rng), uniform01(rng), uniform01(rng));
+      const float pick = std::clamp((u - lightsTotal) / emitters.totalPower(), 0.0f, 0.99999994f);  // still stratified
+      const EmitterSample e = emitters.sample(pick, seq.y, seq.z, uniform01(rng));
       PathVpl v;
       v.valid = true;
       if (!e.entity.isNull()) {
@@ -320,7 +333,7 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
     float pLight = lightPower(*light, snapshot.sceneBounds) / total;
     const scene::Light& L = light->light;
     glm::vec3 radiant = L.color * L.intensity;
-    float u1 = uniform01(rng), u2 = uniform01(rng);
+    float u1 = seq.y, u2 = seq.z;
     if (L.type == scene::LightType::Directional) {
       float r = 0.5f * glm::length(snapshot.sceneBounds.extent()) + 1e-3f;
       glm::vec3 b1, b2;
@@ -360,7 +373,9 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
       vpls_[index] = child;
       return true;
     }
-    float u1 = uniform01(rng), u2 = uniform01(rng);
+    // Random, not the sequence: consecutive pool indices are M apart in it, so a child's point would be its
+    // parent's shifted by a constant, every path bending the same way at each bounce.
+    const float u1 = uniform01(rng), u2 = uniform01(rng);
     dir = cosineDirection(parent.normal, u1, u2);
     origin = parent.position + parent.normal * (1e-4f * scale);
     throughput = parent.flux;  // cosine sampling: the parent's whole reflected flux travels along the ray

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <optional>
 
 #include "dyngi/engine/render/image_metrics.h"
 #include "render/cornell_regions.h"
@@ -19,10 +20,11 @@ namespace {
 constexpr uint32_t kSize = 128;
 constexpr uint32_t kReferenceBounces = 8;
 
-gi::GiSettings settingsFor(const char* technique, uint32_t bounces, bool tail) {
+gi::GiSettings settingsFor(const char* technique, uint32_t bounces, bool tail, uint32_t seed) {
   gi::GiSettings s;
   s.technique = technique;
   gi::VplOptions& v = std::string(technique) == "temporal" ? s.temporal.vpl : s.manyLights.vpl;
+  v.seed = seed;
   v.vplCount = 1024 * bounces;
   v.bounces = bounces;
   v.bounceTail = tail;
@@ -59,10 +61,22 @@ TEST_F(RenderTest, BounceTailBringsBothVplTechniquesToThePathTracersManyBounces)
     for (uint32_t bounces : {1u, 2u, 3u}) {
       Measure off, on;
       for (bool tail : {false, true}) {
-        GiRun run(context(), settingsFor(technique, bounces, tail));
-        run.step(3);
-        if (reference.empty()) reference = run.pathTraced(256, kReferenceBounces);
-        Measure m = compare(run.readFrame(), reference, run.assets, bounces == 3);
+        // With 3 bounces the figures are held to a few percent: the mean image of three seeds (one
+        // seed's VPLs move the image mean by 1-2 percent, a small face's by more).
+        const uint32_t seeds = bounces == 3 ? 3 : 1;
+        std::optional<Frame> mean;
+        std::optional<GiRun> run;
+        for (uint32_t seed = 1; seed <= seeds; ++seed) {
+          run.emplace(context(), settingsFor(technique, bounces, tail, seed));
+          run->step(3);
+          if (reference.empty()) reference = run->pathTraced(256, kReferenceBounces);
+          Frame f = run->readFrame();
+          if (!mean) mean = std::move(f);
+          else
+            for (size_t i = 0; i < f.hdr.size(); ++i) mean->hdr[i] += f.hdr[i];
+        }
+        for (glm::vec4& c : mean->hdr) c /= float(seeds);
+        Measure m = compare(*mean, reference, run->assets, bounces == 3);
         std::printf("%-11s bounces %u tail %-3s: image %.3f of the path tracer's (%u bounces), worst region %s off by %.1f%%\n", technique,
                     bounces, tail ? "on" : "off", m.mean, kReferenceBounces, m.worstName.c_str(), 100 * m.worstRegion);
         (tail ? on : off) = m;
@@ -70,11 +84,12 @@ TEST_F(RenderTest, BounceTailBringsBothVplTechniquesToThePathTracersManyBounces)
       EXPECT_LT(std::abs(on.mean - 1.0), std::abs(off.mean - 1.0)) << technique << " at " << bounces << " bounce(s)";
       if (bounces == 3) {
         EXPECT_LT(off.mean, 0.95) << technique << ": without the tail 3 bounces miss the later ones";  // measured 0.92
-        EXPECT_NEAR(on.mean, 1.0, 0.03) << technique;  // measured 0.995 (temporal), 1.016 (many lights)
-        // Regions: the dim faces lit only by bounces keep the clamp's loss (issue 16) and, for many lights,
-        // a last bounce already too bright in front of the short box, which the tail scales with the rest
-        // (measured: temporal 12.6% off at worst, many lights 30%; without the tail 27% and 33%).
-        EXPECT_LE(on.worstRegion, std::string(technique) == "temporal" ? 0.15 : 0.35) << technique << ": " << on.worstName;
+        EXPECT_NEAR(on.mean, 1.0, 0.03) << technique;
+        // Regions (issue 16: each within 10 percent). Temporal, its paths' first directions from the R3
+        // sequence: 6.4% off at worst (the tall box's face to the red wall; 18% without the tail). Many
+        // lights keeps a last bounce already too bright in front of the short box, which the tail scales
+        // with the rest: 24% (25% without).
+        EXPECT_LE(on.worstRegion, std::string(technique) == "temporal" ? 0.10 : 0.30) << technique << ": " << on.worstName;
       }
     }
 }

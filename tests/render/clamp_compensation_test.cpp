@@ -90,33 +90,37 @@ TEST_F(RenderTest, VplImageErrorTailStaysWithinTwiceThePathTracersOwnNoise) {
   // The measure: the 99th percentile of the per-pixel relative luminance error of the default
   // technique (temporal VPL paths, SVO visibility; 1024 VPLs, 3 bounces, converged) against the path
   // tracer with the same bounces, at most 2x the path tracer's own seed-to-seed 99th percentile at the
-  // spp used, with B = 0.08 and the compensation; and both tail and relMSE better than with the default
-  // clamp (B = 0.01) without it. Measured: p99 0.693 (0.757 without), the path tracer's own 0.669;
-  // relMSE 0.00643 (0.00726).
-  GiRun run(context(), temporalSettings(3, 0.08f, 8), "cornell", kSize, kSize);
-  run.step(40);
-  const render::ImageRgba image = run.hdr();
+  // spp used: with the defaults (B = 0.01, no compensation), and with B = 0.08 and the compensation,
+  // which must improve both the tail and relMSE. Measured (paths from the R3 sequence): p99 0.617
+  // (defaults) and 0.578, the path tracer's own 0.669 (512 spp); relMSE 0.00515 and 0.00481. At the
+  // issue's size, 256^2 against 2048 spp, the defaults measure 0.48-0.52 against 0.311 (docs/QUALITY.md).
   gi::EmbreeScene bvh;
-  bvh.sync(run.world, run.assets, 0);
   render::ImageRgba refs[2];
-  for (uint64_t seed : {1u, 2u}) {
-    gi::PathTracerSettings pts;
-    pts.spp = 512;
-    pts.bounces = 3;
-    pts.pixelJitter = false;
-    pts.seed = seed;
-    refs[seed - 1] = gi::pathTrace(render::extractSnapshot(run.world, run.assets, run.frame), bvh, run.assets, kSize, kSize, pts);
-  }
+  auto run = [&](float clamp, uint32_t rays) {
+    GiRun r(context(), temporalSettings(3, clamp, rays), "cornell", kSize, kSize);
+    r.step(40);
+    if (refs[0].empty()) {
+      bvh.sync(r.world, r.assets, 0);
+      for (uint64_t seed : {1u, 2u}) {
+        gi::PathTracerSettings pts;
+        pts.spp = 512;
+        pts.bounces = 3;
+        pts.pixelJitter = false;
+        pts.seed = seed;
+        refs[seed - 1] = gi::pathTrace(render::extractSnapshot(r.world, r.assets, r.frame), bvh, r.assets, kSize, kSize, pts);
+      }
+    }
+    return r.hdr();
+  };
+  const render::ImageRgba defaults = run(0.01f, 0), compensated = run(0.08f, 8);
   const double noise = render::relativeLuminanceErrorQuantile(refs[1], refs[0], 0.99);
-  const double tail = render::relativeLuminanceErrorQuantile(image, refs[0], 0.99);
-  GiRun before(context(), temporalSettings(3, 0.01f, 0), "cornell", kSize, kSize);
-  before.step(40);
-  const render::ImageRgba old = before.hdr();
-  const double tailBefore = render::relativeLuminanceErrorQuantile(old, refs[0], 0.99);
-  const double relMse = render::relativeMse(image, refs[0]), relMseBefore = render::relativeMse(old, refs[0]);
-  std::printf("p99 relative luminance error: %.3f (B 0.01 without compensation: %.3f); path tracer seed to seed %.3f; relMSE %.5f (before %.5f)\n",
-              tail, tailBefore, noise, relMse, relMseBefore);
-  EXPECT_LE(tail, 2.0 * noise);
-  EXPECT_LT(tail, tailBefore);
-  EXPECT_LE(relMse, relMseBefore);
+  const double tailDefaults = render::relativeLuminanceErrorQuantile(defaults, refs[0], 0.99);
+  const double tailCompensated = render::relativeLuminanceErrorQuantile(compensated, refs[0], 0.99);
+  const double relMseDefaults = render::relativeMse(defaults, refs[0]), relMseCompensated = render::relativeMse(compensated, refs[0]);
+  std::printf("p99 relative luminance error: defaults %.3f, B 0.08 with compensation %.3f; path tracer seed to seed %.3f; relMSE %.5f, %.5f\n",
+              tailDefaults, tailCompensated, noise, relMseDefaults, relMseCompensated);
+  EXPECT_LE(tailDefaults, 2.0 * noise);
+  EXPECT_LE(tailCompensated, 2.0 * noise);
+  EXPECT_LT(tailCompensated, tailDefaults);
+  EXPECT_LE(relMseCompensated, relMseDefaults);
 }

@@ -71,10 +71,12 @@ TEST_F(RenderTest, EmissivePanelLightsTheRoomThroughBothVplTechniques) {
         if (n < 60 || b < 1e-3) continue;  // too small to average, or unlit (the boxes' faces the panel is behind)
         std::printf("%-11s bounces %u  %-16s %.4f / %.4f = %.3f\n", c.name, bounces, name.c_str(), a, b, a / b);
         worst = std::max(worst, std::abs(a / b - 1.0));
-        // 15 percent (measured: 8.5% at worst with one bounce). With two, the faces only the second
-        // bounce reaches (the short box's front, at a tenth of the ceiling) lose the distance clamp's
-        // energy, issue 16's artifact: 36% dark today, held to 40%.
-        const double tolerance = bounces == 1 || b >= 0.1 * brightest ? 0.15 : 0.40;
+        // 15 percent (measured: 3.6% at worst with one bounce for the temporal paths, 6.5% for many
+        // lights; with two, 6.2% and 12%). The faces only the second bounce reaches (the short box's
+        // front, at a tenth of the ceiling) were 36% dark with random temporal paths, whose few VPLs on
+        // the floor before it clumped; with R3 paths 6% bright; many lights' are 11% and 14.5% dark:
+        // held to 20%.
+        const double tolerance = bounces == 1 || b >= 0.1 * brightest ? 0.15 : 0.20;
         EXPECT_NEAR(a / b, 1.0, tolerance) << c.name << ", " << bounces << " bounce(s): " << name;
       }
       const double rel = render::relativeMse(f.hdr, reference);

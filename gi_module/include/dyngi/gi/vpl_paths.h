@@ -142,6 +142,7 @@ class VplPaths {
   TemporalOptions settings_;
   uint32_t reshootBudget_ = 0;  // per frame, as used (settings_.reshootBudget, or one set's worth for 0)
   uint32_t paths_ = 0;
+  glm::vec3 sequenceOffset_{0.0f};  // the seed's rotation of the R3 sequence the VPLs are drawn from (shoot)
   std::vector<PathVpl> vpls_;
   std::vector<LightState> pathLight_;   // per path: the light state its bounce-0 VPL was shot from
   // The emissive surfaces' power at the last update() (what invalidate() compares paths against).
