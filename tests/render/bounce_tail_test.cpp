@@ -87,9 +87,10 @@ TEST_F(RenderTest, BounceTailBringsBothVplTechniquesToThePathTracersManyBounces)
         EXPECT_NEAR(on.mean, 1.0, 0.03) << technique;
         // Regions (issue 16: each within 10 percent). Temporal, its paths' first directions from the R3
         // sequence: 6.4% off at worst (the tall box's face to the red wall; 18% without the tail). Many
-        // lights keeps a last bounce already too bright in front of the short box, which the tail scales
-        // with the rest: 24% (25% without).
-        EXPECT_LE(on.worstRegion, std::string(technique) == "temporal" ? 0.10 : 0.30) << technique << ": " << on.worstName;
+        // lights: 13.7% (the same face, bright; 17% without the tail). Its bounces drew each bounce's
+        // direction from the same Halton point shifted, and the third put 10x the path tracer's share on
+        // the short box's front: 24% then.
+        EXPECT_LE(on.worstRegion, std::string(technique) == "temporal" ? 0.10 : 0.15) << technique << ": " << on.worstName;
       }
     }
 }
