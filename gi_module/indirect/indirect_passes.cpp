@@ -31,12 +31,11 @@ IndirectGatherPass::IndirectGatherPass(render::VulkanContext& ctx)
 
 IndirectGatherPass::IndirectGatherPass(render::VulkanContext& ctx, render::ShaderCode variant, std::span<const Binding> extraBindings,
                                        uint32_t extraPushBytes, const char* name)
-    : ctx_(ctx), extraPushBytes_(extraPushBytes) {
+    : ctx_(ctx), variant_(variant), bindings_(gatherBindings(extraBindings)), name_(name), extraPushBytes_(extraPushBytes) {
   if (!ctx.enabledFeatures().shaderStorageImageExtendedFormats)
     throw render::VulkanError("the indirect gather needs shaderStorageImageExtendedFormats (rg32ui storage images); " + ctx.deviceName() +
                               " does not support it");
-  const std::vector<Binding> b = gatherBindings(extraBindings);
-  pipeline_ = render::Pipeline::compute(ctx, variant, b, sizeof(gpu::GatherPush) + extraPushBytes, name);
+  pipeline_ = render::Pipeline::compute(ctx, variant, bindings_, sizeof(gpu::GatherPush) + extraPushBytes, name);
 }
 
 void IndirectGatherPass::record(render::FrameContext& frame, render::Image& raw, const Inputs& in) {
@@ -45,8 +44,18 @@ void IndirectGatherPass::record(render::FrameContext& frame, render::Image& raw,
   render::RenderTargets& t = frame.targets;
   for (render::Image* img : {&t.position, &t.normal})
     img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-  raw.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.handle());
+  raw.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  // At most DYNGI_GATHER_MAX_VPLS_PER_PIXEL VPLs a pixel per dispatch (lavapipe's loop limit, at the
+  // define); the defaults (32-64 a pixel) take one, with the plain pipeline.
+  const uint32_t K = in.push.interleave, chunk = DYNGI_GATHER_MAX_VPLS_PER_PIXEL * K * K;
+  const bool chunked = in.push.vplCount > chunk;
+  if (chunked && !chunked_.handle()) {
+    const uint32_t spec[] = {1u};  // kGatherChunked
+    chunked_ = render::Pipeline::compute(ctx_, variant_, bindings_, sizeof(gpu::GatherPush) + extraPushBytes_, name_, spec);
+  }
+  render::Pipeline& pipeline = chunked ? chunked_ : pipeline_;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
   DescriptorWrites writes;
   writes.uniformBuffer(DYNGI_GATHER_BINDING_FRAME, frame.frameUniforms.handle())
       .storageImage(DYNGI_GATHER_BINDING_POSITION, t.position.view())
@@ -56,12 +65,18 @@ void IndirectGatherPass::record(render::FrameContext& frame, render::Image& raw,
       .storageImage(DYNGI_GATHER_BINDING_OUTPUT, raw.view())
       .storageBuffer(DYNGI_GATHER_BINDING_VISIBILITY_BITS, in.bits);
   if (in.extraWrites) in.extraWrites(writes);
-  writes.push(ctx_, cmd, pipeline_);
-  vkCmdPushConstants(cmd, pipeline_.layout(), kCS, 0, sizeof(in.push), &in.push);
+  writes.push(ctx_, cmd, pipeline);
   if (extraPushBytes_ > 0 && in.extraPush)
-    vkCmdPushConstants(cmd, pipeline_.layout(), kCS, sizeof(in.push), extraPushBytes_, in.extraPush);
-  const uint32_t K = in.push.interleave;
-  vkCmdDispatch(cmd, dispatchGroups(dispatchGroups(t.width, K), 8), dispatchGroups(dispatchGroups(t.height, K), 8), K * K);
+    vkCmdPushConstants(cmd, pipeline.layout(), kCS, sizeof(in.push), extraPushBytes_, in.extraPush);
+  gpu::GatherPush push = in.push;
+  for (push.chunkBegin = 0;; push.chunkBegin += chunk) {
+    push.chunkEnd = std::min(push.vplCount, push.chunkBegin + chunk);
+    vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, dispatchGroups(dispatchGroups(t.width, K), 8), dispatchGroups(dispatchGroups(t.height, K), 8), K * K);
+    if (push.chunkEnd >= push.vplCount) break;
+    raw.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                   VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  }
 }
 
 IndirectFilterPass::IndirectFilterPass(render::VulkanContext& ctx) : ctx_(ctx) {}

@@ -5,6 +5,7 @@
 // declares its extra bindings here; no technique binds images it does not use.
 #include <functional>
 #include <span>
+#include <vector>
 
 #include "dyngi/engine/render/frame_context.h"
 #include "dyngi/engine/render/pipeline.h"
@@ -34,7 +35,11 @@ class IndirectGatherPass {
 
  private:
   render::VulkanContext& ctx_;
+  render::ShaderCode variant_;
+  std::vector<render::Binding> bindings_;
+  const char* name_;
   render::Pipeline pipeline_;
+  render::Pipeline chunked_;  // kGatherChunked: made the first time a gather needs chunks
   uint32_t extraPushBytes_ = 0;
 };
 

@@ -20,12 +20,16 @@ layout(set = 0, binding = DYNGI_GATHER_BINDING_POSITION, rgba32f) uniform readon
 layout(set = 0, binding = DYNGI_GATHER_BINDING_NORMAL, rgba16f) uniform readonly image2D gNormal;
 layout(set = 0, binding = DYNGI_GATHER_BINDING_VPLS) readonly buffer Vpls { GpuVpl vpls[]; };
 layout(set = 0, binding = DYNGI_GATHER_BINDING_SVO_NODES) readonly buffer Nodes { uint nodes[]; };
-layout(set = 0, binding = DYNGI_GATHER_BINDING_OUTPUT, rgba32ui) uniform writeonly uimage2D outRaw;  // filter_input.glsl's packing
+// filter_input.glsl's packing; read by a chunk after the first (GatherPush::chunkBegin).
+layout(set = 0, binding = DYNGI_GATHER_BINDING_OUTPUT, rgba32ui) uniform uimage2D outRaw;
 layout(set = 0, binding = DYNGI_GATHER_BINDING_VISIBILITY_BITS) readonly buffer VisibilityBits { uint visibleBits[]; };  // visibility mode 2
 #ifndef GATHER_EXTRA_PUSH
 #define GATHER_EXTRA_PUSH
 #endif
 layout(push_constant) uniform Push { GatherPush pc; GATHER_EXTRA_PUSH };
+// A pipeline whose dispatches are chunks of a larger gather (GatherPush::chunkBegin); the plain one
+// leaves out the chunks' extra image load and store (lavapipe runs a branch's body either way).
+layout(constant_id = 0) const bool kGatherChunked = false;
 #include "svo_traverse.glsl"
 #include "filter_input.glsl"
 
@@ -34,7 +38,7 @@ const float PI = 3.14159265358979;
 // Light from the set's VPL i (the m-th this pixel gathers) at surface point x with normal nx (xv: x in
 // voxel units, lifted): flux G V, or 0 for an absent, dim or back-facing VPL or one beyond the count.
 vec3 vplLight(uint i, uint m, vec3 x, vec3 nx, vec3 xv, float threshold, uint bitBase) {
-  if (i >= pc.vplCount) return vec3(0.0);
+  if (i >= pc.chunkEnd) return vec3(0.0);
   GpuVpl v = vpls[pc.firstVpl + i];
   if (v.position.w < 0.0 || v.flux.w <= threshold) return vec3(0.0);
   vec3 d = v.position.xyz - x;
@@ -76,15 +80,16 @@ bool gatherPixel(out ivec2 px, out vec3 light, out float depth, out uvec2 packed
     uint bitBase = pc.firstBit + (uint(px.y) * frame.sizeAndCount.x + uint(px.x)) * pc.bitsPerPixel;
     // A do-while: lavapipe runs a for loop's body once more, masked, before it sees every lane has left;
     // checking at the end saves that pass (a gather and an SVO march step per pixel).
-    uint i = s, m = 0u;
+    uint i = pc.chunkBegin + s, m = pc.chunkBegin / K2;
     do {
       e += vplLight(i, m, x, nx, xv, threshold, bitBase);
       i += K2;
       ++m;
-    } while (i < pc.vplCount);
+    } while (i < pc.chunkEnd);
   }
   const uint gathered = s < pc.vplCount ? (pc.vplCount - s + K2 - 1u) / K2 : 0u;  // n_s
   light = gathered > 0u ? (float(pc.estimatedCount) / float(gathered)) * e / (PI * PI) : vec3(0.0);
+  if (kGatherChunked && pc.chunkBegin > 0u) light += filterLight(imageLoad(outRaw, px));  // the earlier chunks' share
   packedNormal = packFilterNormal(nx);
   return true;
 }

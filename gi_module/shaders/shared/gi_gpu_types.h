@@ -319,7 +319,20 @@ struct GatherPush {
   // VPLs it gathered, so every sub-image is an unbiased estimate of the whole).
   uint estimatedCount;
   uint firstBit;        // DYNGI_VISIBILITY_BITS: where this gather's block of bits starts (one block a set)
+  // The VPLs [chunkBegin, chunkEnd) of this dispatch (IndirectGatherPass::record splits a gather that
+  // would give a pixel more than DYNGI_GATHER_MAX_VPLS_PER_PIXEL); chunkBegin is a multiple of K^2, and a
+  // dispatch after the first adds the light the earlier ones left in the output.
+  uint chunkBegin;
+  uint chunkEnd;
+  uint chunkPad0;
+  uint chunkPad1;
 };
+
+// VPLs one gather dispatch gives a pixel at most. lavapipe counts every loop iteration of a shader
+// invocation against one shared limit (65535, gallivm's loop limiter) and past it runs every loop once:
+// a pixel gathering ~1000 VPLs (each an SVO march of a few hundred descent and step iterations) stopped
+// part way, and whole workgroups came out dark. 64 leaves each VPL 1024 iterations.
+#define DYNGI_GATHER_MAX_VPLS_PER_PIXEL 64u
 
 #define DYNGI_MAX_RSM_LAYERS 24
 
@@ -467,7 +480,7 @@ static_assert(sizeof(VoxelizePush) == 128);
 static_assert(sizeof(GpuVpl) == 48);
 static_assert(sizeof(RsmPush) == 128);
 static_assert(sizeof(RsmLayer) == 96);
-static_assert(sizeof(GatherPush) == 64);
+static_assert(sizeof(GatherPush) == 80);
 static_assert(sizeof(TemporalSetCamera) == 128);
 static_assert(sizeof(AccumulatePush) == 48);
 static_assert(sizeof(TemporalQueue) == 16);

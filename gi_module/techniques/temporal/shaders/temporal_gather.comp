@@ -19,6 +19,10 @@ void main() {
   uvec2 packedNormal;
   if (!gatherPixel(px, light, depth, packedNormal)) return;
   uvec4 result = depth > 0.0 ? packFilterInput(depth, packedNormal, light) : uvec4(0u);
+  if (kGatherChunked && pc.chunkEnd < pc.vplCount) {  // a part of the set: the last chunk accumulates the sum
+    imageStore(outRaw, px, result);
+    return;
+  }
   uvec4 accumulated;
   if (temporalAccumulateIncremental(px, light, depth, packedNormal, accumulated)) result = accumulated;
   else if (acc.incremental != 0u) {
