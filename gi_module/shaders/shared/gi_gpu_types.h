@@ -483,6 +483,8 @@ static_assert(sizeof(RsmLayer) == 96);
 static_assert(sizeof(GatherPush) == 80);
 static_assert(sizeof(TemporalSetCamera) == 128);
 static_assert(sizeof(AccumulatePush) == 48);
+// The temporal gather's push constants (GatherPush, then AccumulatePush): Vulkan guarantees 128 bytes.
+static_assert(sizeof(GatherPush) + sizeof(AccumulatePush) <= 128);
 static_assert(sizeof(TemporalQueue) == 16);
 static_assert(sizeof(SvoLevel) == 32);
 static_assert(sizeof(SvoCounters) == 16);
