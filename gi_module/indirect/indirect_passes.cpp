@@ -46,8 +46,8 @@ void IndirectGatherPass::record(render::FrameContext& frame, render::Image& raw,
     img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   raw.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  // At most DYNGI_GATHER_MAX_VPLS_PER_PIXEL VPLs a pixel per dispatch (lavapipe's loop limit, at the
-  // define); the defaults (32-64 a pixel) take one, with the plain pipeline.
+  // At most DYNGI_GATHER_MAX_VPLS_PER_PIXEL VPLs a pixel per dispatch (why: at the define). A gather
+  // within it, as with the defaults, is one dispatch of the plain pipeline.
   const uint32_t K = in.push.interleave, chunk = DYNGI_GATHER_MAX_VPLS_PER_PIXEL * K * K;
   const bool chunked = in.push.vplCount > chunk;
   if (chunked && !chunked_.handle()) {

@@ -242,6 +242,7 @@ TEST_F(RenderTest, GatheringEveryVplPerPixelLosesNoLightToLoopLimits) {
     const double whole = luminance(render::meanOver(image[1])) / luminance(render::meanOver(image[0]));
     // Blocks at least half as bright as the image (dimmer ones are the interleaved image's noise); the
     // dimmest ratio.
+    const double dimBlock = 0.5 * luminance(render::meanOver(image[0])) * kBlock * kBlock;
     double worst = 1.0;
     for (uint32_t by = 0; by < kGatherSize; by += kBlock)
       for (uint32_t bx = 0; bx < kGatherSize; bx += kBlock) {
@@ -249,7 +250,7 @@ TEST_F(RenderTest, GatheringEveryVplPerPixelLosesNoLightToLoopLimits) {
         for (uint32_t y = by; y < by + kBlock; ++y)
           for (uint32_t x = bx; x < bx + kBlock; ++x)
             for (int i = 0; i < 2; ++i) sum[i] += glm::dvec3(image[i][y * kGatherSize + x]);
-        if (luminance(sum[0]) < 0.5 * luminance(render::meanOver(image[0])) * kBlock * kBlock) continue;
+        if (luminance(sum[0]) < dimBlock) continue;
         worst = std::min(worst, luminance(sum[1]) / luminance(sum[0]));
       }
     std::printf("%-11s every VPL per pixel against the interleaved gather: image %.3f, dimmest %u x %u block %.3f\n", technique, whole,
