@@ -37,6 +37,7 @@ gi::GiSettings vctSettings() {
   if (const char* e = std::getenv("VCT_STEP")) s.vct.stepScale = float(std::atof(e));
   if (const char* e = std::getenv("VCT_RES")) s.voxels.resolution = uint32_t(std::atoi(e));
   if (const char* e = std::getenv("VCT_REACH")) s.vct.maxDistance = float(std::atof(e));
+  if (const char* e = std::getenv("VCT_FILTER")) s.vct.diffuseFilterRadius = uint32_t(std::atoi(e));
   return s;
 }
 
@@ -75,11 +76,10 @@ TEST_F(RenderTest, VctCornellMatchesPathTracerPerRegionWithColourBleeding) {
     if (n < 60) continue;
     const double a = lum(render::meanOver(f.hdr, &mask)), b = lum(render::meanOver(ref, &mask));
     std::printf("%-16s vct %.4f  path %.4f  ratio %.3f  (%zu px)\n", name.c_str(), a, b, a / b, n);
-    // The goal is 20 percent for every region. One face misses it: the tall box's face to the red
-    // wall (96 pixels in its own shadow, 0.53 today), where the cones' coarse texels mix the dark gap
-    // beside it with the lit floor and wall around it. Its bound holds today's figure.
-    const double tolerance = name == "tall_box -x" ? 0.5 : 0.20;
-    EXPECT_NEAR(a / b, 1.0, tolerance) << name;
+    // The goal: 20 percent for every region. The tight one is the tall box's face to the red wall
+    // (96 pixels in its own shadow): 0.81, where six cones the same on every pixel gave 0.53 (the light
+    // it gets comes between them; VctTurnedConesApproachADenseConeSet).
+    EXPECT_NEAR(a / b, 1.0, 0.20) << name;
   }
   const double rel = render::relativeMse(f.hdr, ref);
   std::printf("relMSE %.4f\n", rel);
@@ -94,6 +94,34 @@ TEST_F(RenderTest, VctCornellMatchesPathTracerPerRegionWithColourBleeding) {
   std::printf("colour bleeding (red/green of the face to the red wall over the front face): vct %.3f path %.3f\n", ours, theirs);
   EXPECT_GT(ours, 1.2) << "the face turned to the red wall is redder";
   EXPECT_NEAR(ours / theirs, 1.0, 0.2);
+}
+
+// Few cones, turned per pixel and filtered, against many: six cones the same on every pixel see the same
+// few directions over a whole face, so walls show blotches (coarse texels passing through a cone) and a
+// face whose light comes from between two cones goes dark. Each traced pixel turning its set and the
+// filter averaging its neighbours must come closer to a dense, fixed set of 32 cones (the same volume,
+// a far finer quadrature of the hemisphere) than the fixed six do, in the tail and overall.
+TEST_F(RenderTest, VctTurnedConesApproachADenseConeSet) {
+  auto indirect = [&](uint32_t cones, uint32_t radius) {
+    gi::GiSettings s = vctSettings();
+    s.vct.diffuseCones = cones;
+    s.vct.diffuseFilterRadius = radius;
+    GiRun run(context(), s, "cornell", kSize, kSize);
+    run.step(3);
+    return run.indirect();
+  };
+  const render::ImageRgba dense = indirect(32, 0), fixed = indirect(6, 0), turned = indirect(6, gi::VctOptions{}.diffuseFilterRadius);
+  dump("vct_cones_dense", dense, kSize, kSize);
+  dump("vct_cones_fixed", fixed, kSize, kSize);
+  dump("vct_cones_turned", turned, kSize, kSize);
+  const double relFixed = render::relativeMse(fixed, dense), relTurned = render::relativeMse(turned, dense);
+  const double p99Fixed = render::relativeLuminanceErrorQuantile(fixed, dense, 0.99);
+  const double p99Turned = render::relativeLuminanceErrorQuantile(turned, dense, 0.99);
+  std::printf("against 32 fixed cones: 6 fixed relMSE %.4f p99 %.3f; 6 turned and filtered relMSE %.4f p99 %.3f\n", relFixed,
+              p99Fixed, relTurned, p99Turned);
+  EXPECT_GT(relFixed, 0.008) << "the fixed six are far from the dense set (else this test shows nothing)";
+  EXPECT_LT(relTurned, 0.4 * relFixed);
+  EXPECT_LT(p99Turned, 0.6 * p99Fixed);
 }
 
 namespace {

@@ -258,6 +258,11 @@ struct RsmPush {
 #define DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE 4
 #define DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR 5
 #define DYNGI_VCT_UPSAMPLE_BINDING_FRAME 6
+#define DYNGI_VCT_FILTER_BINDING_FRAME 0
+#define DYNGI_VCT_FILTER_BINDING_G_POSITION 1
+#define DYNGI_VCT_FILTER_BINDING_G_NORMAL 2
+#define DYNGI_VCT_FILTER_BINDING_IN 3
+#define DYNGI_VCT_FILTER_BINDING_OUT 4
 // vct_debug: views over the HDR image
 #define DYNGI_VCT_DEBUG_BINDING_FRAME 0
 #define DYNGI_VCT_DEBUG_BINDING_RADIANCE 1
@@ -445,8 +450,9 @@ struct TemporalQueue {
   float temporalResponse;
 #define DYNGI_VCT_BOUNCE_PUSH DYNGI_VCT_CONE_PARAMS uint depth; uint leafCapacity; uint commit; /* 0 trace, 1 copy OUT to RADIANCE */
 #define DYNGI_VCT_MIPS_PUSH uint destSlabWidth; /* texels; the isotropic chain has one slab */ uint sourceSlabWidth; /* 0: one source slab */
-#define DYNGI_VCT_TRACE_PUSH DYNGI_VCT_CONE_PARAMS uint traceScale; uint specular;
+#define DYNGI_VCT_TRACE_PUSH DYNGI_VCT_CONE_PARAMS uint traceScale; uint specular; uint turnCones; /* 1: each traced pixel turns its cone set */
 #define DYNGI_VCT_UPSAMPLE_PUSH uint traceScale;
+#define DYNGI_VCT_FILTER_PUSH uint traceScale; int radius; /* traced pixels */ int axisX; int axisY; /* (1, 0) or (0, 1) */
 #define DYNGI_VCT_DEBUG_PUSH DYNGI_VCT_CONE_PARAMS uint mode; float mip;
 #define DYNGI_VCT_PROBE_PUSH DYNGI_VCT_CONE_PARAMS uint count; float tanHalf;
 
@@ -471,6 +477,7 @@ struct VctBouncePush { DYNGI_VCT_BOUNCE_PUSH };
 struct VctMipsPush { DYNGI_VCT_MIPS_PUSH };
 struct VctTracePush { DYNGI_VCT_TRACE_PUSH };
 struct VctUpsamplePush { DYNGI_VCT_UPSAMPLE_PUSH };
+struct VctFilterPush { DYNGI_VCT_FILTER_PUSH };
 struct VctDebugPush { DYNGI_VCT_DEBUG_PUSH };
 struct VctProbePush { DYNGI_VCT_PROBE_PUSH };
 #endif
@@ -494,7 +501,7 @@ static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && siz
 static_assert(sizeof(VplTailPush) == 8 && sizeof(CompensatePush) == 20);
 static_assert(sizeof(VplBouncePush) == 40 && sizeof(ManyLightsDebugPush) == 12 && sizeof(IndirectFilterPush) == 4);
 static_assert(sizeof(VctInjectPush) == 40 && sizeof(VctBouncePush) == 52 && sizeof(VctMipsPush) == 8);
-static_assert(sizeof(VctTracePush) == 48 && sizeof(VctUpsamplePush) == 4 && sizeof(VctDebugPush) == 48 && sizeof(VctProbePush) == 48);
+static_assert(sizeof(VctTracePush) == 52 && sizeof(VctUpsamplePush) == 4 && sizeof(VctFilterPush) == 16 && sizeof(VctDebugPush) == 48 && sizeof(VctProbePush) == 48);
 }  // namespace dyngi::gi::gpu
 #endif
 

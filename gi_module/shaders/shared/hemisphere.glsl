@@ -8,12 +8,14 @@
 // weighted by its projected solid angle over pi, is its part of E / pi both for light from everywhere
 // and for a source smaller than the cone. (Equal solid angles, 2 pi / N, would halve a small source seen
 // along the normal.)
-vec3 cosineSpiral(uint k, uint n) {
+// `turn` (a fraction of a full turn) rotates the whole spiral about +z.
+vec3 cosineSpiral(uint k, uint n, float turn) {
   float u = (float(k) + 0.5) / float(n);
   float r = sqrt(u);
-  float phi = float(k) * 2.39996323;
+  float phi = float(k) * 2.39996323 + 6.28318531 * turn;
   return vec3(r * cos(phi), r * sin(phi), sqrt(max(1.0 - u, 0.0)));
 }
+vec3 cosineSpiral(uint k, uint n) { return cosineSpiral(k, n, 0.0); }
 
 // An orthonormal basis around unit n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited").
 mat3 basisAround(vec3 n) {

@@ -12,6 +12,7 @@
 #include "spirv/vct_commit.comp.spv.h"
 #include "spirv/vct_cone_probe.comp.spv.h"
 #include "spirv/vct_debug.comp.spv.h"
+#include "spirv/vct_filter.comp.spv.h"
 #include "spirv/vct_inject.comp.spv.h"
 #include "spirv/vct_mips.comp.spv.h"
 #include "spirv/vct_trace.comp.spv.h"
@@ -125,6 +126,12 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
                          {DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, kStorageImage, kCS},
                          {DYNGI_VCT_UPSAMPLE_BINDING_FRAME, kUBO, kCS}};
   upsample_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_upsample_comp), upB, sizeof(gpu::VctUpsamplePush), "vct_upsample");
+  const Binding filterB[] = {{DYNGI_VCT_FILTER_BINDING_FRAME, kUBO, kCS},
+                             {DYNGI_VCT_FILTER_BINDING_G_POSITION, kStorageImage, kCS},
+                             {DYNGI_VCT_FILTER_BINDING_G_NORMAL, kStorageImage, kCS},
+                             {DYNGI_VCT_FILTER_BINDING_IN, kStorageImage, kCS},
+                             {DYNGI_VCT_FILTER_BINDING_OUT, kStorageImage, kCS}};
+  filter_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_filter_comp), filterB, sizeof(gpu::VctFilterPush), "vct_filter");
 
   // Quadrilinear, clamped to the edge: a coarse texel at the volume's side (a floor, a wall near it) is
   // continued past it rather than faded to nothing, which would make a cone see half of it. A cone stops
@@ -195,6 +202,8 @@ void VoxelConeTracing::ensureTraceTargets(uint32_t width, uint32_t height) {
   lowDiffuse_ = Image(ctx_, d);
   d.name = "vct traced specular";
   lowSpecular_ = Image(ctx_, d);
+  d.name = "vct filtered diffuse";
+  filteredDiffuse_ = Image(ctx_, d);
 }
 
 template <class Push>
@@ -261,7 +270,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   ensureTraceTargets(frame.targets.width, frame.targets.height);
   // Back to GENERAL after a read-back (tests); the frames before finished at the renderer's fence, and
   // the passes below order themselves with global barriers.
-  for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_, &lowDiffuse_, &lowSpecular_})
+  for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_, &lowDiffuse_, &lowSpecular_, &filteredDiffuse_})
     if (img->valid() && img->layout() != VK_IMAGE_LAYOUT_GENERAL) img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, kComputeAndTransfer, kReadWrite);
   frame.lights.shadowMaps->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   render::RenderTargets& t = frame.targets;
@@ -352,9 +361,29 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
     fillConeParams(pc);
     pc.traceScale = scale;
     pc.specular = options_.specular ? 1u : 0u;
+    pc.turnCones = options_.diffuseFilterRadius > 0 ? 1u : 0u;
     vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
     vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth, 8), dispatchGroups(stats_.traceHeight, 8), 1);
     render::computeWriteBarrier(cmd);
+  }
+  if (options_.diffuseFilterRadius > 0) {
+    render::ScopedPass scope(ctx_, frame.timer, cmd, "filter");
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, filter_.handle());
+    // Along x into filteredDiffuse_, then along y back into lowDiffuse_, which the upsample reads.
+    const Image* passes[2][2] = {{&lowDiffuse_, &filteredDiffuse_}, {&filteredDiffuse_, &lowDiffuse_}};
+    for (int axis = 0; axis < 2; ++axis) {
+      DescriptorWrites()
+          .uniformBuffer(DYNGI_VCT_FILTER_BINDING_FRAME, frame.frameUniforms.handle())
+          .storageImage(DYNGI_VCT_FILTER_BINDING_G_POSITION, t.position.view())
+          .storageImage(DYNGI_VCT_FILTER_BINDING_G_NORMAL, t.normal.view())
+          .storageImage(DYNGI_VCT_FILTER_BINDING_IN, passes[axis][0]->view())
+          .storageImage(DYNGI_VCT_FILTER_BINDING_OUT, passes[axis][1]->view())
+          .push(ctx_, cmd, filter_);
+      const gpu::VctFilterPush pc{scale, int(std::min(options_.diffuseFilterRadius, 4u)), axis == 0 ? 1 : 0, axis == 1 ? 1 : 0};
+      vkCmdPushConstants(cmd, filter_.layout(), kCS, 0, sizeof(pc), &pc);
+      vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth, 8), dispatchGroups(stats_.traceHeight, 8), 1);
+      render::computeWriteBarrier(cmd);
+    }
   }
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "upsample");

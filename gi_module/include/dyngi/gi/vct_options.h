@@ -21,6 +21,13 @@ struct VctOptions {
   // pixels (2 at 256^2, 4 at 512^2 and 768^2): the trace is most of the cost, and diffuse light is smooth.
   // A GI budget raises it further.
   uint32_t traceScale = 0;
+  // Radius, in traced pixels, of the geometry-aware filter over the traced diffuse light. From 1 up each
+  // traced pixel turns its cone set about the normal by its own angle (a golden-ratio dither) and the
+  // filter averages the neighbours' sets, so a few cones see the hemisphere through many directions
+  // instead of missing the same ones on every pixel of a face (blotches on walls, a face lit by light
+  // from between two cones gone dark). 3 is the smallest that leaves no trace of the dither's diagonal
+  // pattern; 0: the same cones everywhere and no filter.
+  uint32_t diffuseFilterRadius = 3;
   // Opacity and radiance of the mip chain per direction (6 volumes of half resolution, composited front
   // to back along each axis): a thin wall stays opaque at coarse mips, so less light leaks through it.
   bool anisotropic = true;

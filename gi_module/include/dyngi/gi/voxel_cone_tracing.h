@@ -77,8 +77,9 @@ class VoxelConeTracing final : public render::RenderFeature {
   render::Image direct_[2];    // res^3: the injected radiance this frame and last (temporal blending)
   render::Image bounced_;      // res^3: a bounce's output before it is committed to radiance_ level 0
   render::Image lowDiffuse_, lowSpecular_;  // the traced pixels
+  render::Image filteredDiffuse_;           // lowDiffuse_ filtered along x (vct_filter.comp's first pass)
   VkSampler sampler_ = VK_NULL_HANDLE;
-  render::Pipeline inject_, mips_[3], bounce_[2], commit_, trace_[4], upsample_, debug_[2], probe_[2];
+  render::Pipeline inject_, mips_[3], bounce_[2], commit_, trace_[4], filter_, upsample_, debug_[2], probe_[2];
   VctFrameStats stats_;
 };
 

@@ -114,16 +114,16 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, out 
   return vec4(colour, alpha);
 }
 
-// E / pi at a surface point (voxel units) with unit normal n from N diffuse cones; `ao` the mean of the
-// cones' unoccluded fraction within aoDistance.
-vec3 vctDiffuse(vec3 p, vec3 n, out float ao) {
+// E / pi at a surface point (voxel units) with unit normal n from N diffuse cones, their spiral turned by
+// `turn` (a fraction of a turn) about n; `ao` the mean of the cones' unoccluded fraction within aoDistance.
+vec3 vctDiffuse(vec3 p, vec3 n, float turn, out float ao) {
   mat3 basis = basisAround(n);
   vec3 origin = p + n * coneOffset;
   vec3 sum = vec3(0.0);
   float occluded = 0.0, total = 0.0;
   for (uint k = 0u; k < cones; ++k) {
     float occ;
-    vec3 d = cosineSpiral(k, cones);
+    vec3 d = cosineSpiral(k, cones, turn);
     float cosHalf = max(1.0 - 1.0 / (2.0 * float(cones) * max(d.z, 1e-3)), 0.0);
     float coneTan = sqrt(1.0 - cosHalf * cosHalf) / max(cosHalf, 1e-3);
     // A cone tilted by theta keeps its half-angle under 90 - theta degrees (tan <= 0.9 cot theta): wider,

@@ -1,0 +1,50 @@
+#version 460
+// The traced diffuse light (E / pi, AO in alpha) averaged over a line of traced pixels along one axis (run
+// along x, then along y: a 2D window for a seventh of the taps of a square one), each weighted by a tent
+// in its distance and by how well its surface matches this one's (the upsample's test: distance
+// from this pixel's tangent plane, normal agreement), so light stays on its own surface. The traced
+// pixels turned their cone sets by different angles (vct_trace.comp): the average is the hemisphere seen
+// through all of their cones, where one pixel's few cones would miss the same directions over a face.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/gpu_types.h"
+#include "shared/gi_gpu_types.h"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_G_POSITION, rgba32f) uniform readonly image2D gPosition;
+layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_G_NORMAL, rgba16f) uniform readonly image2D gNormal;
+layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_IN, rgba16f) uniform readonly image2D traced;
+layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_OUT, rgba16f) uniform writeonly image2D filtered;
+layout(push_constant) uniform Push { DYNGI_VCT_FILTER_PUSH };
+
+void main() {
+  ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 low = imageSize(traced);
+  if (any(greaterThanEqual(q, low))) return;
+  ivec2 full = ivec2(frame.sizeAndCount.xy);
+  int s = int(traceScale), h = s / 2;
+  vec4 centre = imageLoad(traced, q);
+  vec4 pos = imageLoad(gPosition, min(q * s + h, full - 1));
+  if (pos.w == 0.0) {
+    imageStore(filtered, q, centre);
+    return;
+  }
+  vec3 n = normalize(imageLoad(gNormal, min(q * s + h, full - 1)).xyz);
+  // The window spans radius x traceScale pixels: the plane test scales with the pixels between taps.
+  float scale = 0.01 * float(s) * max(length(pos.xyz - frame.cameraPos.xyz), 1e-4);
+  vec4 sum = vec4(0.0);
+  float total = 0.0;
+  for (int i = -radius; i <= radius; ++i) {
+    ivec2 o = q + i * ivec2(axisX, axisY);
+    if (any(lessThan(o, ivec2(0))) || any(greaterThanEqual(o, low))) continue;
+    ivec2 at = min(o * s + h, full - 1);
+    vec4 qp = imageLoad(gPosition, at);
+    if (qp.w == 0.0) continue;
+    vec3 qn = normalize(imageLoad(gNormal, at).xyz);
+    float plane = abs(dot(n, qp.xyz - pos.xyz)) / scale;
+    float tent = 1.0 - float(abs(i)) / float(radius + 1);
+    float w = tent * exp2(-plane * plane) * pow(max(dot(n, qn), 0.0), 8.0);
+    sum += w * imageLoad(traced, o);
+    total += w;
+  }
+  imageStore(filtered, q, total > 1e-4 ? sum / total : centre);
+}
