@@ -43,7 +43,11 @@ struct VctOptions {
   float temporalBlend = 0.5f;
   float temporalResponse = 0.5f;
   // Cone reach, in multiples of the volume's side: the distance a diffuse cone marches before it stops.
-  float maxDistance = 1.0f;
+  // Past the volume's diagonal (sqrt 3 sides), so a cone from any surface can reach the far side of the
+  // volume: with one side, a floor's cones more than 12 degrees off the normal stopped short of a ceiling
+  // at the volume's top (an emissive panel there lit the floor at 0.63 of the path tracer). A cone's steps
+  // grow with its width, so the extra reach costs a step or two, and it ends at the volume's side anyway.
+  float maxDistance = 1.75f;
   // Distance (volume side multiples) over which occlusion counts towards ambient occlusion.
   float aoDistance = 0.15f;
   // Where a cone starts: this many voxels off the surface along the normal (and as far along the cone).
