@@ -6,8 +6,8 @@
 #     that also re-voxelizes (it then reads about 0.1 ms while the frame grows by its real cost); the
 #     voxelize and svo_build columns come from the main job's scene (cornell-dynamic: objects move, so
 #     every frame re-voxelizes them and rebuilds the SVO).
-#  2. frame table: the main job's scene (cornell-dynamic) with --gi vct (trace scale 2, the default's 0, and
-#     the isotropic opaque-axis chain), the temporal
+#  2. frame table: the main job's scene (cornell-dynamic) with --gi vct (trace scale 2, the default's 0, fixed
+#     unfiltered cones, and the isotropic opaque-axis chain), the temporal
 #     VPL technique (--gi svo, T = 16) and --gi off, in interleaved order, at 512^2 and 768^2.
 #  3. image error against the path tracer (still Cornell box, 512^2, 256 spp, 1 bounce).
 # Not in CI (timing: about 10 minutes here).     env: FRAMES (24), SIZES ("512 768"), RESOLUTIONS ("64 128 256")
@@ -26,8 +26,8 @@ field() {  # field FILE EXPRESSION: a number from a stats JSON
   python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(round(eval(sys.argv[2]), 1))" "$1" "$2"
 }
 
-echo "| size | voxels | inject | mips | trace | upsample | voxelize (dynamic) | svo_build (dynamic) | frame (still) |"
-echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+echo "| size | voxels | inject | mips | trace | filter | upsample | voxelize (dynamic) | svo_build (dynamic) | frame (still) |"
+echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
 for size in $SIZES; do
   for res in $RESOLUTIONS; do
     still="$out/still_${size}_${res}.json" dynamic="$out/dynamic_${size}_${res}.json"
@@ -35,17 +35,17 @@ for size in $SIZES; do
     sample --gi vct --voxel-res "$res" --size "${size}x${size}" --stats "$dynamic"
     s="d['stages_ms']"
     echo "| ${size}^2 | ${res}^3 | $(field "$still" "$s['inject']") | $(field "$still" "$s['mips']") | $(field "$still" "$s['trace']") |" \
-         "$(field "$still" "$s['upsample']") | $(field "$dynamic" "$s['voxelize']") | $(field "$dynamic" "$s['svo_build']") |" \
+         "$(field "$still" "$s.get('filter', 0)") | $(field "$still" "$s['upsample']") | $(field "$dynamic" "$s['voxelize']") | $(field "$dynamic" "$s['svo_build']") |" \
          "$(field "$still" "d['frame_ms']['median']") |"
   done
 done
 
 echo
-echo "| size | --gi off | --gi vct --trace-scale 2 | --gi vct (trace scale 0: 192^2 traced) | --gi vct --anisotropic 0 | --gi svo (temporal, T = 16) |"
-echo "| --- | --- | --- | --- | --- | --- |"
+echo "| size | --gi off | --gi vct --trace-scale 2 | --gi vct (trace scale 0: 192^2 traced) | --gi vct --diffuse-filter 0 | --gi vct --anisotropic 0 | --gi svo (temporal, T = 16) |"
+echo "| --- | --- | --- | --- | --- | --- | --- |"
 for size in $SIZES; do
   row="| ${size}^2"
-  for args in "--gi off" "--gi vct --trace-scale 2" "--gi vct" "--gi vct --anisotropic 0" "--gi svo --temporal 16"; do
+  for args in "--gi off" "--gi vct --trace-scale 2" "--gi vct" "--gi vct --diffuse-filter 0" "--gi vct --anisotropic 0" "--gi svo --temporal 16"; do
     f="$out/frame_${size}_$(echo "$args" | tr -d ' -').json"
     # shellcheck disable=SC2086
     sample $args --size "${size}x${size}" --stats "$f"
@@ -58,7 +58,7 @@ echo
 echo "| image (still Cornell box, 512^2, against the path tracer, 256 spp, 1 bounce) | relMSE | mean ratio |"
 echo "| --- | --- | --- |"
 build/bin/dyngi_sample --headless --scene cornell --gi path --spp 256 --bounces 1 --size 512x512 --hdr-out "$out/path.exr" >/dev/null 2>&1
-for args in "--gi vct --trace-scale 2" "--gi vct" "--gi vct --anisotropic 0" "--gi svo --temporal 16"; do
+for args in "--gi vct --trace-scale 2" "--gi vct" "--gi vct --diffuse-filter 0" "--gi vct --anisotropic 0" "--gi svo --temporal 16"; do
   img="$out/img_$(echo "$args" | tr -d ' -').exr"
   # shellcheck disable=SC2086
   build/bin/dyngi_sample --headless --scene cornell $args --frames 20 --size 512x512 --hdr-out "$img" >/dev/null 2>&1

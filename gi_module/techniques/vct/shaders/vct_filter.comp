@@ -1,6 +1,6 @@
 #version 460
 // The traced diffuse light (E / pi, AO in alpha) averaged over a line of traced pixels along one axis (run
-// along x, then along y: a 2D window for a seventh of the taps of a square one), each weighted by a tent
+// along x, then along y: a 2D window for 2 (2r + 1) taps instead of (2r + 1)^2), each weighted by a tent
 // in its distance and by how well its surface matches this one's (the upsample's test: distance
 // from this pixel's tangent plane, normal agreement), so light stays on its own surface. The traced
 // pixels turned their cone sets by different angles (vct_trace.comp): the average is the hemisphere seen
