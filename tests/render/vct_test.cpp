@@ -543,3 +543,46 @@ TEST_F(RenderTest, VctSecondBounceApproachesThePathTracer) {
   EXPECT_LT(error[2], error[1]);
   EXPECT_NEAR(mean[2], 1.0, 0.1);
 }
+
+namespace {
+// A closed 2 m room whose six walls all emit radiance 1 and reflect nothing, the camera at its centre:
+// every surface's E / pi is exactly 1 (a furnace test).
+void emissiveRoom(ecs::World& w, scene::AssetStore& a) {
+  const float h = 1.0f;
+  struct Wall { glm::vec3 origin, u, v; };
+  const Wall walls[] = {{{-h, -h, h}, {2 * h, 0, 0}, {0, 0, -2 * h}},   // floor, facing +y
+                        {{-h, h, -h}, {2 * h, 0, 0}, {0, 0, 2 * h}},    // ceiling, -y
+                        {{-h, -h, -h}, {2 * h, 0, 0}, {0, 2 * h, 0}},   // back, +z
+                        {{h, -h, h}, {-2 * h, 0, 0}, {0, 2 * h, 0}},    // front, -z
+                        {{-h, -h, h}, {0, 0, -2 * h}, {0, 2 * h, 0}},   // left, +x
+                        {{h, -h, -h}, {0, 0, 2 * h}, {0, 2 * h, 0}}};   // right, -x
+  for (const Wall& wall : walls) {
+    const ecs::Entity e = sample::addSceneMesh(w, a, scene::makeQuad(wall.origin, wall.u, wall.v), glm::vec3(0.0f), {}, false, "wall");
+    w.write<scene::Material>(e).emissive = glm::vec3(1.0f);
+  }
+  const ecs::Entity cam = w.create();
+  scene::Transform ct;
+  w.add(cam, ct);
+  w.add(cam, scene::WorldTransform{ct.matrix()});
+  w.add(cam, scene::Camera{.yfov = glm::radians(70.0f), .znear = 0.05f, .zfar = 50.0f});
+  w.add(cam, scene::ActiveCamera{});
+}
+}  // namespace
+
+// What the diffuse cones lose against an analytic truth. The six cones' weights (their projected solid
+// angles over pi) add up to 0.80, not 1: the cones tilted furthest are narrowed to stay above the horizon
+// and the band they leave uncovered is not made up for (0.93 with 32 cones); the cones themselves bring
+// back 95 percent of the light inside their weight. Dividing by the weights' sum gives 0.95 here and
+// takes the emissive-only scene to within 7 percent of the path tracer, but the spot-lit Cornell box to
+// 25-44 percent over it: there something else gives too much light, which the missing weight hides today
+// (docs/QUALITY.md, "Voxel cone tracing's energy"). The bound is 30 percent, today 0.76.
+TEST_F(RenderTest, VctFurnaceRoomGivesItsRadiance) {
+  gi::GiSettings s = vctSettings();
+  s.vct.specular = false;
+  GiRun run(context(), s, emissiveRoom, 64, 64);
+  run.step(3);
+  const glm::dvec3 m = render::meanOver(run.indirect());
+  std::printf("furnace: E / pi %.4f %.4f %.4f (exact 1)\n", m.r, m.g, m.b);
+  EXPECT_NEAR(m.g, 1.0, 0.3);
+}
+
