@@ -348,6 +348,15 @@ TEST_F(RenderTest, VctEmissiveOnlySceneLightsTheRoom) {
 
 
 namespace {
+// The camera the scenes below render from.
+void addActiveCamera(ecs::World& w, const scene::Transform& t, float yfovDegrees) {
+  const ecs::Entity cam = w.create();
+  w.add(cam, t);
+  w.add(cam, scene::WorldTransform{t.matrix()});
+  w.add(cam, scene::Camera{.yfov = glm::radians(yfovDegrees), .znear = 0.05f, .zfar = 50.0f});
+  w.add(cam, scene::ActiveCamera{});
+}
+
 // A 0.5 m box on a 6 x 6 m floor under a sun, seen from above at 45 degrees: the ambient occlusion scene.
 void boxOnAPlane(ecs::World& w, scene::AssetStore& a) {
   sample::addSceneMesh(w, a, scene::makeQuad({-3, 0, 3}, {6, 0, 0}, {0, 0, -6}), glm::vec3(0.75f), {}, false, "floor");
@@ -363,14 +372,10 @@ void boxOnAPlane(ecs::World& w, scene::AssetStore& a) {
   light.type = scene::LightType::Directional;
   light.intensity = 2.0f;
   w.add(sun, light);
-  const ecs::Entity cam = w.create();
   scene::Transform ct;
   ct.translation = {0.0f, 2.2f, 2.2f};
   ct.rotation = glm::angleAxis(glm::radians(-45.0f), glm::vec3(1, 0, 0));
-  w.add(cam, ct);
-  w.add(cam, scene::WorldTransform{ct.matrix()});
-  w.add(cam, scene::Camera{.yfov = glm::radians(50.0f), .znear = 0.05f, .zfar = 50.0f});
-  w.add(cam, scene::ActiveCamera{});
+  addActiveCamera(w, ct, 50.0f);
 }
 }  // namespace
 
@@ -564,12 +569,7 @@ void emissiveRoom(ecs::World& w, scene::AssetStore& a) {
     const ecs::Entity e = sample::addSceneMesh(w, a, scene::makeQuad(wall.origin, wall.u, wall.v), glm::vec3(0.0f), {}, false, "wall");
     w.write<scene::Material>(e).emissive = glm::vec3(1.0f);
   }
-  const ecs::Entity cam = w.create();
-  scene::Transform ct;
-  w.add(cam, ct);
-  w.add(cam, scene::WorldTransform{ct.matrix()});
-  w.add(cam, scene::Camera{.yfov = glm::radians(70.0f), .znear = 0.05f, .zfar = 50.0f});
-  w.add(cam, scene::ActiveCamera{});
+  addActiveCamera(w, scene::Transform{}, 70.0f);
 }
 }  // namespace
 
