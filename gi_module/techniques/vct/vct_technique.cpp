@@ -15,7 +15,8 @@ const OptionTable<VctOptions>& VctOptions::table() {
           .add({"bounces", "light bounces (each past the first: a cone pass over the occupied voxels)", 1, 3}, &VctOptions::bounces)
           .add({"trace-scale", "trace one pixel in NxN and upsample (1: every pixel; 0: at most 192^2 traced)", 0, 8},
                &VctOptions::traceScale)
-          .add({"diffuse-filter", "radius (traced pixels) of the filter over cone sets turned per pixel (0: fixed cones, no filter)", 0, 4},
+          .add({"diffuse-filter", "radius (traced pixels) of the filter over cone sets turned per pixel (0: fixed cones, no filter)", 0,
+                VctOptions::kMaxDiffuseFilterRadius},
                &VctOptions::diffuseFilterRadius)
           .add({"anisotropic", "mip chain per direction (less light leaks through thin walls)", 0, 1}, &VctOptions::anisotropic)
           .add({"opaque-axis-mips", "isotropic mips take their most opaque axis' opacity, not the mean (thin walls stay opaque)", 0, 1},

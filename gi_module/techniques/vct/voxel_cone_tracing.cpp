@@ -379,7 +379,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
           .storageImage(DYNGI_VCT_FILTER_BINDING_IN, passes[axis][0]->view())
           .storageImage(DYNGI_VCT_FILTER_BINDING_OUT, passes[axis][1]->view())
           .push(ctx_, cmd, filter_);
-      const gpu::VctFilterPush pc{scale, int(std::min(options_.diffuseFilterRadius, 4u)), axis == 0 ? 1 : 0, axis == 1 ? 1 : 0};
+      const gpu::VctFilterPush pc{scale, int(std::min(options_.diffuseFilterRadius, VctOptions::kMaxDiffuseFilterRadius)), axis == 0 ? 1 : 0, axis == 1 ? 1 : 0};
       vkCmdPushConstants(cmd, filter_.layout(), kCS, 0, sizeof(pc), &pc);
       vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth, 8), dispatchGroups(stats_.traceHeight, 8), 1);
       render::computeWriteBarrier(cmd);

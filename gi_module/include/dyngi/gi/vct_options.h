@@ -28,6 +28,7 @@ struct VctOptions {
   // from between two cones gone dark). 3 is the smallest that leaves no trace of the dither's diagonal
   // pattern; 0: the same cones everywhere and no filter.
   uint32_t diffuseFilterRadius = 3;
+  static constexpr uint32_t kMaxDiffuseFilterRadius = 4;  // the filter's taps grow with it: 2 (2r + 1)
   // Opacity and radiance of the mip chain per direction (6 volumes of half resolution, composited front
   // to back along each axis): a thin wall stays opaque at coarse mips, so less light leaks through it.
   bool anisotropic = true;
