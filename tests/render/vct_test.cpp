@@ -578,7 +578,7 @@ void emissiveRoom(ecs::World& w, scene::AssetStore& a) {
 // and the band they leave uncovered is not made up for (0.93 with 32 cones); the cones themselves bring
 // back 95 percent of the light inside their weight. Dividing by the weights' sum gives 0.95 here and
 // takes the emissive-only scene to within 7 percent of the path tracer, but the spot-lit Cornell box to
-// 25-44 percent over it: there something else gives too much light, which the missing weight hides today
+// 22-44 percent over it: there something else gives too much light, which the missing weight hides today
 // (docs/QUALITY.md, "Voxel cone tracing's energy"). The bound is 30 percent, today 0.76.
 TEST_F(RenderTest, VctFurnaceRoomGivesItsRadiance) {
   gi::GiSettings s = vctSettings();

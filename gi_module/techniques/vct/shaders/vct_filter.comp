@@ -1,10 +1,10 @@
 #version 460
 // The traced diffuse light (E / pi, AO in alpha) averaged over a line of traced pixels along one axis (run
 // along x, then along y: a 2D window for 2 (2r + 1) taps instead of (2r + 1)^2), each weighted by a tent
-// in its distance and by how well its surface matches this one's (the upsample's test: distance
-// from this pixel's tangent plane, normal agreement), so light stays on its own surface. The traced
-// pixels turned their cone sets by different angles (vct_trace.comp): the average is the hemisphere seen
-// through all of their cones, where one pixel's few cones would miss the same directions over a face.
+// in its distance and by how well its surface matches this one's (vct_surface_match.glsl, the upsample's
+// test), so light stays on its own surface. The traced pixels turned their cone sets by different angles
+// (vct_trace.comp): the average is the hemisphere seen through all of their cones, where one pixel's few
+// cones would miss the same directions over a face.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 #include "shared/gi_gpu_types.h"
@@ -15,6 +15,7 @@ layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_G_NORMAL, rgba16f) uniform re
 layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_IN, rgba16f) uniform readonly image2D traced;
 layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_OUT, rgba16f) uniform writeonly image2D filtered;
 layout(push_constant) uniform Push { DYNGI_VCT_FILTER_PUSH };
+#include "vct_surface_match.glsl"
 
 void main() {
   ivec2 q = ivec2(gl_GlobalInvocationID.xy);
@@ -40,9 +41,8 @@ void main() {
     vec4 qp = imageLoad(gPosition, at);
     if (qp.w == 0.0) continue;
     vec3 qn = normalize(imageLoad(gNormal, at).xyz);
-    float plane = abs(dot(n, qp.xyz - pos.xyz)) / scale;
     float tent = 1.0 - float(abs(i)) / float(radius + 1);
-    float w = tent * exp2(-plane * plane) * pow(max(dot(n, qn), 0.0), 8.0);
+    float w = tent * vctSurfaceMatch(pos.xyz, n, qp.xyz, qn, scale);
     sum += w * imageLoad(traced, o);
     total += w;
   }

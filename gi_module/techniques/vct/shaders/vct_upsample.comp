@@ -16,6 +16,7 @@ layout(set = 0, binding = DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR, rgba16f) unif
 layout(set = 0, binding = DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, rgba32f) uniform writeonly image2D outDiffuse;
 layout(set = 0, binding = DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, rgba16f) uniform writeonly image2D outSpecular;
 layout(push_constant) uniform Push { DYNGI_VCT_UPSAMPLE_PUSH };
+#include "vct_surface_match.glsl"
 
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
@@ -45,8 +46,7 @@ void main() {
     ivec2 at = min(q * s + h, full - 1);
     vec4 qp = imageLoad(gPosition, at);
     vec3 qn = normalize(imageLoad(gNormal, at).xyz);
-    float plane = abs(dot(n, qp.xyz - pos.xyz)) / scale;
-    float match = qp.w == 0.0 ? 0.0 : exp2(-plane * plane) * pow(max(dot(n, qn), 0.0), 8.0);
+    float match = qp.w == 0.0 ? 0.0 : vctSurfaceMatch(pos.xyz, n, qp.xyz, qn, scale);
     float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
     vec4 d = imageLoad(lowDiffuse, q), sp = imageLoad(lowSpecular, q);
     float w = bilinear * match;
