@@ -251,6 +251,16 @@ struct RsmPush {
 #define DYNGI_VCT_TRACE_BINDING_ANISO 4
 #define DYNGI_VCT_TRACE_BINDING_OUT_DIFFUSE 5
 #define DYNGI_VCT_TRACE_BINDING_OUT_SPECULAR 6
+// vct_reproject: the traced pixels not traced this frame, from last frame's (trace amortized over frames)
+#define DYNGI_VCT_REPROJECT_BINDING_FRAME 0
+#define DYNGI_VCT_REPROJECT_BINDING_G_POSITION 1
+#define DYNGI_VCT_REPROJECT_BINDING_G_NORMAL 2
+#define DYNGI_VCT_REPROJECT_BINDING_PREVIOUS_DIFFUSE 3
+#define DYNGI_VCT_REPROJECT_BINDING_PREVIOUS_SPECULAR 4
+#define DYNGI_VCT_REPROJECT_BINDING_PREVIOUS_SURFACE 5
+#define DYNGI_VCT_REPROJECT_BINDING_OUT_DIFFUSE 6
+#define DYNGI_VCT_REPROJECT_BINDING_OUT_SPECULAR 7
+#define DYNGI_VCT_REPROJECT_BINDING_OUT_SURFACE 8
 #define DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION 0
 #define DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL 1
 #define DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE 2
@@ -450,7 +460,15 @@ struct TemporalQueue {
   float temporalResponse;
 #define DYNGI_VCT_BOUNCE_PUSH DYNGI_VCT_CONE_PARAMS uint depth; uint leafCapacity; uint commit; /* 0 trace, 1 copy OUT to RADIANCE */
 #define DYNGI_VCT_MIPS_PUSH uint destSlabWidth; /* texels; the isotropic chain has one slab */ uint sourceSlabWidth; /* 0: one source slab */
-#define DYNGI_VCT_TRACE_PUSH DYNGI_VCT_CONE_PARAMS uint traceScale; uint specular; uint turnCones; /* 1: each traced pixel turns its cone set */
+#define DYNGI_VCT_TRACE_PUSH DYNGI_VCT_CONE_PARAMS uint traceScale; uint specular; uint turnCones; /* 1: each traced pixel turns its cone set */ \
+  uint traceFrames; /* 1, 2 or 4: the frames over which every traced pixel is traced once */ uint tracePhase; /* frame index mod traceFrames */
+#define DYNGI_VCT_REPROJECT_PUSH                                                     \
+  mat4 previousViewProj;                                                           \
+  uint traceScale;                                                                 \
+  uint traceFrames;                                                                \
+  uint tracePhase;                                                                 \
+  uint history;      /* 0: nothing from last frame counts (first frame, light switched) */ \
+  uint maxAge;       /* frames a reprojected value may go untraced before it is dropped */
 #define DYNGI_VCT_UPSAMPLE_PUSH uint traceScale;
 #define DYNGI_VCT_FILTER_PUSH uint traceScale; int radius; /* traced pixels */ int axisX; int axisY; /* (1, 0) or (0, 1) */
 #define DYNGI_VCT_DEBUG_PUSH DYNGI_VCT_CONE_PARAMS uint mode; float mip;
@@ -476,6 +494,7 @@ struct VctInjectPush { DYNGI_VCT_INJECT_PUSH };
 struct VctBouncePush { DYNGI_VCT_BOUNCE_PUSH };
 struct VctMipsPush { DYNGI_VCT_MIPS_PUSH };
 struct VctTracePush { DYNGI_VCT_TRACE_PUSH };
+struct VctReprojectPush { DYNGI_VCT_REPROJECT_PUSH };
 struct VctUpsamplePush { DYNGI_VCT_UPSAMPLE_PUSH };
 struct VctFilterPush { DYNGI_VCT_FILTER_PUSH };
 struct VctDebugPush { DYNGI_VCT_DEBUG_PUSH };
@@ -501,7 +520,7 @@ static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && siz
 static_assert(sizeof(VplTailPush) == 8 && sizeof(CompensatePush) == 20);
 static_assert(sizeof(VplBouncePush) == 40 && sizeof(ManyLightsDebugPush) == 12 && sizeof(IndirectFilterPush) == 4);
 static_assert(sizeof(VctInjectPush) == 40 && sizeof(VctBouncePush) == 52 && sizeof(VctMipsPush) == 8);
-static_assert(sizeof(VctTracePush) == 52 && sizeof(VctUpsamplePush) == 4 && sizeof(VctFilterPush) == 16 && sizeof(VctDebugPush) == 48 && sizeof(VctProbePush) == 48);
+static_assert(sizeof(VctTracePush) == 60 && sizeof(VctReprojectPush) == 84 && sizeof(VctUpsamplePush) == 4 && sizeof(VctFilterPush) == 16 && sizeof(VctDebugPush) == 48 && sizeof(VctProbePush) == 48);
 }  // namespace dyngi::gi::gpu
 #endif
 

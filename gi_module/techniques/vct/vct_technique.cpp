@@ -1,6 +1,9 @@
 // Voxel cone tracing in the GI system's contract (`--gi vct`): radiance injected into the voxel scene
 // every frame, filtered into a 3D mip chain, traced by cones from the screen.
+#include <algorithm>
 #include <cmath>
+#include <unordered_map>
+#include <vector>
 
 #include "dyngi/gi/gi_settings.h"
 #include "dyngi/gi/voxel_cone_tracing.h"
@@ -15,6 +18,8 @@ const OptionTable<VctOptions>& VctOptions::table() {
           .add({"bounces", "light bounces (each past the first: a cone pass over the occupied voxels)", 1, 3}, &VctOptions::bounces)
           .add({"trace-scale", "trace one pixel in NxN and upsample (1: every pixel; 0: at most 192^2 traced)", 0, 8},
                &VctOptions::traceScale)
+          .add({"trace-frames", "frames over which each traced pixel is traced once, the rest reprojected (1, 2 or 4)", 1, 4},
+               &VctOptions::traceFrames)
           .add({"diffuse-filter", "radius (traced pixels) of the filter over cone sets turned per pixel (0: fixed cones, no filter)", 0,
                 VctOptions::kMaxDiffuseFilterRadius},
                &VctOptions::diffuseFilterRadius)
@@ -37,8 +42,43 @@ namespace {
 
 class VctTechnique final : public Technique {
  public:
-  VctTechnique(const TechniqueServices& services, const VctOptions& options) : feature_(services.ctx, *services.voxels, options) {}
+  VctTechnique(const TechniqueServices& services, const VctOptions& options) : voxels_(*services.voxels), feature_(services.ctx, *services.voxels, options) {}
   std::vector<render::RenderFeature*> features() override { return {&feature_}; }
+  // The traced pixels kept from earlier frames (trace-frames > 1) lag a change by up to that many frames:
+  // fine for things that move a little each frame, not for light that appears, goes or jumps at once.
+  // Dropped when a light is switched on or off or its radiance changes by more than the voxels' temporal
+  // response, a material is written (an emission switched), or a light or a mesh jumps (more than
+  // kJumpFraction of the voxel volume's side, or a light turns more than kJumpRadians, in one frame).
+  void update(const TechniqueFrame& frame) override {
+    const VoxelVolume& volume = voxels_.volume();
+    const float jump = kJumpFraction * volume.voxelSize * float(volume.resolution);
+    bool drop = !frame.changes.materials.empty() || frame.snapshot.lights.size() != lights_.size();
+    std::vector<LightState> lights;
+    const float response = feature_.settings().temporalResponse;
+    for (size_t i = 0; i < frame.snapshot.lights.size(); ++i) {
+      const render::LightItem& l = frame.snapshot.lights[i];
+      lights.push_back({l.entity, l.light.enabled ? l.light.color * l.light.intensity : glm::vec3(0.0f), l.position, l.direction});
+      if (drop) continue;
+      const LightState &before = lights_[i], &now = lights.back();
+      drop = now.entity != before.entity ||
+             glm::length(now.radiance - before.radiance) > response * std::max(glm::length(before.radiance), glm::length(now.radiance)) ||
+             glm::distance(now.position, before.position) > jump ||
+             glm::dot(now.direction, before.direction) < std::cos(kJumpRadians);
+    }
+    std::unordered_map<scene::Entity, glm::vec3> places;
+    places.reserve(frame.snapshot.draws.size());
+    for (const render::DrawItem& d : frame.snapshot.draws) {
+      const glm::vec3 at(d.model[3]);
+      places.emplace(d.entity, at);
+      if (auto it = places_.find(d.entity); !drop && it != places_.end()) drop = glm::distance(at, it->second) > jump;
+    }
+    if (drop) {
+      feature_.dropTraceHistory();
+      ++historyDrops_;
+    }
+    lights_ = std::move(lights);
+    places_ = std::move(places);
+  }
   std::vector<OptionRef> options() override { return bindOptions(feature_.settings()); }
   bool setDebugView(std::string_view name) override {
     VctView& v = feature_.settings().view;
@@ -63,11 +103,23 @@ class VctTechnique final : public Technique {
     return {{"vct",
              {{"trace_width", s.traceWidth}, {"trace_height", s.traceHeight}, {"volume_mib", double(s.volumeBytes) / (1 << 20)},
               {"trace_scale", feature_.traceScale()},
-              {"trace_fraction", 1.0 / double(feature_.budgetScaleFactor() * feature_.budgetScaleFactor())}}}};
+              {"trace_fraction", 1.0 / double(feature_.budgetScaleFactor() * feature_.budgetScaleFactor())},
+              {"traced_this_frame", s.tracedFraction},
+              {"trace_history_drops", double(historyDrops_)}}}};
   }
 
  private:
+  static constexpr float kJumpFraction = 0.05f, kJumpRadians = 0.1f;
+  struct LightState {
+    scene::Entity entity;
+    glm::vec3 radiance;  // colour x intensity, 0 when disabled
+    glm::vec3 position, direction;
+  };
+  VoxelScene& voxels_;
   VoxelConeTracing feature_;
+  std::vector<LightState> lights_;                          // as last frame saw them
+  std::unordered_map<scene::Entity, glm::vec3> places_;     // each mesh's origin last frame
+  uint64_t historyDrops_ = 0;
 };
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "spirv/vct_filter.comp.spv.h"
 #include "spirv/vct_inject.comp.spv.h"
 #include "spirv/vct_mips.comp.spv.h"
+#include "spirv/vct_reproject.comp.spv.h"
 #include "spirv/vct_trace.comp.spv.h"
 #include "spirv/vct_upsample.comp.spv.h"
 
@@ -126,6 +127,16 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
                          {DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, kStorageImage, kCS},
                          {DYNGI_VCT_UPSAMPLE_BINDING_FRAME, kUBO, kCS}};
   upsample_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_upsample_comp), upB, sizeof(gpu::VctUpsamplePush), "vct_upsample");
+  const Binding reprojectB[] = {{DYNGI_VCT_REPROJECT_BINDING_FRAME, kUBO, kCS},
+                                {DYNGI_VCT_REPROJECT_BINDING_G_POSITION, kStorageImage, kCS},
+                                {DYNGI_VCT_REPROJECT_BINDING_G_NORMAL, kStorageImage, kCS},
+                                {DYNGI_VCT_REPROJECT_BINDING_PREVIOUS_DIFFUSE, kStorageImage, kCS},
+                                {DYNGI_VCT_REPROJECT_BINDING_PREVIOUS_SPECULAR, kStorageImage, kCS},
+                                {DYNGI_VCT_REPROJECT_BINDING_PREVIOUS_SURFACE, kStorageImage, kCS},
+                                {DYNGI_VCT_REPROJECT_BINDING_OUT_DIFFUSE, kStorageImage, kCS},
+                                {DYNGI_VCT_REPROJECT_BINDING_OUT_SPECULAR, kStorageImage, kCS},
+                                {DYNGI_VCT_REPROJECT_BINDING_OUT_SURFACE, kStorageImage, kCS}};
+  reproject_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_reproject_comp), reprojectB, sizeof(gpu::VctReprojectPush), "vct_reproject");
   const Binding filterB[] = {{DYNGI_VCT_FILTER_BINDING_FRAME, kUBO, kCS},
                              {DYNGI_VCT_FILTER_BINDING_G_POSITION, kStorageImage, kCS},
                              {DYNGI_VCT_FILTER_BINDING_G_NORMAL, kStorageImage, kCS},
@@ -191,17 +202,28 @@ void VoxelConeTracing::ensureTraceTargets(uint32_t width, uint32_t height) {
   height_ = height;
   const uint32_t s = traceScale();
   const uint32_t w = std::max((width + s - 1) / s, 1u), h = std::max((height + s - 1) / s, 1u);
-  if (lowDiffuse_.valid() && lowDiffuse_.desc().width == w && lowDiffuse_.desc().height == h) return;
+  if (tracedScale_ == s && filteredDiffuse_.valid() && filteredDiffuse_.desc().width == w && filteredDiffuse_.desc().height == h) return;
   vkDeviceWaitIdle(ctx_.device());
+  tracedScale_ = s;
+  traceHistory_ = false;
   render::ImageDesc d;
   d.width = w;
   d.height = h;
   d.format = kRadianceFormat;
   d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  d.name = "vct traced diffuse";
-  lowDiffuse_ = Image(ctx_, d);
-  d.name = "vct traced specular";
-  lowSpecular_ = Image(ctx_, d);
+  for (TracedPixels& t : traced_) {
+    d.format = kRadianceFormat;
+    d.name = "vct traced diffuse";
+    t.diffuse = Image(ctx_, d);
+    d.name = "vct traced specular";
+    t.specular = Image(ctx_, d);
+    d.format = VK_FORMAT_R32G32B32A32_UINT;
+    d.name = "vct traced surface";
+    t.surface = Image(ctx_, d);
+  }
+  d.format = kRadianceFormat;
+  d.name = "vct diffuse filtered along x";
+  filterAlongX_ = Image(ctx_, d);
   d.name = "vct filtered diffuse";
   filteredDiffuse_ = Image(ctx_, d);
 }
@@ -270,7 +292,8 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   ensureTraceTargets(frame.targets.width, frame.targets.height);
   // Back to GENERAL after a read-back (tests); the frames before finished at the renderer's fence, and
   // the passes below order themselves with global barriers.
-  for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_, &lowDiffuse_, &lowSpecular_, &filteredDiffuse_})
+  for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_, &traced_[0].diffuse, &traced_[0].specular, &traced_[0].surface,
+                     &traced_[1].diffuse, &traced_[1].specular, &traced_[1].surface, &filterAlongX_, &filteredDiffuse_})
     if (img->valid() && img->layout() != VK_IMAGE_LAYOUT_GENERAL) img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, kComputeAndTransfer, kReadWrite);
   frame.lights.shadowMaps->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   render::RenderTargets& t = frame.targets;
@@ -342,8 +365,18 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
     }
   }
   const uint32_t scale = traceScale();
-  stats_.traceWidth = lowDiffuse_.desc().width;
-  stats_.traceHeight = lowDiffuse_.desc().height;
+  options_.traceFrames = std::bit_floor(std::clamp(options_.traceFrames, 1u, 4u));
+  // Nothing to carry over (first frame, new trace targets, a light switched): every pixel is traced.
+  const uint32_t traceFrames = traceHistory_ ? options_.traceFrames : 1u;
+  stats_.tracedFraction = 1.0 / traceFrames;
+  const uint32_t tracePhase = uint32_t(traceFrame_ % traceFrames);
+  ++traceFrame_;
+  const uint32_t lastTraced = tracedCurrent_;
+  tracedCurrent_ ^= 1u;
+  const TracedPixels& traced = traced_[tracedCurrent_];
+  const TracedPixels& lastFrame = traced_[lastTraced];
+  stats_.traceWidth = traced.diffuse.desc().width;
+  stats_.traceHeight = traced.diffuse.desc().height;
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "trace");
     const Pipeline& p = trace_[(aniso ? 1 : 0) + (options_.specular ? 2 : 0)];
@@ -354,23 +387,61 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
         .storageImage(DYNGI_VCT_TRACE_BINDING_G_NORMAL, t.normal.view())
         .sampledImage(DYNGI_VCT_TRACE_BINDING_RADIANCE, radiance_.view(), sampler_)
         .sampledImage(DYNGI_VCT_TRACE_BINDING_ANISO, anisoView, sampler_)
-        .storageImage(DYNGI_VCT_TRACE_BINDING_OUT_DIFFUSE, lowDiffuse_.view())
-        .storageImage(DYNGI_VCT_TRACE_BINDING_OUT_SPECULAR, lowSpecular_.view())
+        .storageImage(DYNGI_VCT_TRACE_BINDING_OUT_DIFFUSE, traced.diffuse.view())
+        .storageImage(DYNGI_VCT_TRACE_BINDING_OUT_SPECULAR, traced.specular.view())
         .push(ctx_, cmd, p);
     gpu::VctTracePush pc{};
     fillConeParams(pc);
     pc.traceScale = scale;
     pc.specular = options_.specular ? 1u : 0u;
     pc.turnCones = options_.diffuseFilterRadius > 0 ? 1u : 0u;
+    pc.traceFrames = traceFrames;
+    pc.tracePhase = tracePhase;
     vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
-    vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth, 8), dispatchGroups(stats_.traceHeight, 8), 1);
+    // With traceFrames > 1: the 2 x 2 lattice's cells, once per offset traced this frame (vct_trace_phase.glsl).
+    const uint32_t step = traceFrames > 1 ? 2 : 1;
+    vkCmdDispatch(cmd, dispatchGroups((stats_.traceWidth + step - 1) / step, 8), dispatchGroups((stats_.traceHeight + step - 1) / step, 8),
+                  traceFrames > 1 ? 4 / traceFrames : 1);
     render::computeWriteBarrier(cmd);
+    // Then the pixels not traced this frame, from last frame's, and every pixel's surface record (for
+    // next frame's, also on a frame that traces every pixel).
+    if (options_.traceFrames > 1) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, reproject_.handle());
+      DescriptorWrites()
+          .uniformBuffer(DYNGI_VCT_REPROJECT_BINDING_FRAME, frame.frameUniforms.handle())
+          .storageImage(DYNGI_VCT_REPROJECT_BINDING_G_POSITION, t.position.view())
+          .storageImage(DYNGI_VCT_REPROJECT_BINDING_G_NORMAL, t.normal.view())
+          .storageImage(DYNGI_VCT_REPROJECT_BINDING_PREVIOUS_DIFFUSE, lastFrame.diffuse.view())
+          .storageImage(DYNGI_VCT_REPROJECT_BINDING_PREVIOUS_SPECULAR, lastFrame.specular.view())
+          .storageImage(DYNGI_VCT_REPROJECT_BINDING_PREVIOUS_SURFACE, lastFrame.surface.view())
+          .storageImage(DYNGI_VCT_REPROJECT_BINDING_OUT_DIFFUSE, traced.diffuse.view())
+          .storageImage(DYNGI_VCT_REPROJECT_BINDING_OUT_SPECULAR, traced.specular.view())
+          .storageImage(DYNGI_VCT_REPROJECT_BINDING_OUT_SURFACE, traced.surface.view())
+          .push(ctx_, cmd, reproject_);
+      gpu::VctReprojectPush rp{};
+      rp.previousViewProj = previousViewProj_;
+      rp.traceScale = scale;
+      rp.traceFrames = traceFrames;
+      rp.tracePhase = tracePhase;
+      rp.history = traceHistory_ ? 1u : 0u;
+      // Twice the frames a still pixel waits for its turn: under motion a value can be carried from pixel
+      // to pixel without ever coming up for tracing.
+      rp.maxAge = 2 * traceFrames;
+      vkCmdPushConstants(cmd, reproject_.layout(), kCS, 0, sizeof(rp), &rp);
+      vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth, 8), dispatchGroups(stats_.traceHeight, 8), 1);
+      render::computeWriteBarrier(cmd);
+    }
   }
+  // Next frame may carry this one's values over if the surface records were written (a switch from
+  // trace-frames 1 starts with a full trace).
+  traceHistory_ = options_.traceFrames > 1;
+  previousViewProj_ = frame.uniforms.viewProj;
+  const Image* diffuse = &traced.diffuse;
   if (options_.diffuseFilterRadius > 0) {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "filter");
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, filter_.handle());
-    // Along x into filteredDiffuse_, then along y back into lowDiffuse_, which the upsample reads.
-    const Image* passes[2][2] = {{&lowDiffuse_, &filteredDiffuse_}, {&filteredDiffuse_, &lowDiffuse_}};
+    // Along x into filterAlongX_, then along y into filteredDiffuse_, which the upsample reads.
+    const Image* passes[2][2] = {{&traced.diffuse, &filterAlongX_}, {&filterAlongX_, &filteredDiffuse_}};
     for (int axis = 0; axis < 2; ++axis) {
       DescriptorWrites()
           .uniformBuffer(DYNGI_VCT_FILTER_BINDING_FRAME, frame.frameUniforms.handle())
@@ -384,6 +455,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
       vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth, 8), dispatchGroups(stats_.traceHeight, 8), 1);
       render::computeWriteBarrier(cmd);
     }
+    diffuse = &filteredDiffuse_;
   }
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "upsample");
@@ -392,8 +464,8 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
         .uniformBuffer(DYNGI_VCT_UPSAMPLE_BINDING_FRAME, frame.frameUniforms.handle())
         .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION, t.position.view())
         .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL, t.normal.view())
-        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE, lowDiffuse_.view())
-        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR, lowSpecular_.view())
+        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE, diffuse->view())
+        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR, traced.specular.view())
         .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, t.indirect.view())
         .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, t.specular.view())
         .push(ctx_, cmd, upsample_);

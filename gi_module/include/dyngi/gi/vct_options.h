@@ -21,6 +21,12 @@ struct VctOptions {
   // pixels (2 at 256^2, 4 at 512^2 and 768^2): the trace is most of the cost, and diffuse light is smooth.
   // A GI budget raises it further.
   uint32_t traceScale = 0;
+  // The frames over which every traced pixel gets new cones: 1, 2 or 4 (other values round down to one
+  // of these). Each frame traces 1 / traceFrames of them (a 2 x 2 lattice taking turns) and the rest
+  // keep last frame's value at their surface point, reprojected; disoccluded ones are filled by the filter
+  // and the upsample from the neighbours traced this frame. A still view converges to the every-frame
+  // image in traceFrames frames; a light switched on or off or an emission change drops the old values.
+  uint32_t traceFrames = 4;
   // Radius, in traced pixels, of the geometry-aware filter over the traced diffuse light. From 1 up each
   // traced pixel turns its cone set about the normal by its own angle (a golden-ratio dither) and the
   // filter averages the neighbours' sets, so a few cones see the hemisphere through many directions

@@ -4,8 +4,10 @@
 // (radiance injection, shadowed through the renderer's shadow maps), a 3D mip chain filters it
 // (isotropic, or per direction), optional extra bounces cone-trace over the occupied voxels, and the
 // screen traces diffuse cones (indirect light and ambient occlusion) and a specular cone per pixel,
-// upsampled with a depth- and normal-aware filter. Writes targets.indirect and targets.specular.
-// Stages: inject, mips, bounce, trace, upsample (plus the voxel scene's voxelize and svo_build).
+// upsampled with a depth- and normal-aware filter. The trace may be spread over 2 or 4 frames, the pixels
+// not traced in a frame reprojected from the last. Writes targets.indirect and targets.specular.
+// Stages: inject, mips, bounce, trace (with reproject), filter, upsample (plus the voxel scene's
+// voxelize and svo_build).
 #include <algorithm>
 #include <vector>
 
@@ -20,6 +22,7 @@ struct VctFrameStats {
   bool injected = false;    // radiance injected this frame (every frame while the technique runs)
   bool cleared = false;     // the volume's level 0 was cleared first (the voxels changed)
   uint32_t traceWidth = 0, traceHeight = 0;  // the resolution cones were traced at
+  double tracedFraction = 1.0;  // of those, the share traced this frame (the rest reprojected)
   uint64_t volumeBytes = 0;  // radiance volumes, all levels
 };
 
@@ -29,7 +32,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   ~VoxelConeTracing() override;
 
   const char* name() const override { return "vct"; }
-  static std::vector<const char*> timedSections() { return {"inject", "mips", "bounce", "trace", "upsample"}; }
+  static std::vector<const char*> timedSections() { return {"inject", "mips", "bounce", "trace", "filter", "upsample"}; }
   bool record(render::FrameContext& frame) override;
   void recordAfterLighting(render::FrameContext& frame) override;
 
@@ -38,6 +41,9 @@ class VoxelConeTracing final : public render::RenderFeature {
   // The trace resolution divisor in use: the options' (or the automatic one for the render size) times a
   // GI budget's factor, at most kMaxTraceScale.
   uint32_t traceScale() const;
+  // Drops the traced pixels' values kept from earlier frames (traceFrames > 1): the next frame uses only
+  // what it traces. For changes that make them wrong at once: a light switched, an emission changed.
+  void dropTraceHistory() { traceHistory_ = false; }
   void setBudgetScaleFactor(uint32_t factor) { budgetFactor_ = std::max(factor, 1u); }
   uint32_t budgetScaleFactor() const { return budgetFactor_; }
   static constexpr uint32_t kMaxTraceScale = 8;
@@ -76,10 +82,21 @@ class VoxelConeTracing final : public render::RenderFeature {
   render::Image aniso_;        // 6 (res/2) x res/2 x res/2, mips (anisotropic only)
   render::Image direct_[2];    // res^3: the injected radiance this frame and last (temporal blending)
   render::Image bounced_;      // res^3: a bounce's output before it is committed to radiance_ level 0
-  render::Image lowDiffuse_, lowSpecular_;  // the traced pixels
-  render::Image filteredDiffuse_;           // lowDiffuse_ filtered along x (vct_filter.comp's first pass)
+  // The traced pixels, this frame's and last (alternating): diffuse (AO in alpha), specular (alpha: frames
+  // since traced; both alphas -1: missing), the surface each saw (vct_reproject.comp's record).
+  struct TracedPixels {
+    render::Image diffuse, specular, surface;
+  };
+  TracedPixels traced_[2];
+  render::Image filterAlongX_;     // the diffuse filter's first pass (along x)
+  render::Image filteredDiffuse_;  // its second: what the upsample reads
+  uint32_t tracedScale_ = 0;       // the trace scale traced_ was made for
+  uint32_t tracedCurrent_ = 0;     // traced_[tracedCurrent_] is this frame's
+  uint64_t traceFrame_ = 0;        // frames traced: the phase of the trace spread over frames
+  bool traceHistory_ = false;      // traced_[last] holds last frame's pixels, valid to reproject
+  glm::mat4 previousViewProj_{1.0f};
   VkSampler sampler_ = VK_NULL_HANDLE;
-  render::Pipeline inject_, mips_[3], bounce_[2], commit_, trace_[4], filter_, upsample_, debug_[2], probe_[2];
+  render::Pipeline inject_, mips_[3], bounce_[2], commit_, trace_[4], reproject_, filter_, upsample_, debug_[2], probe_[2];
   VctFrameStats stats_;
 };
 

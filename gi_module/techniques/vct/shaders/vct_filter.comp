@@ -4,7 +4,9 @@
 // in its distance and by how well its surface matches this one's (vct_surface_match.glsl, the upsample's
 // test), so light stays on its own surface. The traced pixels turned their cone sets by different angles
 // (vct_trace.comp): the average is the hemisphere seen through all of their cones, where one pixel's few
-// cones would miss the same directions over a face.
+// cones would miss the same directions over a face. A value vct_reproject.comp marked missing (alpha < 0)
+// counts for nothing; where a whole window is missing the output is missing too, and the pass along the
+// other axis fills it.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 #include "shared/gi_gpu_types.h"
@@ -42,9 +44,10 @@ void main() {
     if (qp.w == 0.0) continue;
     vec3 qn = normalize(imageLoad(gNormal, at).xyz);
     float tent = 1.0 - float(abs(i)) / float(radius + 1);
-    float w = tent * vctSurfaceMatch(pos.xyz, n, qp.xyz, qn, scale);
-    sum += w * imageLoad(traced, o);
+    vec4 value = imageLoad(traced, o);
+    float w = value.a < 0.0 ? 0.0 : tent * vctSurfaceMatch(pos.xyz, n, qp.xyz, qn, scale);
+    sum += w * value;
     total += w;
   }
-  imageStore(filtered, q, total > 1e-4 ? sum / total : centre);
+  imageStore(filtered, q, total > 1e-4 ? sum / total : (centre.a < 0.0 ? vec4(0.0, 0.0, 0.0, -1.0) : centre));
 }

@@ -2,7 +2,8 @@
 // The screen's cones: for one pixel in traceScale x traceScale (the one at the block's centre), the
 // indirect diffuse light (E / pi, from `cones` diffuse cones) with ambient occlusion in alpha, and the
 // specular cone along the reflected view ray, its aperture from the G-buffer roughness (alpha = r^2).
-// vct_upsample.comp takes both to full resolution.
+// vct_upsample.comp takes both to full resolution. With traceFrames > 1 this frame's share of the traced
+// pixels only (vct_trace_phase.glsl); vct_reproject.comp fills in the others.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 #include "shared/gi_gpu_types.h"
@@ -18,19 +19,20 @@ layout(set = 0, binding = DYNGI_VCT_TRACE_BINDING_OUT_DIFFUSE, rgba16f) uniform 
 layout(set = 0, binding = DYNGI_VCT_TRACE_BINDING_OUT_SPECULAR, rgba16f) uniform writeonly image2D outSpecular;
 layout(push_constant) uniform Push { DYNGI_VCT_TRACE_PUSH };
 #include "vct_cone.glsl"
+#include "vct_trace_phase.glsl"
 
 // The narrowest specular cone: below a few degrees a cone only samples level 0 for many steps.
 const float kMinSpecularTan = 0.03;
 
 void main() {
-  ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 q = vctTracedPixel(gl_GlobalInvocationID);
   if (any(greaterThanEqual(q, imageSize(outDiffuse)))) return;
   ivec2 full = ivec2(frame.sizeAndCount.xy);
   ivec2 px = min(q * int(traceScale) + int(traceScale / 2u), full - 1);
   vec4 pos = imageLoad(gPosition, px);
   if (pos.w == 0.0) {  // background: nothing to light (alpha 0 tells the upsample to skip it)
     imageStore(outDiffuse, q, vec4(0.0, 0.0, 0.0, 1.0));
-    imageStore(outSpecular, q, vec4(0.0));
+    imageStore(outSpecular, q, vec4(0.0));  // alpha: frames since traced (vct_reproject.comp)
     return;
   }
   vec4 nr = imageLoad(gNormal, px);
@@ -58,5 +60,5 @@ void main() {
     float occ;
     specular = vctCone(p + n * coneOffset, r, tanHalf, max(dot(r, n), 0.0), maxDistance, occ).rgb;
   }
-  imageStore(outSpecular, q, vec4(specular, 1.0));
+  imageStore(outSpecular, q, vec4(specular, 0.0));
 }

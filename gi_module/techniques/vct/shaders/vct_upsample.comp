@@ -2,7 +2,9 @@
 // The traced pixels (one per traceScale x traceScale block) to every pixel: the 4 nearest traced pixels,
 // bilinear weights times how well each one's surface matches this pixel's (distance from this pixel's
 // tangent plane, normal agreement), so light does not bleed across depth edges or corners. A pixel no
-// traced neighbour matches takes its best-matching one. Writes the lighting pass's inputs:
+// traced neighbour matches takes its best-matching one. Values vct_reproject.comp marked missing (alpha < 0)
+// are left out: with the trace spread over frames every 2 x 2 window still holds one traced this frame.
+// Writes the lighting pass's inputs:
 // targets.indirect (E / pi, AO in alpha) and targets.specular.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
@@ -38,7 +40,7 @@ void main() {
   // A plane distance of 1 percent of the view distance halves the weight.
   float scale = 0.01 * max(length(pos.xyz - frame.cameraPos.xyz), 1e-4);
   vec4 diffuse = vec4(0.0), specular = vec4(0.0);
-  float total = 0.0, best = -1.0;
+  float total = 0.0, best = -1.0, specularTotal = 0.0, bestSpecularMatch = -1.0;
   vec4 bestDiffuse = vec4(0.0, 0.0, 0.0, 1.0), bestSpecular = vec4(0.0);
   for (int i = 0; i < 4; ++i) {
     ivec2 o = ivec2(i & 1, i >> 1);
@@ -49,19 +51,16 @@ void main() {
     float match = qp.w == 0.0 ? 0.0 : vctSurfaceMatch(pos.xyz, n, qp.xyz, qn, scale);
     float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
     vec4 d = imageLoad(lowDiffuse, q), sp = imageLoad(lowSpecular, q);
-    float w = bilinear * match;
+    float w = d.a < 0.0 ? 0.0 : bilinear * match, ws = sp.a < 0.0 ? 0.0 : bilinear * match;
     diffuse += w * d;
-    specular += w * sp;
+    specular += ws * sp;
     total += w;
-    if (match > best) best = match, bestDiffuse = d, bestSpecular = sp;
+    specularTotal += ws;
+    if (d.a >= 0.0 && match > best) best = match, bestDiffuse = d;
+    if (sp.a >= 0.0 && match > bestSpecularMatch) bestSpecularMatch = match, bestSpecular = sp;
   }
-  if (total > 1e-4) {
-    diffuse /= total;
-    specular /= total;
-  } else {
-    diffuse = bestDiffuse;
-    specular = bestSpecular;
-  }
+  diffuse = total > 1e-4 ? diffuse / total : bestDiffuse;
+  specular = specularTotal > 1e-4 ? specular / specularTotal : bestSpecular;
   imageStore(outDiffuse, px, diffuse);
-  imageStore(outSpecular, px, specular);
+  imageStore(outSpecular, px, vec4(specular.rgb, 1.0));
 }

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Interleaved comparison of dyngi_sample option sets (one binary): each round runs every set once, in
+# turn, so this machine's drift (10-30% over minutes) hits them alike; prints each set's per-round frame
+# medians and their median. Headless, the main job's scene unless a set names another.
+#   scripts/ab_options.sh ROUNDS SIZE "LABEL|ARGS" ["LABEL|ARGS" ...]
+# e.g. the trace spread over frames against the temporal VPL technique at 768^2:
+#   scripts/ab_options.sh 3 768 "off|--gi off" "vct 1|--gi vct --trace-frames 1" "vct 4|--gi vct" "svo|--gi svo"
+# env: BIN (build/bin/dyngi_sample), FRAMES (24), WARMUP (6)
+set -euo pipefail
+if [ $# -lt 3 ]; then
+  echo "usage: scripts/ab_options.sh ROUNDS SIZE \"LABEL|ARGS\" ..." >&2
+  exit 2
+fi
+cd "$(dirname "$0")/.."
+rounds=$1 size=$2
+shift 2
+bin=${BIN:-build/bin/dyngi_sample} frames=${FRAMES:-24} warmup=${WARMUP:-6}
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+for r in $(seq 1 "$rounds"); do
+  i=0
+  for set in "$@"; do
+    # shellcheck disable=SC2086
+    "$bin" --headless --size "${size}x${size}" --frames "$frames" --warmup "$warmup" ${set#*|} --stats "$out/${i}_$r.json" >/dev/null 2>&1
+    i=$((i + 1))
+  done
+done
+python3 - "$out" "$rounds" "$@" <<'PY'
+import json, statistics, sys
+out, rounds, sets = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
+for i, s in enumerate(sets):
+    frames = [json.load(open(f"{out}/{i}_{r}.json"))["frame_ms"]["median"] for r in range(1, rounds + 1)]
+    print(f"| {s.split('|')[0]} | `{s.split('|', 1)[1]}` | {', '.join(f'{f:.1f}' for f in frames)} | {statistics.median(frames):.1f} |")
+PY
