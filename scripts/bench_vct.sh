@@ -6,8 +6,8 @@
 #     that also re-voxelizes (it then reads about 0.1 ms while the frame grows by its real cost); the
 #     voxelize and svo_build columns come from the main job's scene (cornell-dynamic: objects move, so
 #     every frame re-voxelizes them and rebuilds the SVO).
-#  2. frame table: the main job's scene (cornell-dynamic) with --gi vct (trace scale 2, the default's 0, fixed
-#     unfiltered cones, and the isotropic opaque-axis chain), the temporal
+#  2. frame table: the main job's scene (cornell-dynamic) with --gi vct (trace scale 2, the default's 0, every
+#     pixel traced every frame, fixed unfiltered cones, and the isotropic opaque-axis chain), the temporal
 #     VPL technique (--gi svo, T = 16) and --gi off, in interleaved order, at 512^2 and 768^2.
 #  3. image error against the path tracer (still Cornell box, 512^2, 256 spp, 1 bounce).
 # Not in CI (timing: about 10 minutes here).     env: FRAMES (24), SIZES ("512 768"), RESOLUTIONS ("64 128 256")
@@ -41,11 +41,11 @@ for size in $SIZES; do
 done
 
 echo
-echo "| size | --gi off | --gi vct --trace-scale 2 | --gi vct (trace scale 0: 192^2 traced) | --gi vct --diffuse-filter 0 | --gi vct --anisotropic 0 | --gi svo (temporal, T = 16) |"
-echo "| --- | --- | --- | --- | --- | --- | --- |"
+echo "| size | --gi off | --gi vct --trace-scale 2 | --gi vct (trace scale 0: 192^2 traced, over 4 frames) | --gi vct --trace-frames 1 | --gi vct --diffuse-filter 0 | --gi vct --anisotropic 0 | --gi svo (temporal, T = 16) |"
+echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
 for size in $SIZES; do
   row="| ${size}^2"
-  for args in "--gi off" "--gi vct --trace-scale 2" "--gi vct" "--gi vct --diffuse-filter 0" "--gi vct --anisotropic 0" "--gi svo --temporal 16"; do
+  for args in "--gi off" "--gi vct --trace-scale 2" "--gi vct" "--gi vct --trace-frames 1" "--gi vct --diffuse-filter 0" "--gi vct --anisotropic 0" "--gi svo --temporal 16"; do
     f="$out/frame_${size}_$(echo "$args" | tr -d ' -').json"
     # shellcheck disable=SC2086
     sample $args --size "${size}x${size}" --stats "$f"
