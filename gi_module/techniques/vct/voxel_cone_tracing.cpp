@@ -109,7 +109,7 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
   // for the trace, with the specular cone or without.
   for (uint32_t aniso : {0u, 1u}) {
     const uint32_t spec[] = {aniso};
-    const uint32_t mipsSpec[] = {aniso, 0u};
+    const uint32_t mipsSpec[] = {aniso, 0u, 0u};
     mips_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", mipsSpec);
     bounce_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_bounce_comp), bounceB, sizeof(gpu::VctBouncePush), "vct_bounce", spec);
     debug_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_debug_comp), debugB, sizeof(gpu::VctDebugPush), "vct_debug", spec);
@@ -120,8 +120,9 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
           Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_trace_comp), traceB, sizeof(gpu::VctTracePush), "vct_trace", traceSpec);
     }
   }
-  const uint32_t opaqueAxisSpec[] = {0u, 1u};
+  const uint32_t opaqueAxisSpec[] = {0u, 1u, 0u}, atlasLevel0Spec[] = {1u, 0u, 1u};
   mips_[2] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", opaqueAxisSpec);
+  mips_[3] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", atlasLevel0Spec);
   const Binding upB[] = {{DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL, kStorageImage, kCS},
                          {DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR, kStorageImage, kCS},
                          {DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, kStorageImage, kCS},
@@ -260,26 +261,27 @@ static_assert(DYNGI_VCT_INJECT_BINDING_NODES == DYNGI_VCT_BOUNCE_BINDING_NODES &
 
 void VoxelConeTracing::recordMips(VkCommandBuffer cmd) {
   const bool aniso = options_.anisotropic;
-  const Pipeline& p = mips_[aniso ? 1 : (options_.opaqueAxisMips ? 2 : 0)];
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
-  auto level = [&](VkImageView source, VkImageView dest, uint32_t w, uint32_t h, uint32_t d, gpu::VctMipsPush pc) {
+  auto level = [&](const Pipeline& p, VkImageView source, VkImageView dest, uint32_t w, uint32_t h, uint32_t d, gpu::VctMipsPush pc) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
     DescriptorWrites().storageImage(DYNGI_VCT_MIPS_BINDING_SOURCE, source).storageImage(DYNGI_VCT_MIPS_BINDING_DEST, dest).push(ctx_, cmd, p);
     vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
     vkCmdDispatch(cmd, dispatchGroups(w, 4), dispatchGroups(h, 4), dispatchGroups(d, 4));
     render::computeWriteBarrier(cmd);
   };
   if (!aniso) {
+    const Pipeline& p = mips_[options_.opaqueAxisMips ? 2 : 0];
     for (uint32_t m = 1; m < radiance_.desc().mips; ++m) {
       const uint32_t s = std::max(res_ >> m, 1u);
-      level(radiance_.mipView(m - 1), radiance_.mipView(m), s, s, s, {s, 0});
+      level(p, radiance_.mipView(m - 1), radiance_.mipView(m), s, s, s, {s, 0});
     }
     return;
   }
-  // The atlas: its level 0 from the isotropic level 0 (one source slab), then each level from the one below.
+  // The atlas: its level 0 from the isotropic level 0 (one source slab; one invocation writes a texel of
+  // all six slabs), then each level from the one below (one invocation a texel of one slab).
   for (uint32_t m = 0; m < aniso_.desc().mips; ++m) {
     const uint32_t slab = std::max((res_ / 2) >> m, 1u);
     const VkImageView source = m == 0 ? radiance_.mipView(0) : aniso_.mipView(m - 1);
-    level(source, aniso_.mipView(m), DYNGI_VCT_SLABS * slab, slab, slab, {slab, m == 0 ? 0u : 2 * slab});
+    level(mips_[m == 0 ? 3 : 1], source, aniso_.mipView(m), m == 0 ? slab : DYNGI_VCT_SLABS * slab, slab, slab, {slab, m == 0 ? 0u : 2 * slab});
   }
 }
 

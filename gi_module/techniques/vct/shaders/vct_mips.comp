@@ -13,6 +13,9 @@ layout(constant_id = 0) const bool kAnisotropic = false;
 // back along it, averaged over the 4 columns), its radiance that axis' mean composite: a wall one voxel
 // thick stays opaque at every level, as in the anisotropic atlas, for one fetch per sample.
 layout(constant_id = 1) const bool kOpaqueAxis = false;
+// Anisotropic only: the source is the isotropic level 0 (one slab), shared by the six destination slabs:
+// one invocation reads its 8 children once and writes the texel in all six.
+layout(constant_id = 2) const bool kSharedSource = false;
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_SOURCE, rgba16f) uniform readonly image3D source;
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_DEST, rgba16f) uniform writeonly image3D dest;
 layout(push_constant) uniform Push { DYNGI_VCT_MIPS_PUSH };
@@ -53,6 +56,22 @@ void main() {
       if (sum.a > best.a) best = sum;
     }
     imageStore(dest, p, best);
+    return;
+  }
+  if (kSharedSource) {
+    if (p.x >= int(destSlabWidth)) return;
+    ivec3 b = 2 * p;
+    vec4 c0 = imageLoad(source, b), c1 = imageLoad(source, b + ivec3(1, 0, 0)), c2 = imageLoad(source, b + ivec3(0, 1, 0)),
+         c3 = imageLoad(source, b + ivec3(1, 1, 0)), c4 = imageLoad(source, b + ivec3(0, 0, 1)), c5 = imageLoad(source, b + ivec3(1, 0, 1)),
+         c6 = imageLoad(source, b + ivec3(0, 1, 1)), c7 = imageLoad(source, b + ivec3(1, 1, 1));
+    int w = int(destSlabWidth);
+    // Child i sits at (i & 1, i >> 1 & 1, i >> 2): the pairs along x are (0,1) (2,3) (4,5) (6,7), ...
+    imageStore(dest, p, 0.25 * (over(c0, c1) + over(c2, c3) + over(c4, c5) + over(c6, c7)));
+    imageStore(dest, p + ivec3(w, 0, 0), 0.25 * (over(c1, c0) + over(c3, c2) + over(c5, c4) + over(c7, c6)));
+    imageStore(dest, p + ivec3(2 * w, 0, 0), 0.25 * (over(c0, c2) + over(c1, c3) + over(c4, c6) + over(c5, c7)));
+    imageStore(dest, p + ivec3(3 * w, 0, 0), 0.25 * (over(c2, c0) + over(c3, c1) + over(c6, c4) + over(c7, c5)));
+    imageStore(dest, p + ivec3(4 * w, 0, 0), 0.25 * (over(c0, c4) + over(c1, c5) + over(c2, c6) + over(c3, c7)));
+    imageStore(dest, p + ivec3(5 * w, 0, 0), 0.25 * (over(c4, c0) + over(c5, c1) + over(c6, c2) + over(c7, c3)));
     return;
   }
   uint slab = uint(p.x) / destSlabWidth;
