@@ -126,7 +126,7 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
   const Binding upB[] = {{DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL, kStorageImage, kCS},
                          {DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR, kStorageImage, kCS},
                          {DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, kStorageImage, kCS},
-                         {DYNGI_VCT_UPSAMPLE_BINDING_FRAME, kUBO, kCS}};
+                         {DYNGI_VCT_UPSAMPLE_BINDING_FRAME, kUBO, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_LOW_SURFACE, kStorageImage, kCS}};
   upsample_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_upsample_comp), upB, sizeof(gpu::VctUpsamplePush), "vct_upsample");
   const Binding reprojectB[] = {{DYNGI_VCT_REPROJECT_BINDING_FRAME, kUBO, kCS},
                                 {DYNGI_VCT_REPROJECT_BINDING_G_POSITION, kStorageImage, kCS},
@@ -139,8 +139,7 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
                                 {DYNGI_VCT_REPROJECT_BINDING_OUT_SURFACE, kStorageImage, kCS}};
   reproject_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_reproject_comp), reprojectB, sizeof(gpu::VctReprojectPush), "vct_reproject");
   const Binding filterB[] = {{DYNGI_VCT_FILTER_BINDING_FRAME, kUBO, kCS},
-                             {DYNGI_VCT_FILTER_BINDING_G_POSITION, kStorageImage, kCS},
-                             {DYNGI_VCT_FILTER_BINDING_G_NORMAL, kStorageImage, kCS},
+                             {DYNGI_VCT_FILTER_BINDING_SURFACE, kStorageImage, kCS},
                              {DYNGI_VCT_FILTER_BINDING_IN, kStorageImage, kCS},
                              {DYNGI_VCT_FILTER_BINDING_OUT, kStorageImage, kCS}};
   filter_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_filter_comp), filterB, sizeof(gpu::VctFilterPush), "vct_filter");
@@ -405,9 +404,9 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
     vkCmdDispatch(cmd, dispatchGroups((stats_.traceWidth + step - 1) / step, 8), dispatchGroups((stats_.traceHeight + step - 1) / step, 8),
                   traceFrames > 1 ? 4 / traceFrames : 1);
     render::computeWriteBarrier(cmd);
-    // Then the pixels not traced this frame, from last frame's, and every pixel's surface record (for
-    // next frame's, also on a frame that traces every pixel).
-    if (options_.traceFrames > 1) {
+    // Then the pixels not traced this frame, from last frame's, and every traced pixel's surface record
+    // (for the filter, the upsample and next frame; the only work when every pixel is traced).
+    {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, reproject_.handle());
       DescriptorWrites()
           .uniformBuffer(DYNGI_VCT_REPROJECT_BINDING_FRAME, frame.frameUniforms.handle())
@@ -434,9 +433,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
       render::computeWriteBarrier(cmd);
     }
   }
-  // Next frame may carry this one's values over if the surface records were written (a switch from
-  // trace-frames 1 starts with a full trace).
-  traceHistory_ = options_.traceFrames > 1;
+  traceHistory_ = true;
   previousViewProj_ = frame.uniforms.viewProj;
   const Image* diffuse = &traced.diffuse;
   if (options_.diffuseFilterRadius > 0) {
@@ -447,8 +444,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
     for (int axis = 0; axis < 2; ++axis) {
       DescriptorWrites()
           .uniformBuffer(DYNGI_VCT_FILTER_BINDING_FRAME, frame.frameUniforms.handle())
-          .storageImage(DYNGI_VCT_FILTER_BINDING_G_POSITION, t.position.view())
-          .storageImage(DYNGI_VCT_FILTER_BINDING_G_NORMAL, t.normal.view())
+          .storageImage(DYNGI_VCT_FILTER_BINDING_SURFACE, traced.surface.view())
           .storageImage(DYNGI_VCT_FILTER_BINDING_IN, passes[axis][0]->view())
           .storageImage(DYNGI_VCT_FILTER_BINDING_OUT, passes[axis][1]->view())
           .push(ctx_, cmd, filter_);
@@ -468,6 +464,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
         .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL, t.normal.view())
         .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE, diffuse->view())
         .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR, traced.specular.view())
+        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_SURFACE, traced.surface.view())
         .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, t.indirect.view())
         .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, t.specular.view())
         .push(ctx_, cmd, upsample_);

@@ -12,40 +12,35 @@
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_G_POSITION, rgba32f) uniform readonly image2D gPosition;
-layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_G_NORMAL, rgba16f) uniform readonly image2D gNormal;
+layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_SURFACE, rgba32ui) uniform readonly uimage2D surfaces;  // vct_surface.glsl
 layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_IN, rgba16f) uniform readonly image2D traced;
 layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_OUT, rgba16f) uniform writeonly image2D filtered;
 layout(push_constant) uniform Push { DYNGI_VCT_FILTER_PUSH };
+#include "vct_surface.glsl"
 #include "vct_surface_match.glsl"
 
 void main() {
   ivec2 q = ivec2(gl_GlobalInvocationID.xy);
   ivec2 low = imageSize(traced);
   if (any(greaterThanEqual(q, low))) return;
-  ivec2 full = ivec2(frame.sizeAndCount.xy);
-  int s = int(traceScale), h = s / 2;
   vec4 centre = imageLoad(traced, q);
-  vec4 pos = imageLoad(gPosition, min(q * s + h, full - 1));
-  if (pos.w == 0.0) {
+  vec3 p, n;
+  if (!vctUnpackSurface(imageLoad(surfaces, q), p, n)) {
     imageStore(filtered, q, centre);
     return;
   }
-  vec3 n = normalize(imageLoad(gNormal, min(q * s + h, full - 1)).xyz);
   // The window spans radius x traceScale pixels: the plane test scales with the pixels between taps.
-  float scale = 0.01 * float(s) * max(length(pos.xyz - frame.cameraPos.xyz), 1e-4);
+  float scale = 0.01 * float(traceScale) * max(length(p - frame.cameraPos.xyz), 1e-4);
   vec4 sum = vec4(0.0);
   float total = 0.0;
   for (int i = -radius; i <= radius; ++i) {
     ivec2 o = q + i * ivec2(axisX, axisY);
     if (any(lessThan(o, ivec2(0))) || any(greaterThanEqual(o, low))) continue;
-    ivec2 at = min(o * s + h, full - 1);
-    vec4 qp = imageLoad(gPosition, at);
-    if (qp.w == 0.0) continue;
-    vec3 qn = normalize(imageLoad(gNormal, at).xyz);
+    vec3 qp, qn;
+    if (!vctUnpackSurface(imageLoad(surfaces, o), qp, qn)) continue;
     float tent = 1.0 - float(abs(i)) / float(radius + 1);
     vec4 value = imageLoad(traced, o);
-    float w = value.a < 0.0 ? 0.0 : tent * vctSurfaceMatch(pos.xyz, n, qp.xyz, qn, scale);
+    float w = value.a < 0.0 ? 0.0 : tent * vctSurfaceMatch(p, n, qp, qn, scale);
     sum += w * value;
     total += w;
   }

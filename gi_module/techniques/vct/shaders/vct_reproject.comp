@@ -14,7 +14,7 @@
 // A value that cannot be carried over (disoccluded, off screen last frame, not traced for maxAge frames,
 // no history) is marked missing (alpha -1): the filter and the upsample leave it out and take the light
 // from the neighbours traced this frame, of which every 2 x 2 window holds one.
-// Every pixel also records its surface (point, normal) for next frame's test.
+// Every pixel also records its surface (vct_surface.glsl) for the filter, the upsample and next frame.
 // Runs after vct_trace.comp and writes only the pixels it did not trace.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
@@ -32,9 +32,7 @@ layout(set = 0, binding = DYNGI_VCT_REPROJECT_BINDING_OUT_SURFACE, rgba32ui) uni
 layout(push_constant) uniform Push { DYNGI_VCT_REPROJECT_PUSH };
 #include "vct_surface_match.glsl"
 #include "vct_trace_phase.glsl"
-
-// A surface record: the point's bits, and the normal in signed bytes with 127 in w (0 there: no surface).
-uvec4 packSurface(vec3 p, vec3 n) { return uvec4(floatBitsToUint(p), packSnorm4x8(vec4(n, 1.0))); }
+#include "vct_surface.glsl"
 
 // Last frame's traced pixel that saw surface point p (normal n), if any: `from` its coordinates.
 bool lastFrameAt(vec3 p, vec3 n, float planeScale, ivec2 full, ivec2 low, out ivec2 from) {
@@ -45,9 +43,8 @@ bool lastFrameAt(vec3 p, vec3 n, float planeScale, ivec2 full, ivec2 low, out iv
   vec2 pixel = (clip.xy / clip.w * 0.5 + 0.5) * vec2(full) - 0.5;  // last frame's full-resolution pixel
   from = ivec2(floor((pixel - float(h)) / float(s) + 0.5));
   if (any(lessThan(from, ivec2(0))) || any(greaterThanEqual(from, low))) return false;
-  uvec4 surface = imageLoad(previousSurface, from);
-  if (surface.w == 0u) return false;
-  return vctSurfaceMatch(p, n, uintBitsToFloat(surface.xyz), unpackSnorm4x8(surface.w).xyz, planeScale) > 0.5;
+  vec3 qp, qn;
+  return vctUnpackSurface(imageLoad(previousSurface, from), qp, qn) && vctSurfaceMatch(p, n, qp, qn, planeScale) > 0.5;
 }
 
 void main() {
@@ -67,7 +64,7 @@ void main() {
     return;
   }
   vec3 n = normalize(imageLoad(gNormal, min(q * s + h, full - 1)).xyz);
-  imageStore(outSurface, q, packSurface(pos.xyz, n));
+  imageStore(outSurface, q, vctPackSurface(pos.xyz, n));
   if (traced) return;
   // Within about one traced pixel's footprint of this pixel's plane: the same surface.
   float scale = 0.01 * float(s) * max(length(pos.xyz - frame.cameraPos.xyz), 1e-4);

@@ -15,9 +15,11 @@ layout(set = 0, binding = DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION, rgba32f) unifor
 layout(set = 0, binding = DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL, rgba16f) uniform readonly image2D gNormal;
 layout(set = 0, binding = DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE, rgba16f) uniform readonly image2D lowDiffuse;
 layout(set = 0, binding = DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR, rgba16f) uniform readonly image2D lowSpecular;
+layout(set = 0, binding = DYNGI_VCT_UPSAMPLE_BINDING_LOW_SURFACE, rgba32ui) uniform readonly uimage2D lowSurface;  // vct_surface.glsl
 layout(set = 0, binding = DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, rgba32f) uniform writeonly image2D outDiffuse;
 layout(set = 0, binding = DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, rgba16f) uniform writeonly image2D outSpecular;
 layout(push_constant) uniform Push { DYNGI_VCT_UPSAMPLE_PUSH };
+#include "vct_surface.glsl"
 #include "vct_surface_match.glsl"
 
 void main() {
@@ -45,10 +47,8 @@ void main() {
   for (int i = 0; i < 4; ++i) {
     ivec2 o = ivec2(i & 1, i >> 1);
     ivec2 q = clamp(q0 + o, ivec2(0), low - 1);
-    ivec2 at = min(q * s + h, full - 1);
-    vec4 qp = imageLoad(gPosition, at);
-    vec3 qn = normalize(imageLoad(gNormal, at).xyz);
-    float match = qp.w == 0.0 ? 0.0 : vctSurfaceMatch(pos.xyz, n, qp.xyz, qn, scale);
+    vec3 qp, qn;
+    float match = vctUnpackSurface(imageLoad(lowSurface, q), qp, qn) ? vctSurfaceMatch(pos.xyz, n, qp, qn, scale) : 0.0;
     float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
     vec4 d = imageLoad(lowDiffuse, q), sp = imageLoad(lowSpecular, q);
     float w = d.a < 0.0 ? 0.0 : bilinear * match, ws = sp.a < 0.0 ? 0.0 : bilinear * match;
