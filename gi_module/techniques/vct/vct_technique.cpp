@@ -79,6 +79,11 @@ class VctTechnique final : public Technique {
     lights_ = std::move(lights);
     places_ = std::move(places);
   }
+  // A frame that traced every pixel although the trace is spread (the first, or after a drop) costs
+  // traceFrames times the trace: a GI budget leaves it out.
+  bool lastFrameWasOneOff() const override {
+    return feature_.stats().tracedFraction == 1.0 && feature_.settings().traceFrames > 1;
+  }
   std::vector<OptionRef> options() override { return bindOptions(feature_.settings()); }
   bool setDebugView(std::string_view name) override {
     VctView& v = feature_.settings().view;

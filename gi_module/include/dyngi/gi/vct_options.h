@@ -25,7 +25,9 @@ struct VctOptions {
   // of these). Each frame traces 1 / traceFrames of them (a 2 x 2 lattice taking turns) and the rest
   // keep last frame's value at their surface point, reprojected; disoccluded ones are filled by the filter
   // and the upsample from the neighbours traced this frame. A still view converges to the every-frame
-  // image in traceFrames frames; a light switched on or off or an emission change drops the old values.
+  // image in traceFrames frames; moving lights and objects lag up to traceFrames - 1 frames. A light
+  // switched on or off, a material written, or a light or mesh jumping drops the old values (that frame
+  // traces every pixel).
   uint32_t traceFrames = 4;
   // Radius, in traced pixels, of the geometry-aware filter over the traced diffuse light. From 1 up each
   // traced pixel turns its cone set about the normal by its own angle (a golden-ratio dither) and the

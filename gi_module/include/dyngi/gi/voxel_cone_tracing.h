@@ -37,12 +37,14 @@ class VoxelConeTracing final : public render::RenderFeature {
   void recordAfterLighting(render::FrameContext& frame) override;
 
   VctOptions& settings() { return options_; }
+  const VctOptions& settings() const { return options_; }
   const VctFrameStats& stats() const { return stats_; }
   // The trace resolution divisor in use: the options' (or the automatic one for the render size) times a
   // GI budget's factor, at most kMaxTraceScale.
   uint32_t traceScale() const;
   // Drops the traced pixels' values kept from earlier frames (traceFrames > 1): the next frame uses only
-  // what it traces. For changes that make them wrong at once: a light switched, an emission changed.
+  // what it traces, every pixel. For changes that make them wrong at once: a light switched, an emission
+  // changed, a jump (VctTechnique::update decides).
   void dropTraceHistory() { traceHistory_ = false; }
   void setBudgetScaleFactor(uint32_t factor) { budgetFactor_ = std::max(factor, 1u); }
   uint32_t budgetScaleFactor() const { return budgetFactor_; }
