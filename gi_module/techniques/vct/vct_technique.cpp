@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "dyngi/gi/gi_settings.h"
@@ -65,19 +66,28 @@ class VctTechnique final : public Technique {
              glm::distance(now.position, before.position) > jump ||
              glm::dot(now.direction, before.direction) < std::cos(kJumpRadians);
     }
-    std::unordered_map<scene::Entity, glm::vec3> places;
-    places.reserve(frame.snapshot.draws.size());
-    for (const render::DrawItem& d : frame.snapshot.draws) {
-      const glm::vec3 at(d.model[3]);
-      places.emplace(d.entity, at);
-      if (auto it = places_.find(d.entity); !drop && it != places_.end()) drop = glm::distance(at, it->second) > jump;
+    // Meshes: only those the change set says moved or were written can have jumped; the others keep
+    // their place from the frame they last changed.
+    if (!frame.changes.moved.empty() || !frame.changes.meshWritten.empty()) {
+      std::unordered_set<scene::Entity> touched(frame.changes.moved.begin(), frame.changes.moved.end());
+      touched.insert(frame.changes.meshWritten.begin(), frame.changes.meshWritten.end());
+      for (const render::DrawItem& d : frame.snapshot.draws) {
+        if (!touched.count(d.entity)) continue;
+        const glm::vec3 at(d.model[3]);
+        if (auto it = places_.find(d.entity); it != places_.end()) {
+          drop = drop || glm::distance(at, it->second) > jump;
+          it->second = at;
+        } else {
+          places_.emplace(d.entity, at);
+        }
+      }
     }
+    for (scene::Entity e : frame.changes.removed) places_.erase(e);
     if (drop) {
       feature_.dropTraceHistory();
       ++historyDrops_;
     }
     lights_ = std::move(lights);
-    places_ = std::move(places);
   }
   // A frame that traced every pixel although the trace is spread (the first, or after a drop) costs
   // traceFrames times the trace: a GI budget leaves it out.
@@ -123,7 +133,7 @@ class VctTechnique final : public Technique {
   VoxelScene& voxels_;
   VoxelConeTracing feature_;
   std::vector<LightState> lights_;                          // as last frame saw them
-  std::unordered_map<scene::Entity, glm::vec3> places_;     // each mesh's origin last frame
+  std::unordered_map<scene::Entity, glm::vec3> places_;     // each mesh's origin when it last changed
   uint64_t historyDrops_ = 0;
 };
 
