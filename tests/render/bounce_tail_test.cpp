@@ -1,8 +1,10 @@
 // Energy beyond the last bounce (VplOptions::bounceTail, gi_module/shaders/shared/bounce_tail.h): both
 // VPL techniques with 1..3 simulated bounces against the path tracer with 8, on the Cornell box with a spot.
-// Off by default: with one bounce the tail lands where the light first hits (the mean comes within 5%,
-// but the short box's front, lit by later bounces only, is 73% too bright; without it the tall box's
-// face to the red wall is 64% too dark); with 3 bounces it is right (below).
+// Off by default: with one bounce the temporal technique lays the tail where the light first hits (the
+// mean comes within 10%, but the short box's front, lit by later bounces only, is 86% too bright; without
+// it the tall box's face to the red wall is 64% too dark); with 3 bounces it is right (below). Many lights
+// gathers the tail's probes as one more bounce (vpl_tail.comp): with one bounce its worst region is 17%
+// off (54% when it scaled its last bounce).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -87,10 +89,12 @@ TEST_F(RenderTest, BounceTailBringsBothVplTechniquesToThePathTracersManyBounces)
         EXPECT_NEAR(on.mean, 1.0, 0.03) << technique;
         // Regions (issue 16: each within 10 percent). Temporal, its paths' first directions from the R3
         // sequence: 6.4% off at worst (the tall box's face to the red wall; 18% without the tail). Many
-        // lights: 13.7% (the same face, bright; 17% without the tail). Its bounces drew each bounce's
-        // direction from the same Halton point shifted, and the third put 10x the path tracer's share on
-        // the short box's front: 24% then.
-        EXPECT_LE(on.worstRegion, std::string(technique) == "temporal" ? 0.10 : 0.15) << technique << ": " << on.worstName;
+        // lights: 12.4% (the short box's front, dark: 0.877 of a 3-bounce path tracer already without
+        // the tail, where the temporal paths give 0.999). When it scaled its last bounce instead of
+        // gathering the probes, 13.7% (the tall box's face to the red wall, bright; now 6.1%), which this
+        // bound fails. Its bounces once drew each bounce's direction from the same Halton point shifted,
+        // and the third put 10x the path tracer's share on the short box's front: 24% then.
+        EXPECT_LE(on.worstRegion, std::string(technique) == "temporal" ? 0.10 : 0.13) << technique << ": " << on.worstName;
       }
     }
 }

@@ -9,6 +9,9 @@
 // / sum(flux). That is the scene's own reflectance seen from where the light is (an open scene loses
 // more, a red room keeps more red). The missing bounces are assumed to light the scene the way the last
 // one does: they are smoother still, so the error is small where the last bounce is already smooth.
+// Many lights goes one bounce further (vpl_tail.comp): its probes land as VPLs of the next bounce, and
+// those, scaled by 1 / (1 - r) and gathered, carry that bounce and the ones after it. The temporal
+// technique's probes keep only the albedo they find, so it scales its last bounce.
 #ifndef DYNGI_BOUNCE_TAIL_H
 #define DYNGI_BOUNCE_TAIL_H
 

@@ -159,8 +159,8 @@ void ManyLights::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   ensureRsm(rsmLayersUsed_);
   if (!lights.empty()) lights_.upload(lights.data(), lights.size() * sizeof(lights[0]));
   if (!layers.empty()) layers_.upload(layers.data(), layers.size() * sizeof(layers[0]));
-  // With the bounce tail, one more bounce of probes follows the gathered ones.
-  VkDeviceSize vplBytes = VkDeviceSize(perBounce_) * (settings_.vpl.bounces + (settings_.vpl.bounceTail ? 1 : 0)) * sizeof(gpu::GpuVpl);
+  // With the bounce tail, one more bounce: the probes, gathered with the rest.
+  VkDeviceSize vplBytes = VkDeviceSize(gatheredVplCount()) * sizeof(gpu::GpuVpl);
   if (!vpls_.valid() || vpls_.size() < vplBytes)
     vpls_ = Buffer(ctx_, vplBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::GpuOnly, "vpls");
   // The emitters' VPLs close the first bounce: [perBounce - n, perBounce) (prepareEmitters sized them
@@ -204,7 +204,7 @@ bool ManyLights::record(render::FrameContext& frame) {
   if (!voxels_.hasVolume() || !raw_.valid()) return false;
   VkCommandBuffer cmd = frame.cmd;
   const uint32_t res = settings_.rsmResolution;
-  const uint32_t vplTotal = perBounce_ * settings_.vpl.bounces;
+  const uint32_t vplTotal = gatheredVplCount();
   const VoxelVolume& vol = voxels_.volume();
 
   {  // 1. reflective shadow maps
@@ -288,7 +288,7 @@ bool ManyLights::record(render::FrameContext& frame) {
     render::computeWriteBarrier(cmd);  // compute and transfer writes
   }
 
-  const uint32_t bounceLevels = settings_.vpl.bounces + (settings_.vpl.bounceTail ? 1u : 0u);  // the tail's probes: one more
+  const uint32_t bounceLevels = gatheredVplCount() / perBounce_;  // with the tail, its probes: one more
   if (bounceLevels > 1) {  // 3. further bounces through the voxel scene
     render::ScopedPass scope(ctx_, frame.timer, cmd, "vpl_bounce");
     for (uint32_t b = 1; b < bounceLevels; ++b) {
@@ -305,7 +305,7 @@ bool ManyLights::record(render::FrameContext& frame) {
       vkCmdDispatch(cmd, dispatchGroups(perBounce_, 64), 1, 1);
       render::computeWriteBarrier(cmd);
     }
-    if (settings_.vpl.bounceTail) {  // the last gathered bounce takes the probes' measure of the later ones
+    if (settings_.vpl.bounceTail) {  // the probes' bounce, gathered, carries every later one (vpl_tail.comp)
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tail_.handle());
       DescriptorWrites().storageBuffer(DYNGI_VPL_TAIL_BINDING_VPLS, vpls_.handle()).push(ctx_, cmd, tail_);
       const gpu::VplTailPush tp{(settings_.vpl.bounces - 1) * perBounce_, perBounce_};
@@ -356,7 +356,7 @@ void ManyLights::recordAfterLighting(render::FrameContext& frame) {
       .storageImage(DYNGI_MANY_LIGHTS_DEBUG_BINDING_HDR, t.hdr.view())
       .push(ctx_, frame.cmd, debug_);
   uint32_t mode = settings_.view == ManyLightsView::Indirect ? 0u : settings_.view == ManyLightsView::Vpls ? 1u : 2u;
-  uint32_t vplTotal = perBounce_ * settings_.vpl.bounces;
+  const uint32_t vplTotal = gatheredVplCount();
   const gpu::ManyLightsDebugPush pc{mode, settings_.vpl.interleave, vplTotal};
   vkCmdPushConstants(frame.cmd, debug_.layout(), kCS, 0, sizeof(pc), &pc);
   uint32_t n = mode == 1 ? vplTotal : t.width * t.height;

@@ -46,6 +46,8 @@ class ManyLights final : public render::RenderFeature {
  private:
   friend std::vector<VplReadback> readbackVpls(ManyLights&, bool);  // tests (gi_module/testing)
   void ensureRsm(uint32_t layers);
+  // The VPLs a frame gathers: every simulated bounce's, and with the bounce tail its probes' bounce.
+  uint32_t gatheredVplCount() const { return perBounce_ * (settings_.vpl.bounces + (settings_.vpl.bounceTail ? 1u : 0u)); }
 
   render::VulkanContext& ctx_;
   VoxelScene& voxels_;

@@ -12,7 +12,9 @@ namespace dyngi::gi {
 struct VplOptions {
   uint32_t vplCount = 512;             // total over all bounces (per bounce: vplCount / bounces)
   uint32_t bounces = 1;                // light bounces simulated by VPLs, 1..3
-  bool bounceTail = false;             // the last bounce's VPLs also carry the bounces after it (shaders/shared/bounce_tail.h)
+  // The light of the bounces after the last one simulated (shaders/shared/bounce_tail.h): the temporal
+  // technique's last bounce carries it; many lights gathers one more bounce (the probes) that does.
+  bool bounceTail = false;
   uint32_t interleave = 4;             // K: the G-buffer is split into K x K sub-images
   float distanceClamp = 0.01f;         // B (world units^2): G = cos cos / max(B, d^2)
   // Screen-space rays per traced pixel (one in 4 x 4) that give back the light the clamp drops (0: off;

@@ -1,7 +1,11 @@
 #version 460
-// Energy beyond the last bounce (shared/bounce_tail.h): one workgroup sums the last gathered bounce's
-// flux and its probes' (the bounce after it, never gathered), then scales the last bounce's VPLs by
-// 1 / (1 - r) per channel so they carry every later bounce too.
+// Energy beyond the last bounce (shared/bounce_tail.h): one workgroup sums the last simulated bounce's
+// flux and its probes' (the bounce after it), then scales the probes by 1 / (1 - r) per channel: gathered
+// as one more bounce, they carry that bounce and every later one, each assumed to light the scene as the
+// probes' bounce does. (Scaling the last bounce instead, as the temporal technique does, assumes the
+// later bounces light it as that bounce does: one bounce further from the truth. Cornell box, 3 bounces,
+// against the path tracer with 8: the tall box's face to the red wall 1.137 -> 1.061; with 1 bounce the
+// worst region 54 -> 17 percent off, the image 1.059 -> 0.984. It gathers a bounce more VPLs.)
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
 #include "shared/bounce_tail.h"
@@ -30,8 +34,8 @@ void main() {
     barrier();
   }
   vec3 scale = bounceTailScale(lastSum[0], nextSum[0]);
-  for (uint i = t; i < count; i += 256u) {
-    vec3 flux = vpls[lastFirst + i].flux.rgb * scale;
-    vpls[lastFirst + i].flux = vec4(flux, dot(flux, vec3(0.2126, 0.7152, 0.0722)));
+  for (uint i = lastFirst + count + t; i < lastFirst + 2u * count; i += 256u) {
+    vec3 flux = vpls[i].flux.rgb * scale;
+    vpls[i].flux = vec4(flux, dot(flux, vec3(0.2126, 0.7152, 0.0722)));
   }
 }
