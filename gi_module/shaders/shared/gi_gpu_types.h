@@ -429,7 +429,8 @@ struct TemporalQueue {
   uint bounce;                                                                     \
   uint depth;                                                                      \
   float res;                                                                       \
-  float lift;        /* voxel units the ray starts off its surface */
+  float lift;        /* voxel units the ray starts off its surface */ \
+  uint seed;         /* VplOptions::seed: turns every bounce's Halton points (Cranley-Patterson) */
 #define DYNGI_VPL_TAIL_PUSH                                                          \
   uint lastFirst;    /* first VPL of the last gathered bounce; its probes follow it */ \
   uint count;        /* VPLs per bounce */
@@ -518,7 +519,7 @@ static_assert(sizeof(SvoMarkPush) == 8 && sizeof(SvoLevelPush) == 4 && sizeof(Sv
 static_assert(sizeof(SvoLeafAttributesPush) == 12 && sizeof(SvoMarchPush) == 32 && sizeof(VoxelDebugPush) == 28);
 static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && sizeof(VplSamplePush) == 16);
 static_assert(sizeof(VplTailPush) == 8 && sizeof(CompensatePush) == 20);
-static_assert(sizeof(VplBouncePush) == 40 && sizeof(ManyLightsDebugPush) == 12 && sizeof(IndirectFilterPush) == 4);
+static_assert(sizeof(VplBouncePush) == 44 && sizeof(ManyLightsDebugPush) == 12 && sizeof(IndirectFilterPush) == 4);
 static_assert(sizeof(VctInjectPush) == 40 && sizeof(VctBouncePush) == 52 && sizeof(VctMipsPush) == 8);
 static_assert(sizeof(VctTracePush) == 60 && sizeof(VctReprojectPush) == 84 && sizeof(VctUpsamplePush) == 4 && sizeof(VctFilterPush) == 16 && sizeof(VctDebugPush) == 48 && sizeof(VctProbePush) == 48);
 }  // namespace dyngi::gi::gpu

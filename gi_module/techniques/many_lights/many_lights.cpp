@@ -300,7 +300,7 @@ bool ManyLights::record(render::FrameContext& frame) {
           .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_ATTRIBUTES, voxels_.leafAttributes().handle())
           .push(ctx_, cmd, bounce_);
       const gpu::VplBouncePush pc{glm::vec4(vol.origin, 1.0f / vol.voxelSize), (b - 1) * perBounce_, perBounce_, b, vol.depth(),
-                                  float(vol.resolution), settings_.vpl.liftVoxels};
+                                  float(vol.resolution), settings_.vpl.liftVoxels, settings_.vpl.seed};
       vkCmdPushConstants(cmd, bounce_.layout(), kCS, 0, sizeof(pc), &pc);
       vkCmdDispatch(cmd, dispatchGroups(perBounce_, 64), 1, 1);
       render::computeWriteBarrier(cmd);

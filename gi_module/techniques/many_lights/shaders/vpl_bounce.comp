@@ -17,6 +17,13 @@ float halton(uint i, uint base) {
   return r;
 }
 
+// A uniform number in [0, 1) from the seed and a Halton dimension.
+float rotation(uint s, uint d) {
+  uint x = s * 0x9E3779B9u + d * 0x85EBCA6Bu;
+  x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
+  return float(x >> 8) * (1.0 / 16777216.0);
+}
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= count) return;
@@ -33,7 +40,12 @@ void main() {
   // correlated: the third bounce put 10x the path tracer's share of light on the short box's front.)
   const uint kBases[8] = uint[](2u, 3u, 5u, 7u, 11u, 13u, 17u, 19u);
   uint dim = 2u * min(bounce - 1u, 3u);
-  float u1 = halton(i + 1u, kBases[dim]), u2 = halton(i + 1u, kBases[dim + 1u]);
+  // Each pair turned by the seed (a Cranley-Patterson rotation): the seed changes the directions too, not
+  // only the RSM samples, so seeds give independent estimates. Without it every seed shot the same
+  // directions, and their image kept one fixed error: the short box's front 12% dark against the path
+  // tracer (3 bounces, the mean of seeds 1-3; 5% with the rotation).
+  float u1 = fract(halton(i + 1u, kBases[dim]) + rotation(seed, dim));
+  float u2 = fract(halton(i + 1u, kBases[dim + 1u]) + rotation(seed, dim + 1u));
   float r = sqrt(u1), phi = 6.2831853 * u2;
   vec3 t = abs(n.x) > 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
   vec3 b1 = normalize(cross(n, t)), b2 = cross(n, b1);
