@@ -7,7 +7,7 @@ const OptionTable<VplOptions>& VplOptions::table() {
       OptionTable<VplOptions>()
           .add({"vpls", "VPLs over all bounces (rounded down to a multiple of the bounces)", 16, 65536}, &VplOptions::vplCount)
           .add({"bounces", "light bounces carried by VPLs", 1, 3}, &VplOptions::bounces)
-          .add({"bounce-tail", "the light of every bounce after the last (ratio measured by one probe ray per last-bounce VPL; many lights gathers the probes as one more bounce)", 0, 1},
+          .add({"bounce-tail", "the light of every bounce after the last (one probe ray per last-bounce VPL, gathered as one more bounce scaled by the ratio the probes measure)", 0, 1},
                &VplOptions::bounceTail)
           .add({"interleave", "K: the gather splits the image into K x K sub-images", 1, 8}, &VplOptions::interleave)
           .add({"clamp", "distance clamp B in world units^2: G = cos cos / max(B, d^2)", 0, 100}, &VplOptions::distanceClamp)

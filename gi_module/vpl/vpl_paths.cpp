@@ -92,10 +92,9 @@ void VplPaths::refreshMaterials(const render::RenderSnapshot& snapshot, const Em
       }
       if (v.placed && b + 1 == B && !v.probeSurface.isNull() && recoloured.count(v.probeSurface)) {
         // The tail's probe landed on the edited surface: the same probe ray, the new albedo.
-        const glm::vec3 o = v.position + v.normal * (1e-4f * surfaces.sceneScale());
-        RayHit h = bvh.intersect(o, v.probeDir, 0.0f, 1e30f);
+        RayHit h = bvh.intersect(v.probeOrigin, v.probeDir, 0.0f, 1e30f);
         SurfaceHit sh;
-        if (h.hit && surfaces.at(h, o, v.probeDir, sh)) v.probeAlbedo = sh.diffuseAlbedo;
+        if (h.hit && surfaces.at(h, v.probeOrigin, v.probeDir, sh)) v.probeAlbedo = sh.diffuseAlbedo;
         changed = true;
       }
       if (!changed) continue;
@@ -166,6 +165,15 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
     const PathVpl& v = vpls_[i];
     return bvh.occluded(v.rayOrigin, v.rayDir, 0.0f, 1e30f);
   };
+  // The bounce tail's probe (last bounce): the temporal technique gathers it where it landed, so it is
+  // stale when its surface moved, when something came between, or when something moved into the ray of
+  // one that left. Only a moved entity can do any of that.
+  auto probeStale = [&](const PathVpl& v, uint32_t b) {
+    if (!settings_.vpl.bounceTail || b + 1 != settings_.vpl.bounces || !v.placed || moved.empty()) return false;
+    const glm::vec3& o = v.probeOrigin;
+    if (v.probeSurface.isNull()) return bvh.occluded(o, v.probeDir, 0.0f, 1e30f);
+    return moved.count(v.probeSurface) > 0 || bvh.occluded(o, v.probeDir, 0.0f, glm::dot(v.probePosition - o, v.probeDir) - eps);
+  };
   for (uint32_t i = 0; i < vpls_.size(); ++i) {
     PathVpl& v = vpls_[i];
     if (!v.valid) continue;
@@ -189,8 +197,7 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
         invalidateIndex(i);
         continue;
       }
-      if (b == 0) continue;  // on the emitter: no ray to it
-      if (!rayStillReaches(v)) invalidateIndex(i);
+      if (b == 0 ? probeStale(v, b) : !rayStillReaches(v) || probeStale(v, b)) invalidateIndex(i);  // on the emitter (b = 0): no ray to it
       continue;
     }
     // The light it came from: gone, switched off, moved, turned or changed.
@@ -238,7 +245,7 @@ void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeSc
       invalidateIndex(i);
       continue;
     }
-    if (!rayStillReaches(v)) invalidateIndex(i);
+    if (!rayStillReaches(v) || probeStale(v, b)) invalidateIndex(i);
   }
   stats_.invalidatedTotal += stats_.invalidatedThisFrame;
   uint32_t valid = 0;
@@ -265,10 +272,15 @@ void VplPaths::shootProbe(PathVpl& v, uint64_t& rng, float scale, const EmbreeSc
   v.probeDir = cosineDirection(v.normal, u1, u2);
   v.probeAlbedo = glm::vec3(0.0f);
   v.probeSurface = {};
-  const glm::vec3 o = v.position + v.normal * (1e-4f * scale);
+  const glm::vec3 o = v.probeOrigin = v.position + v.normal * (1e-4f * scale);
   RayHit h = bvh.intersect(o, v.probeDir, 0.0f, 1e30f);
   SurfaceHit sh;
-  if (h.hit && surfaces.at(h, o, v.probeDir, sh)) v.probeAlbedo = sh.diffuseAlbedo, v.probeSurface = sh.entity;
+  if (h.hit && surfaces.at(h, o, v.probeDir, sh)) {
+    v.probeAlbedo = sh.diffuseAlbedo;
+    v.probePosition = sh.position;
+    v.probeNormal = sh.shadingNormal;
+    v.probeSurface = sh.entity;
+  }
 }
 
 bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const SceneSurfaces& surfaces,

@@ -56,7 +56,13 @@ gi::VplPaths freshPaths(Fixture& f, const render::RenderSnapshot& snap) {
 }
 }  // namespace
 
-TEST(VplPaths, OccluderInvalidatesExactlyWhatItBlocksAndDescendants) {
+// With the bounce tail on, the last bounce's probes (gathered by the temporal technique where they land)
+// count too: a probe the occluder now blocks, or an escaped one it stands in, invalidates its VPL.
+class VplPathsOccluder : public ::testing::TestWithParam<bool> {};
+INSTANTIATE_TEST_SUITE_P(BounceTail, VplPathsOccluder, ::testing::Bool());
+
+TEST_P(VplPathsOccluder, InvalidatesExactlyWhatItBlocksAndDescendants) {
+  const bool tail = GetParam();
   Fixture f;
   // An occluder parked far outside the room, where no light reaches.
   Entity occ = f.world.create();
@@ -67,7 +73,7 @@ TEST(VplPaths, OccluderInvalidatesExactlyWhatItBlocksAndDescendants) {
   f.world.add(occ, Material{});
   std::unordered_set<ecs::Entity> moved;
   auto snap = f.frame(&moved);
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 3000, .bounces = 3}, .reshootBudget = 100000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 3000, .bounces = 3, .bounceTail = tail}, .reshootBudget = 100000});
   paths.update(snap, f.bvh, f.assets, moved);
   ASSERT_EQ(paths.stats().valid, 3000u);
   std::vector<gi::PathVpl> before = paths.vpls();
@@ -84,7 +90,7 @@ TEST(VplPaths, OccluderInvalidatesExactlyWhatItBlocksAndDescendants) {
     if (t.entity == occ) occTris.push_back(t);
   const float eps = 1e-4f * glm::length(snap.sceneBounds.extent());
   std::vector<bool> expectInvalid(before.size(), false);
-  int blocked = 0, blockedAfterBounce = 0, escapedNowBlocked = 0;
+  int blocked = 0, blockedAfterBounce = 0, escapedNowBlocked = 0, probesBlocked = 0;
   for (uint32_t i = 0; i < before.size(); ++i) {
     const gi::PathVpl& v = before[i];
     uint32_t b = i % 3;
@@ -103,6 +109,16 @@ TEST(VplPaths, OccluderInvalidatesExactlyWhatItBlocksAndDescendants) {
     // Its own ray, from where it was shot up to just before it.
     const float t = test::bruteForceHit(occTris, v.rayOrigin, v.rayDir, 0.0f, glm::dot(v.position - v.rayOrigin, v.rayDir) - eps);
     if (t > 0) expectInvalid[i] = true, ++blocked, blockedAfterBounce += b > 0;
+    if (tail && b == 2 && !expectInvalid[i]) {
+      // Its probe, as shot, up to just before where it landed (or on, if it left the scene).
+      ASSERT_TRUE(v.probeSurface != occ);
+      const glm::vec3& o = v.probeOrigin;
+      const float end = v.probeSurface.isNull() ? 1e30f : glm::dot(v.probePosition - o, v.probeDir) - eps;
+      if (test::bruteForceHit(occTris, o, v.probeDir, 0.0f, end) > 0) expectInvalid[i] = true, ++probesBlocked;
+    }
+  }
+  if (tail) {
+    ASSERT_GT(probesBlocked, 3) << "the occluder must block some probes";
   }
   ASSERT_GT(blocked, 30) << "the occluder must block a fair share of paths";
   ASSERT_GT(blockedAfterBounce, 3) << "and some segments between VPLs";
@@ -112,9 +128,9 @@ TEST(VplPaths, OccluderInvalidatesExactlyWhatItBlocksAndDescendants) {
     invalid += isInvalid;
     mismatches += isInvalid != expectInvalid[i];
   }
-  std::printf("occluder: %d VPLs blocked directly (%d from a parent VPL), %d escaped rays it now stands in, %d invalid with "
-              "descendants, %d mismatches\n",
-              blocked, blockedAfterBounce, escapedNowBlocked, invalid, mismatches);
+  std::printf("occluder: %d VPLs blocked directly (%d from a parent VPL), %d escaped rays it now stands in, %d probes blocked, %d invalid "
+              "with descendants, %d mismatches\n",
+              blocked, blockedAfterBounce, escapedNowBlocked, probesBlocked, invalid, mismatches);
   EXPECT_EQ(mismatches, 0);
   EXPECT_EQ(paths.stats().invalidatedThisFrame, uint32_t(invalid));
 }
@@ -127,13 +143,55 @@ TEST(VplPaths, AnUnchangedSceneInvalidatesNothing) {
     Fixture f;
     f.world.each<Light>([&](Entity e, const Light&) { f.world.write<Light>(e).type = type; });
     auto snap = f.frame();
-    gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 30000, .bounces = 3}, .reshootBudget = 100000});
+    gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 30000, .bounces = 3, .bounceTail = true}, .reshootBudget = 100000});
     paths.update(snap, f.bvh, f.assets, {});
     ASSERT_EQ(paths.stats().valid, 30000u);
     std::unordered_set<ecs::Entity> none;
     paths.invalidate(snap, f.bvh, none);
     EXPECT_EQ(paths.stats().invalidatedThisFrame, 0u) << "light type " << int(type);
+    // The light listed as moved (it did not): the tail's probes are traced again, and each must still
+    // land where it did.
+    std::unordered_set<ecs::Entity> light{snap.lights.at(0).entity};
+    paths.invalidate(snap, f.bvh, light);
+    EXPECT_EQ(paths.stats().invalidatedThisFrame, 0u) << "light type " << int(type) << ", probes checked";
   }
+}
+
+// A probe's surface listed as moved invalidates the last-bounce VPL it belongs to (the temporal technique
+// gathers the probe where it landed), besides the VPLs on that surface and their descendants. The entity
+// did not really move, so no ray changed and nothing else may go.
+TEST(VplPaths, AProbesSurfaceMovingInvalidatesItsVpl) {
+  Fixture f;
+  auto snap = f.frame();
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 3000, .bounces = 3, .bounceTail = true}, .reshootBudget = 100000});
+  paths.update(snap, f.bvh, f.assets, {});
+  ASSERT_EQ(paths.stats().valid, 3000u);
+  const std::vector<gi::PathVpl> before = paths.vpls();
+  ecs::Entity box{};  // a surface some probes land on that is not the room
+  for (uint32_t i = 2; i < before.size() && box.isNull(); i += 3)
+    if (!before[i].probeSurface.isNull() && before[i].probeSurface != before[0].surface) box = before[i].probeSurface;
+  ASSERT_FALSE(box.isNull());
+  std::vector<bool> expectInvalid(before.size(), false);
+  int probes = 0;
+  for (uint32_t i = 0; i < before.size(); ++i) {
+    const uint32_t b = i % 3;
+    if (b > 0 && expectInvalid[i - 1]) expectInvalid[i] = true;
+    if (before[i].placed && before[i].surface == box) expectInvalid[i] = true;
+    if (b == 2 && !expectInvalid[i] && before[i].probeSurface == box) expectInvalid[i] = true, ++probes;
+  }
+  ASSERT_GT(probes, 10);
+  std::unordered_set<ecs::Entity> moved{box};
+  paths.invalidate(snap, f.bvh, moved);
+  int mismatches = 0;
+  for (uint32_t i = 0; i < before.size(); ++i) mismatches += paths.vpls()[i].valid == expectInvalid[i];
+  EXPECT_EQ(mismatches, 0) << probes << " probes on the entity";
+  // Reshot with their own streams in an unchanged scene, they come back where they were, probes too.
+  paths.replace(snap, f.bvh, f.assets);
+  for (uint32_t i = 2; i < before.size(); i += 3)
+    if (expectInvalid[i] && before[i].probeSurface == box) {
+      ASSERT_TRUE(paths.vpls()[i].valid);
+      EXPECT_LT(glm::distance(paths.vpls()[i].probePosition, before[i].probePosition), 1e-5f) << i;
+    }
 }
 
 TEST(VplPaths, BudgetIsRespectedRestoreIsTimelyAndCursorIsFair) {

@@ -1,10 +1,10 @@
 // Energy beyond the last bounce (VplOptions::bounceTail, gi_module/shaders/shared/bounce_tail.h): both
 // VPL techniques with 1..3 simulated bounces against the path tracer with 8, on the Cornell box with a spot.
-// Off by default: with one bounce the temporal technique lays the tail where the light first hits (the
-// mean comes within 10%, but the short box's front, lit by later bounces only, is 86% too bright; without
-// it the tall box's face to the red wall is 64% too dark); with 3 bounces it is right (below). Many lights
-// gathers the tail's probes as one more bounce (vpl_tail.comp): with one bounce its worst region is 17%
-// off (54% when it scaled its last bounce).
+// Both gather the tail's probes as one more bounce, scaled to carry every later one (many lights in
+// vpl_tail.comp, the temporal technique in TemporalIndirect::prepare). With one bounce the worst region is
+// 15% off (temporal) and 17% (many lights); when they scaled their last bounce instead, the temporal
+// technique's short box front, lit by later bounces only, was 86% too bright and many lights' 54%.
+// Without the tail the tall box's face to the red wall is 56% too dark at one bounce.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -84,11 +84,18 @@ TEST_F(RenderTest, BounceTailBringsBothVplTechniquesToThePathTracersManyBounces)
         (tail ? on : off) = m;
       }
       EXPECT_LT(std::abs(on.mean - 1.0), std::abs(off.mean - 1.0)) << technique << " at " << bounces << " bounce(s)";
+      // One bounce, one seed: the probes put the later bounces where the second lands. Temporal 15.3%
+      // off at worst (the tall box's face to the red wall; 86% when it scaled its last bounce), many
+      // lights 17.0% (the short box's front; 54% then).
+      if (bounces == 1) {
+        EXPECT_LE(on.worstRegion, 0.20) << technique << ": " << on.worstName;
+      }
       if (bounces == 3) {
         EXPECT_LT(off.mean, 0.95) << technique << ": without the tail 3 bounces miss the later ones";  // measured 0.92
         EXPECT_NEAR(on.mean, 1.0, 0.03) << technique;
         // Regions (issue 16: each within 10 percent). Temporal, its paths' first directions from the R3
-        // sequence: 6.4% off at worst (the tall box's face to the red wall; 18% without the tail). Many
+        // sequence, its probes gathered: 4.2% off at worst (the tall box's face to the red wall; 6.4% when
+        // it scaled its last bounce, 18% without the tail). Many
         // lights: 5.1% (the short box's front, dark). Before its seed turned the bounces' Halton points
         // every seed shot the same directions, and the short box's front kept one fixed error: 12.4%
         // dark; before it gathered the tail's probes (scaling its last bounce instead), the tall box's

@@ -2,16 +2,16 @@
 //
 // VPLs simulate `bounces` bounces; the light of every later bounce is missing (a Cornell box with 3
 // bounces is about 6% darker than with unlimited ones). Each further bounce keeps about the same
-// fraction r of the flux as the one before, so the missing bounces sum to the last bounce's flux times
-// r + r^2 + ... = r / (1 - r): the last bounce's VPLs carry it when their flux is scaled by 1 / (1 - r),
-// per colour channel. r is measured, not assumed: each last-bounce VPL shoots one more cosine ray (a
-// probe, never gathered), and r = sum(flux x albedo where the probe lands, 0 where it leaves the scene)
-// / sum(flux). That is the scene's own reflectance seen from where the light is (an open scene loses
-// more, a red room keeps more red). The missing bounces are assumed to light the scene the way the last
-// one does: they are smoother still, so the error is small where the last bounce is already smooth.
-// Many lights goes one bounce further (vpl_tail.comp): its probes land as VPLs of the next bounce, and
-// those, scaled by 1 / (1 - r) and gathered, carry that bounce and the ones after it. The temporal
-// technique's probes keep only the albedo they find, so it scales its last bounce.
+// fraction r of the flux as the one before, so the missing bounces sum to the next bounce's flux times
+// 1 + r + r^2 + ... = 1 / (1 - r), per colour channel. r is measured, not assumed: each last-bounce VPL
+// shoots one more cosine ray (a probe), and r = sum(flux x albedo where the probe lands, 0 where it
+// leaves the scene) / sum(flux). That is the scene's own reflectance seen from where the light is (an
+// open scene loses more, a red room keeps more red). The probes are the next bounce's VPLs (where they
+// land, flux x albedo there): scaled by 1 / (1 - r) and gathered, they carry that bounce and every later
+// one, which are assumed to light the scene the way the first of them does (they are smoother still).
+// Both VPL techniques do that: many lights in vpl_tail.comp, the temporal technique when it uploads a
+// set (TemporalIndirect::prepare). Scaling the last bounce instead (what both did first) lays the later
+// bounces one bounce earlier, where faces that only later bounces reach are wrong by tens of percent.
 #ifndef DYNGI_BOUNCE_TAIL_H
 #define DYNGI_BOUNCE_TAIL_H
 

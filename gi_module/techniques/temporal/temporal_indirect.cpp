@@ -31,7 +31,9 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
                                                      "temporal_gather");
   filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
   maxSetsPerFrame_ = std::clamp(settings.catchUpSets, 1u, sets_);
-  vpls_ = Buffer(ctx, VkDeviceSize(perSet_) * maxSetsPerFrame_ * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload,
+  // With the bounce tail a set's slots can hold one probe per gathered VPL after them (prepare).
+  const uint32_t slotsBound = perSet_ * (settings.vpl.bounceTail ? 2u : 1u);
+  vpls_ = Buffer(ctx, VkDeviceSize(slotsBound) * maxSetsPerFrame_ * sizeof(gpu::GpuVpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload,
                  "temporal vpls");
   // Sized as the reprojection shader declares it (a uniform array).
   cameras_ = Buffer(ctx, DYNGI_MAX_TEMPORAL_SETS * sizeof(gpu::TemporalSetCamera), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUsage::Upload,
@@ -106,30 +108,43 @@ void TemporalIndirect::prepare(render::VulkanContext&, const render::RenderSnaps
   }
   currentSet_ = frameSets_.back();
   // Upload those sets' VPLs (set k: VPLs[T i + k]), each or an evenly spread subset of it
-  // (setVplsPerFrame), one after another.
-  std::vector<gpu::GpuVpl> gpuVpls(size_t(gathered_) * frameSets_.size());
-  setVpls_.assign(gpuVpls.size(), TemporalVpl{{}, {}, false});  // the BVH visibility's copy
+  // (setVplsPerFrame), one after another. With the bounce tail each set's slots go on with the probes of
+  // its last-bounce VPLs (PathVpl::probePosition), gathered as the next bounce with every later one's
+  // light (bounceTailScale); the last bounce keeps its own flux. The slots are padded to the same count
+  // for every set.
   const auto& all = paths_.vpls();
+  const uint32_t B = paths_.bounces();
   const double stride = double(perSet_) / double(gathered_);
-  const glm::vec3 tail = paths_.bounceTailScale();  // the last bounce carries the later ones
-  for (size_t k = 0; k < frameSets_.size(); ++k)
+  auto poolIndex = [&](uint32_t j, uint32_t set) { return std::min(perSet_ - 1, uint32_t(double(j) * stride)) * sets_ + set; };
+  const bool probes = settings_.vpl.bounceTail;
+  uint32_t probeSlots = 0;
+  for (uint32_t set = 0; probes && set < sets_; ++set) {
+    uint32_t n = 0;
+    for (uint32_t j = 0; j < gathered_; ++j) n += poolIndex(j, set) < all.size() && poolIndex(j, set) % B == B - 1;
+    probeSlots = std::max(probeSlots, n);
+  }
+  slots_ = gathered_ + probeSlots;
+  gpu::GpuVpl absent{};
+  absent.position = glm::vec4(0, 0, 0, -1);
+  std::vector<gpu::GpuVpl> gpuVpls(size_t(slots_) * frameSets_.size(), absent);
+  setVpls_.assign(gpuVpls.size(), TemporalVpl{{}, {}, false});  // the BVH visibility's copy
+  auto put = [&](size_t slot, glm::vec3 position, glm::vec3 normal, glm::vec3 flux, uint32_t bounce, uint32_t path) {
+    const float lum = 0.2126f * flux.r + 0.7152f * flux.g + 0.0722f * flux.b;
+    gpuVpls[slot] = {glm::vec4(position, float(bounce)), glm::vec4(normal, float(path)), glm::vec4(flux, lum)};
+    setVpls_[slot] = {position, normal, lum > 0.0f};
+  };
+  const glm::vec3 tail = paths_.bounceTailScale();  // the probes carry every bounce after the last
+  for (size_t k = 0; k < frameSets_.size(); ++k) {
+    size_t probe = k * slots_ + gathered_;
     for (uint32_t j = 0; j < gathered_; ++j) {
-      const uint32_t i = std::min(perSet_ - 1, uint32_t(double(j) * stride));
-      uint32_t index = i * sets_ + frameSets_[k];
-      gpu::GpuVpl g{};
-      g.position = glm::vec4(0, 0, 0, -1);
-      if (index < all.size() && all[index].valid && all[index].placed) {
-        const PathVpl& v = all[index];
-        const uint32_t bounce = index % paths_.bounces();
-        const glm::vec3 flux = bounce + 1 == paths_.bounces() ? v.flux * tail : v.flux;
-        float lum = 0.2126f * flux.r + 0.7152f * flux.g + 0.0722f * flux.b;
-        g.position = glm::vec4(v.position, float(bounce));
-        g.normal = glm::vec4(v.normal, float(index / paths_.bounces()));
-        g.flux = glm::vec4(flux, lum);
-        setVpls_[k * gathered_ + j] = {v.position, v.normal, lum > 0.0f};
-      }
-      gpuVpls[k * gathered_ + j] = g;
+      const uint32_t index = poolIndex(j, frameSets_[k]);
+      if (index >= all.size() || !all[index].valid || !all[index].placed) continue;
+      const PathVpl& v = all[index];
+      const uint32_t bounce = index % B, path = index / B;
+      put(k * slots_ + j, v.position, v.normal, v.flux, bounce, path);
+      if (probes && bounce + 1 == B && !v.probeSurface.isNull()) put(probe++, v.probePosition, v.probeNormal, v.flux * v.probeAlbedo * tail, B, path);
     }
+  }
   vpls_.upload(gpuVpls.data(), gpuVpls.size() * sizeof(gpu::GpuVpl));
 }
 
@@ -164,8 +179,8 @@ void TemporalIndirect::computeBvhVisibility(render::FrameContext& frame, uint32_
         glm::vec3 from = glm::vec3(pos[p]) + n * lift;
         uint32_t s = (x % K) + K * (y % K);
         for (size_t set = 0; set < frameSets_.size(); ++set)
-          for (uint32_t m = 0, i = s; i < gathered_; i += K2, ++m) {
-            const TemporalVpl& v = setVpls_[set * gathered_ + i];
+          for (uint32_t m = 0, i = s; i < slots_; i += K2, ++m) {
+            const TemporalVpl& v = setVpls_[set * slots_ + i];
             if (!v.valid) continue;
             segs.push_back({from, v.position + v.normal * lift});
             bitIndex.push_back(set * wordsPerSet * 32 + p * perPixel + m);
@@ -187,7 +202,7 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
   if (!accumulated_.valid()) return false;
   if (settings_.visibility == VisibilityBackend::Svo && !voxels_->hasVolume()) return false;
   const uint32_t K = interleave(), K2 = K * K;
-  const uint32_t perPixel = (gathered_ + K2 - 1) / K2;
+  const uint32_t perPixel = (slots_ + K2 - 1) / K2;
   // (No ScopedPass here: the mid-frame submit would split a debug label across command buffers; the
   // CPU time is reported as lastBvhVisibilityMs.)
   if (settings_.visibility == VisibilityBackend::Bvh) computeBvhVisibility(frame, perPixel);
@@ -232,8 +247,9 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     }
     pc.distanceClamp = settings_.vpl.distanceClamp;
     pc.luminanceThreshold = settings_.vpl.luminanceThreshold;
-    pc.vplCount = gathered_;
-    pc.estimatedCount = perSet_;
+    pc.vplCount = slots_;
+    // A subset of the set (setVplsPerFrame) stands for the whole set, its probes for all of the set's.
+    pc.estimatedCount = uint32_t((uint64_t(slots_) * perSet_ + gathered_ / 2) / gathered_);
     pc.interleave = K;
     if (settings_.visibility == VisibilityBackend::Bvh) pc.visibility = DYNGI_VISIBILITY_BITS;
     if (settings_.visibility == VisibilityBackend::None) pc.visibility = DYNGI_VISIBILITY_NONE;
@@ -268,7 +284,7 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     // One gather per set (each stores its own layer); the full reprojection after the last sums them all.
     for (size_t k = 0; k < frameSets_.size(); ++k) {
       if (k > 0) render::computeWriteBarrier(frame.cmd);
-      pc.firstVpl = uint32_t(k) * gathered_;
+      pc.firstVpl = uint32_t(k) * slots_;
       pc.firstBit = uint32_t(k * visibilityWordsPerSet(frame.targets.width, frame.targets.height, perPixel) * 32);
       acc.currentSet = frameSets_[k];
       acc.currentSetWasStored = wasStored[k];

@@ -71,6 +71,7 @@ class TemporalIndirect final : public render::RenderFeature {
   TemporalOptions settings_;  // a copy of the paths' options: tests switch accumulation modes on it
   uint32_t sets_ = 1, perSet_ = 1;
   uint32_t gathered_ = 1;  // of a set's perSet_ VPLs, how many are gathered (setVplsPerFrame)
+  uint32_t slots_ = 1;     // per set gathered this frame: gathered_, then the bounce tail's probes (prepare)
   uint32_t currentSet_ = 0;
   uint64_t frameCounter_ = 0;
   std::vector<int64_t> lastRendered_;   // frame each set was last gathered (-1: never, or dropped as stale)

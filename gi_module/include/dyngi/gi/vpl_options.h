@@ -12,8 +12,8 @@ namespace dyngi::gi {
 struct VplOptions {
   uint32_t vplCount = 512;             // total over all bounces (per bounce: vplCount / bounces)
   uint32_t bounces = 1;                // light bounces simulated by VPLs, 1..3
-  // The light of the bounces after the last one simulated (shaders/shared/bounce_tail.h): the temporal
-  // technique's last bounce carries it; many lights gathers one more bounce (the probes) that does.
+  // The light of the bounces after the last one simulated (shaders/shared/bounce_tail.h): both VPL
+  // techniques gather one more bounce (each last-bounce VPL's probe), scaled to carry every later one.
   bool bounceTail = false;
   uint32_t interleave = 4;             // K: the G-buffer is split into K x K sub-images
   float distanceClamp = 0.01f;         // B (world units^2): G = cos cos / max(B, d^2)

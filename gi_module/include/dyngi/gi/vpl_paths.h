@@ -42,10 +42,13 @@ struct PathVpl {
   glm::vec3 rayOrigin{0.0f}, rayDir{0.0f, 0.0f, 1.0f};
   glm::vec3 incident{0.0f};
   glm::vec3 albedo{0.0f};
-  // Last bounce only (VplOptions::bounceTail): one more cosine ray from it, never gathered. Its landing
-  // surface's diffuse albedo (0 when it leaves the scene) measures how much flux a further bounce keeps.
-  glm::vec3 probeDir{0.0f, 1.0f, 0.0f};
+  // Last bounce only (VplOptions::bounceTail): one more cosine ray from it. Its landing surface's
+  // diffuse albedo (0 when it leaves the scene) measures how much flux a further bounce keeps
+  // (bounceTailScale); where it lands (probeSurface not null) the temporal technique gathers it as a VPL
+  // of the next bounce with flux x probeAlbedo x that scale (TemporalIndirect::prepare).
+  glm::vec3 probeOrigin{0.0f}, probeDir{0.0f, 1.0f, 0.0f};  // the ray as shot (the scene's scale sets its lift)
   glm::vec3 probeAlbedo{0.0f};
+  glm::vec3 probePosition{0.0f}, probeNormal{0.0f, 1.0f, 0.0f};
   ecs::Entity probeSurface{};
   // The random stream it was shot with. Invalidated by a change of geometry (an occluder, a moved
   // surface, a cut) it is traced again with the same stream, so the pool stays the one a fresh shot
@@ -92,7 +95,7 @@ class VplPaths {
   void replace(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets);
 
   const std::vector<PathVpl>& vpls() const { return vpls_; }
-  // What the last bounce's flux is multiplied by so that it carries every later bounce too
+  // What the probes' flux (the next bounce's) is multiplied by so that it carries every later bounce too
   // (shaders/shared/bounce_tail.h), from the valid last-bounce VPLs' probes; 1 with bounceTail off.
   glm::vec3 bounceTailScale() const;
   const TemporalOptions& settings() const { return settings_; }
