@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "dyngi/gi/vpl_options.h"
+#include "indirect/clamp_spread.h"
 #include "spirv/compensate.comp.spv.h"
 #include "spirv/compensate_blur.comp.spv.h"
 #include "spirv/filter_columns.comp.spv.h"
@@ -20,7 +21,7 @@ std::vector<Binding> gatherBindings(std::span<const Binding> extra) {
   std::vector<Binding> b = {{DYNGI_GATHER_BINDING_FRAME, kUBO, kCS},         {DYNGI_GATHER_BINDING_POSITION, kStorageImage, kCS},
                             {DYNGI_GATHER_BINDING_NORMAL, kStorageImage, kCS}, {DYNGI_GATHER_BINDING_VPLS, kSSBO, kCS},
                             {DYNGI_GATHER_BINDING_SVO_NODES, kSSBO, kCS},      {DYNGI_GATHER_BINDING_OUTPUT, kStorageImage, kCS},
-                            {DYNGI_GATHER_BINDING_VISIBILITY_BITS, kSSBO, kCS}};
+                            {DYNGI_GATHER_BINDING_VISIBILITY_BITS, kSSBO, kCS}, {DYNGI_GATHER_BINDING_CLAMP_SPREAD, kSSBO, kCS}};
   b.insert(b.end(), extra.begin(), extra.end());
   return b;
 }
@@ -36,6 +37,10 @@ IndirectGatherPass::IndirectGatherPass(render::VulkanContext& ctx, render::Shade
     throw render::VulkanError("the indirect gather needs shaderStorageImageExtendedFormats (rg32ui storage images); " + ctx.deviceName() +
                               " does not support it");
   pipeline_ = render::Pipeline::compute(ctx, variant, bindings_, sizeof(gpu::GatherPush) + extraPushBytes, name);
+  const std::vector<glm::vec2> table = clampSpreadTable();
+  clampSpread_ = render::Buffer(ctx, table.size() * sizeof(glm::vec2), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, render::MemoryUsage::Upload,
+                                "clamp spread table");
+  clampSpread_.upload(table.data(), table.size() * sizeof(glm::vec2));
 }
 
 void IndirectGatherPass::record(render::FrameContext& frame, render::Image& raw, const Inputs& in) {
@@ -63,7 +68,8 @@ void IndirectGatherPass::record(render::FrameContext& frame, render::Image& raw,
       .storageBuffer(DYNGI_GATHER_BINDING_VPLS, in.vpls)
       .storageBuffer(DYNGI_GATHER_BINDING_SVO_NODES, in.nodes)
       .storageImage(DYNGI_GATHER_BINDING_OUTPUT, raw.view())
-      .storageBuffer(DYNGI_GATHER_BINDING_VISIBILITY_BITS, in.bits);
+      .storageBuffer(DYNGI_GATHER_BINDING_VISIBILITY_BITS, in.bits)
+      .storageBuffer(DYNGI_GATHER_BINDING_CLAMP_SPREAD, clampSpread_.handle());
   if (in.extraWrites) in.extraWrites(writes);
   writes.push(ctx_, cmd, pipeline);
   if (extraPushBytes_ > 0 && in.extraPush)

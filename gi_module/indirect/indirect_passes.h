@@ -41,6 +41,7 @@ class IndirectGatherPass {
   render::Pipeline pipeline_;
   render::Pipeline chunked_;  // kGatherChunked: made the first time a gather needs chunks
   uint32_t extraPushBytes_ = 0;
+  render::Buffer clampSpread_;  // (I, N) per table sample (shaders/shared/clamp_spread.h)
 };
 
 class IndirectFilterPass {

@@ -11,6 +11,8 @@ const OptionTable<VplOptions>& VplOptions::table() {
                &VplOptions::bounceTail)
           .add({"interleave", "K: the gather splits the image into K x K sub-images", 1, 8}, &VplOptions::interleave)
           .add({"clamp", "distance clamp B in world units^2: G = cos cos / max(B, d^2)", 0, 100}, &VplOptions::distanceClamp)
+          .add({"clamp-spread", "give back the light the distance clamp drops, spread within sqrt(B) on the receiving plane and stretched this many times along the corner (0: off; 1, or less: round; off while --clamp-compensation is on)", 0, 16},
+               &VplOptions::clampSpread)
           .add({"clamp-compensation", "screen-space rays per traced pixel (one in 4 x 4) that give back the light the distance clamp drops (0: off)", 0, 64},
                &VplOptions::compensationRays)
           .add({"luminance-threshold", "skip VPLs dimmer than this fraction of a first-bounce VPL", 0, 1}, &VplOptions::luminanceThreshold)

@@ -23,6 +23,7 @@ layout(set = 0, binding = DYNGI_GATHER_BINDING_SVO_NODES) readonly buffer Nodes 
 // filter_input.glsl's packing; read by a chunk after the first (GatherPush::chunkBegin).
 layout(set = 0, binding = DYNGI_GATHER_BINDING_OUTPUT, rgba32ui) uniform uimage2D outRaw;
 layout(set = 0, binding = DYNGI_GATHER_BINDING_VISIBILITY_BITS) readonly buffer VisibilityBits { uint visibleBits[]; };  // visibility mode 2
+layout(set = 0, binding = DYNGI_GATHER_BINDING_CLAMP_SPREAD) readonly buffer ClampSpread { vec2 clampSpreadTable[]; };  // (I, N)
 #ifndef GATHER_EXTRA_PUSH
 #define GATHER_EXTRA_PUSH
 #endif
@@ -32,8 +33,19 @@ layout(push_constant) uniform Push { GatherPush pc; GATHER_EXTRA_PUSH };
 layout(constant_id = 0) const bool kGatherChunked = false;
 #include "svo_traverse.glsl"
 #include "filter_input.glsl"
+#include "shared/clamp_spread.h"
 
 const float PI = 3.14159265358979;
+
+// (I, N) of the clamp spread at (eta, c), bilinear between the table's samples (clampSpreadLookup's twin).
+vec2 clampSpreadAt(float eta, float c) {
+  const int E = DYNGI_CLAMP_SPREAD_ETA_CELLS, C = DYNGI_CLAMP_SPREAD_COS_CELLS;
+  vec2 p = clampSpreadCoords(eta, c);
+  int e0 = min(int(p.x), E - 2), c0 = min(int(p.y), C - 2);
+  vec2 f = p - vec2(e0, c0);
+  int i = e0 + E * c0;
+  return mix(mix(clampSpreadTable[i], clampSpreadTable[i + 1], f.x), mix(clampSpreadTable[i + E], clampSpreadTable[i + E + 1], f.x), f.y);
+}
 
 // Light from the set's VPL i (the m-th this pixel gathers) at surface point x with normal nx (xv: x in
 // voxel units, lifted): flux G V, or 0 for an absent, dim or back-facing VPL or one beyond the count.
@@ -48,6 +60,15 @@ vec3 vplLight(uint i, uint m, vec3 x, vec3 nx, vec3 xv, float threshold, uint bi
   float cx = dot(nx, w), cy = -dot(v.normal.xyz, w);
   if (cx <= 0.0 || cy <= 0.0) return vec3(0.0);
   float g = cx * cy / max(pc.distanceClamp, d2);
+  // The light the clamp drops, given back near where it lands (shared/clamp_spread.h).
+  if (pc.clampSpread > 0.0) {  // the same for every lane
+    float c = -dot(v.normal.xyz, nx), stretch = clampSpreadStretch(c, pc.clampSpread);
+    vec3 t = cross(nx, v.normal.xyz);
+    float along = dot(d, t), along2 = along * along / max(dot(t, t), 1e-8);
+    float bump = clampSpreadBump(d2, along2, pc.distanceClamp, stretch);
+    if (bump > 0.0)  // within the stretched reach: few VPLs are, so the table's loads are mostly skipped
+      g += clampSpreadG(clampSpreadAt(cx * sqrt(d2) * inversesqrt(pc.distanceClamp), c), bump, d2, cy, pc.distanceClamp, stretch);
+  }
   if (pc.visibility == DYNGI_VISIBILITY_BITS) {
     uint bit = bitBase + m;
     if ((visibleBits[bit >> 5] & (1u << (bit & 31u))) == 0u) return vec3(0.0);

@@ -301,7 +301,8 @@ struct RsmPush {
 #define DYNGI_GATHER_BINDING_SVO_NODES 4
 #define DYNGI_GATHER_BINDING_OUTPUT 5
 #define DYNGI_GATHER_BINDING_VISIBILITY_BITS 6
-#define DYNGI_GATHER_FIRST_TECHNIQUE_BINDING 7
+#define DYNGI_GATHER_BINDING_CLAMP_SPREAD 7  // the clamp spread's table (shared/clamp_spread.h)
+#define DYNGI_GATHER_FIRST_TECHNIQUE_BINDING 8
 #define DYNGI_TEMPORAL_GATHER_BINDING_SET_SAMPLES (DYNGI_GATHER_FIRST_TECHNIQUE_BINDING + 0)
 #define DYNGI_TEMPORAL_GATHER_BINDING_SUMS (DYNGI_GATHER_FIRST_TECHNIQUE_BINDING + 1)
 #define DYNGI_TEMPORAL_GATHER_BINDING_QUEUE (DYNGI_GATHER_FIRST_TECHNIQUE_BINDING + 2)
@@ -339,7 +340,7 @@ struct GatherPush {
   // dispatch after the first adds the light the earlier ones left in the output.
   uint chunkBegin;
   uint chunkEnd;
-  uint chunkPad0;
+  float clampSpread;    // the light the clamp drops is spread back, stretched this much along corners (shared/clamp_spread.h); 0: off
   uint chunkPad1;
 };
 

@@ -324,6 +324,7 @@ bool ManyLights::record(render::FrameContext& frame) {
     gpu::GatherPush& pc = in.push;
     pc.worldToVoxel = glm::vec4(vol.origin, 1.0f / vol.voxelSize);
     pc.distanceClamp = settings_.vpl.distanceClamp;
+    pc.clampSpread = settings_.vpl.clampSpreadStretch();
     pc.luminanceThreshold = settings_.vpl.luminanceThreshold;
     pc.liftVoxels = settings_.vpl.liftVoxels;
     pc.voxelResolution = float(vol.resolution);

@@ -246,6 +246,7 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
       pc.visibility = DYNGI_VISIBILITY_NONE;
     }
     pc.distanceClamp = settings_.vpl.distanceClamp;
+    pc.clampSpread = settings_.vpl.clampSpreadStretch();
     pc.luminanceThreshold = settings_.vpl.luminanceThreshold;
     pc.vplCount = slots_;
     // A subset of the set (setVplsPerFrame) stands for the whole set, its probes for all of the set's.

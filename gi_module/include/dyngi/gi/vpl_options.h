@@ -17,6 +17,15 @@ struct VplOptions {
   bool bounceTail = false;
   uint32_t interleave = 4;             // K: the G-buffer is split into K x K sub-images
   float distanceClamp = 0.01f;         // B (world units^2): G = cos cos / max(B, d^2)
+  // The light the clamp drops for VPLs within sqrt(B) of a pixel, given back spread within sqrt(B) on the
+  // pixel's plane and stretched this many times along the corner (shaders/shared/clamp_spread.h): the
+  // corners the clamp darkens get it back. 0: off; 1: round.
+  float clampSpread = 4.0f;
+  // What the gather uses (GatherPush::clampSpread): 0 when off (or with no clamp), else at least 1. The
+  // screen-space compensation (compensationRays), when on, gives back the same light instead.
+  float clampSpreadStretch() const {
+    return clampSpread > 0.0f && distanceClamp > 0.0f && compensationRays == 0 ? std::max(1.0f, clampSpread) : 0.0f;
+  }
   // Screen-space rays per traced pixel (one in 4 x 4) that give back the light the clamp drops (0: off;
   // indirect/shaders/compensate.comp). Off by default: it can only give back what the screen shows, and a
   // larger B, where it pays, then loses the light of hidden surfaces (a panel lamp's top, docs/QUALITY.md).

@@ -1,0 +1,14 @@
+#pragma once
+// The table the gather's clamp spread reads (shaders/shared/clamp_spread.h), and its C++ twin's lookup.
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace dyngi::gi {
+
+// (I, N) at every sample of the table, computed by quadrature (a few milliseconds, once).
+std::vector<glm::vec2> clampSpreadTable();
+// Bilinear lookup of (I, N) at (eta, c), as gather.glsl does it.
+glm::vec2 clampSpreadLookup(const std::vector<glm::vec2>& table, float eta, float c);
+
+}  // namespace dyngi::gi
