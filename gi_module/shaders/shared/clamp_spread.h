@@ -3,15 +3,16 @@
 // The gather's G = cos_x cos_y / max(B, d^2) drops, for a VPL y closer than sqrt(B) to the receiver x,
 // the part cos_x cos_y (1 / d^2 - 1 / B): the singular spike that makes hot spots, and with it the light
 // corners should get (a VPL on the floor by a wall sends half its flux into the wall within sqrt(B) of
-// itself; the clamp keeps little of it). Here that light is given back, spread smoothly over the same
-// reach or a few times it. Take the receiver's surface as the plane through x with normal n_x, and y at height h above it,
+// itself; the clamp keeps little of it). Here that light is given back, spread smoothly near where it
+// lands. Take the receiver's surface as the plane through x with normal n_x, y at height h above it and
 // its normal at c = -n_y . n_x. In units of sqrt(B) (eta = h / sqrt(B), u the distance along the plane
 // from y's foot) the light the clamp drops over the whole plane is, per unit flux / pi,
 //   I(eta, c) = integral over the plane of cos_x cos_y (1 / d^2 - 1 / B) dA
 //             = integral_0^sqrt(1 - eta^2) eta u (1 / q - 1) / q J(s u, c eta) du,  q = u^2 + eta^2,
 // with s = sqrt(1 - c^2) and J(a, b) = integral_0^2pi max(0, a cos phi + b) dphi (dimensionless: B
-// cancels). It is pi c at eta -> 0 for a VPL facing the plane (all of its light), pi / 2 for one
-// perpendicular to it (half), 0 for one facing away. It is laid on the plane with the kernel
+// cancels). At eta -> 0 it is pi (1 + c) / 2, all the light the lobe sends into the plane: pi for a VPL
+// facing the plane, pi / 2 for one perpendicular to it, 0 for one facing away (clampSpreadTable sets
+// that row, which no quadrature reaches). It is laid on the plane with the kernel
 //   w = max(0, n_y . (x - y)) / sqrt(B) max(0, 1 - d^2 / B) / (B N(eta, c)),
 //   N(eta, c) = integral_0^sqrt(1 - eta^2) (1 - q) J(s u, c eta) u du,
 // which integrates to 1 over the plane: the VPL's cosine lobe times a bump that falls to 0 at d = sqrt(B),
