@@ -35,11 +35,14 @@ glm::vec2 integrate(double eta, double c) {
 }
 }  // namespace
 
-std::vector<glm::vec2> clampSpreadTable() {
-  const int E = DYNGI_CLAMP_SPREAD_ETA_CELLS, C = DYNGI_CLAMP_SPREAD_COS_CELLS;
-  std::vector<glm::vec2> table(size_t(E) * C);
-  for (int ci = 0; ci < C; ++ci)
-    for (int ei = 0; ei < E; ++ei) table[size_t(ei + E * ci)] = integrate(double(ei) / (E - 1), -1.0 + 2.0 * double(ci) / (C - 1));
+const std::vector<glm::vec2>& clampSpreadTable() {
+  static const std::vector<glm::vec2> table = [] {
+    const int E = DYNGI_CLAMP_SPREAD_ETA_CELLS, C = DYNGI_CLAMP_SPREAD_COS_CELLS;
+    std::vector<glm::vec2> t(size_t(E) * C);
+    for (int ci = 0; ci < C; ++ci)
+      for (int ei = 0; ei < E; ++ei) t[size_t(ei + E * ci)] = integrate(double(ei) / (E - 1), -1.0 + 2.0 * double(ci) / (C - 1));
+    return t;
+  }();
   return table;
 }
 

@@ -6,8 +6,9 @@
 
 namespace dyngi::gi {
 
-// (I, N) at every sample of the table, computed by quadrature (a few milliseconds, once).
-std::vector<glm::vec2> clampSpreadTable();
+// (I, N) at every sample of the table, computed by quadrature on the first call (about 25 ms) and kept:
+// every gather pass (each technique, each switch) uploads the same table.
+const std::vector<glm::vec2>& clampSpreadTable();
 // Bilinear lookup of (I, N) at (eta, c), as gather.glsl does it.
 glm::vec2 clampSpreadLookup(const std::vector<glm::vec2>& table, float eta, float c);
 

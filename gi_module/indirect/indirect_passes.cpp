@@ -37,7 +37,7 @@ IndirectGatherPass::IndirectGatherPass(render::VulkanContext& ctx, render::Shade
     throw render::VulkanError("the indirect gather needs shaderStorageImageExtendedFormats (rg32ui storage images); " + ctx.deviceName() +
                               " does not support it");
   pipeline_ = render::Pipeline::compute(ctx, variant, bindings_, sizeof(gpu::GatherPush) + extraPushBytes, name);
-  const std::vector<glm::vec2> table = clampSpreadTable();
+  const std::vector<glm::vec2>& table = clampSpreadTable();
   clampSpread_ = render::Buffer(ctx, table.size() * sizeof(glm::vec2), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, render::MemoryUsage::Upload,
                                 "clamp spread table");
   clampSpread_.upload(table.data(), table.size() * sizeof(glm::vec2));

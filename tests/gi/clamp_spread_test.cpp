@@ -46,7 +46,7 @@ double lightOnPlane(const std::vector<glm::vec2>& table, double h, double c, dou
 // and at half the clamp's reach: the clamp alone drops most of its light there; with the spread (round,
 // and stretched 4 times along the corner) the plane gets what it gets without any clamp, within a percent.
 TEST(ClampSpread, GivesBackOnAPlaneWhatTheClampDrops) {
-  const std::vector<glm::vec2> table = gi::clampSpreadTable();
+  const std::vector<glm::vec2>& table = gi::clampSpreadTable();
   const double B = 0.01, half = 0.4;
   for (double c : {1.0, 0.6, 0.0, -0.4})
     for (double h : {0.005, 0.02, 0.05})
@@ -69,7 +69,7 @@ TEST(ClampSpread, GivesBackOnAPlaneWhatTheClampDrops) {
 // that (a table row left at 0 there would halve the light of VPLs within a few millimetres); nothing is
 // lost from sqrt(B) away.
 TEST(ClampSpread, TableHasTheAnalyticLimits) {
-  const std::vector<glm::vec2> table = gi::clampSpreadTable();
+  const std::vector<glm::vec2>& table = gi::clampSpreadTable();
   const float firstSample = 1.0f / float(DYNGI_CLAMP_SPREAD_ETA_CELLS - 1);
   for (float c : {1.0f, 0.5f, 0.0f, -0.5f, -1.0f}) {
     const double limit = kPi * (1.0 + c) / 2.0;

@@ -120,7 +120,10 @@ void TemporalIndirect::prepare(render::VulkanContext&, const render::RenderSnaps
   uint32_t probeSlots = 0;
   for (uint32_t set = 0; probes && set < sets_; ++set) {
     uint32_t n = 0;
-    for (uint32_t j = 0; j < gathered_; ++j) n += poolIndex(j, set) < all.size() && poolIndex(j, set) % B == B - 1;
+    for (uint32_t j = 0; j < gathered_; ++j) {
+      const uint32_t index = poolIndex(j, set);
+      n += index < all.size() && index % B == B - 1;
+    }
     probeSlots = std::max(probeSlots, n);
   }
   slots_ = gathered_ + probeSlots;
