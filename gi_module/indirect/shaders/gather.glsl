@@ -47,6 +47,28 @@ vec2 clampSpreadAt(float eta, float c) {
   return mix(mix(clampSpreadTable[i], clampSpreadTable[i + 1], f.x), mix(clampSpreadTable[i + E], clampSpreadTable[i + E + 1], f.x), f.y);
 }
 
+// Whether the screen shows the receiver's plane (through x, normal nx) where the clamp spread lays a
+// VPL's dropped light: at y's foot on it, moved half the clamp's reach along the plane the way y faces
+// (up the wall from a floor VPL's foot). The spread takes the plane to run on past x; a box's face does
+// not, and a VPL on the floor beside the box sits on its plane's extension, where the clamp dropped its
+// light on nothing: spread, that light smeared along the face's base. False only when the screen sees
+// past that point (the floor or a far wall beside the box); off screen or hidden, the plane is assumed.
+bool spreadPlaneShown(vec3 x, vec3 nx, vec3 y, vec3 ny) {
+  vec3 along = ny - dot(ny, nx) * nx;
+  float l2 = dot(along, along);
+  vec3 probe = y - dot(y - x, nx) * nx + (l2 > 1e-4 ? along * inversesqrt(l2) : vec3(0.0)) * (0.5 * sqrt(pc.distanceClamp));
+  vec4 clip = frame.viewProj * vec4(probe, 1.0);
+  if (clip.w <= 0.0) return true;
+  ivec2 size = ivec2(frame.sizeAndCount.xy);
+  ivec2 q = ivec2((clip.xy / clip.w * 0.5 + 0.5) * vec2(size));
+  if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) return true;
+  vec4 seen = imageLoad(gPosition, q);
+  if (seen.w == 0.0) return false;  // background where the plane should be
+  float depth = viewDepthOf(probe), tolerance = max(0.25 * sqrt(pc.distanceClamp), 0.01 * depth);
+  if (abs(dot(seen.xyz - x, nx)) < tolerance) return true;
+  return viewDepthOf(seen.xyz) < depth - tolerance;  // something in front hides the point: cannot tell
+}
+
 // Light from the set's VPL i (the m-th this pixel gathers) at surface point x with normal nx (xv: x in
 // voxel units, lifted): flux G V, or 0 for an absent, dim or back-facing VPL or one beyond the count.
 vec3 vplLight(uint i, uint m, vec3 x, vec3 nx, vec3 xv, float threshold, uint bitBase) {
@@ -66,7 +88,7 @@ vec3 vplLight(uint i, uint m, vec3 x, vec3 nx, vec3 xv, float threshold, uint bi
     vec3 t = cross(nx, v.normal.xyz);
     float along = dot(d, t), along2 = along * along / max(dot(t, t), 1e-8);
     float bump = clampSpreadBump(d2, along2, pc.distanceClamp, stretch);
-    if (bump > 0.0)  // within the stretched reach: few VPLs are, so the table's loads are mostly skipped
+    if (bump > 0.0 && spreadPlaneShown(x, nx, v.position.xyz, v.normal.xyz))  // few VPLs are within reach
       g += clampSpreadG(clampSpreadAt(cx * sqrt(d2) * inversesqrt(pc.distanceClamp), c), bump, d2, cy, pc.distanceClamp, stretch);
   }
   if (pc.visibility == DYNGI_VISIBILITY_BITS) {

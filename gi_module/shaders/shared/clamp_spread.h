@@ -20,7 +20,10 @@
 //   I w = (I / N) cos_y sqrt(d^2 / B) max(0, 1 - d^2 / B) / B
 // (n_y . (x - y) = cos_y d), visible as the VPL is. On a plane every receiver sees the same eta and c,
 // so the light given back is exactly the light dropped; where the surface ends within reach (a box's
-// edge) the part of the kernel past it is lost: it can miss light, not invent it.
+// edge) the part of the kernel past it is lost. The plane is also taken to run on past the receiver:
+// a VPL on the floor beside a box sits on the box face's plane extended, and its light, dropped where
+// that plane is not, would land on the face. The gather gives back nothing where the screen shows
+// something other than the plane at the VPL's foot (spreadPlaneShown in gather.glsl).
 // Stretched along the corner. Each VPL's dropped light is a bump of its own, and with 512-1024 VPLs in
 // a room the bumps stand apart along the walls' bases as blobs. Stretching the bump by A along t, the
 // line where the VPL's plane meets the receiver's (t = n_x x n_y; the lobe does not change along it),
