@@ -20,7 +20,7 @@ struct VplOptions {
   // The light the clamp drops for VPLs within sqrt(B) of a pixel, given back spread within sqrt(B) on the
   // pixel's plane and stretched this many times along the corner (shaders/shared/clamp_spread.h): the
   // corners the clamp darkens get it back. 0: off; 1: round.
-  float clampSpread = 4.0f;
+  float clampSpread = 8.0f;
   // What the gather uses (GatherPush::clampSpread): 0 when off (or with no clamp), else at least 1. The
   // screen-space compensation (compensationRays), when on, gives back the same light instead.
   float clampSpreadStretch() const {
