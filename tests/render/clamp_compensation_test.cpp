@@ -171,7 +171,7 @@ TEST_F(RenderTest, ClampSpreadGivesTheCornersTheirLightBack) {
 // (spreadPlaneShown in gather.glsl) and gives nothing back where the face is not. The main job's
 // technique and settings at 192^2 after its 60 frames, against the path tracer at 512 spp: the base strip
 // (within 0.12 m of the floor) of the face's interior pixels, and the room's corner strips, which must
-// keep their light. Measured: base strip 1.714 -> 0.879, corner strips 0.989 -> 0.981. (Many lights,
+// keep their light. Measured: base strip 1.714 -> 0.879, corner strips 0.989 -> 0.982. (Many lights,
 // whose 512 RSM VPLs are drawn anew each frame, reads 1.57 -> 1.51 there: its noise, not the smear.)
 TEST_F(RenderTest, ClampSpreadLeavesABoxFaceBesideLitFloorDark) {
   constexpr uint32_t size = 192;
