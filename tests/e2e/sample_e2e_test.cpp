@@ -143,6 +143,43 @@ INSTANTIATE_TEST_SUITE_P(Sample, SampleGiMode,
                                            GiCase{"vct", "--gi vct", false}, GiCase{"path", "--gi path --spp 4", false}),
                          [](const auto& p) { return std::string(p.param.name); });
 
+// dyngi_imgcmp's region means: an image against itself reads a ratio of 1 in every region; the frame
+// with GI against the one without reads more than 1 over the whole image, the same as the tool's own
+// whole-image mean_ratio; a region outside the image or malformed is one error line and exit 2.
+TEST(ImageCompare, RegionMeansAndBadRegions) {
+  TempDir dir;
+  for (const char* gi : {"off", "vct"}) {
+    SampleRun r = runSample(std::string("--headless --frames 2 --size 32x32 --voxel-res 64 --gi ") + gi + " --hdr-out " +
+                                dir.file(std::string(gi) + ".exr"),
+                            dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+  }
+  const std::string off = dir.file("off.exr"), vct = dir.file("vct.exr");
+  auto compare = [&](const std::string& image, const std::string& args) {
+    return dyngi::test::runSample(DYNGI_IMGCMP_EXE, off + " " + image + " " + args, dir, 60);
+  };
+  SampleRun same = compare(off, "--region 0,0,16,16 --region 8,4,24,28");
+  ASSERT_EQ(same.exitCode, 0) << same.err;
+  const nlohmann::json j = nlohmann::json::parse(same.out);
+  ASSERT_EQ(j["regions"].size(), 2u) << j.dump();
+  for (const auto& region : j["regions"]) {
+    EXPECT_GT(region["reference"].get<double>(), 0.0) << "the Cornell box is lit there";
+    EXPECT_DOUBLE_EQ(region["ratio"].get<double>(), 1.0);
+  }
+  EXPECT_EQ(j["regions"][1]["rect"], nlohmann::json::array({8, 4, 24, 28}));
+  EXPECT_TRUE(j["psnr"].is_null()) << "equal images: no finite PSNR, and still valid JSON";
+  SampleRun withGi = compare(vct, "--region 0,0,32,32");
+  ASSERT_EQ(withGi.exitCode, 0) << withGi.err;
+  const nlohmann::json g = nlohmann::json::parse(withGi.out);
+  EXPECT_GT(g["mean_ratio"].get<double>(), 1.01) << "bounce light adds to the direct";
+  EXPECT_NEAR(g["regions"][0]["ratio"].get<double>(), g["mean_ratio"].get<double>(), 1e-3);
+  for (const char* bad : {"--region 30,30,8,8", "--region 1,2", "--region -1,0,4,4", "--region", "--frobnicate x"}) {
+    SampleRun b = compare(off, bad);
+    EXPECT_EQ(b.exitCode, 2) << bad;
+    EXPECT_NE(b.err.find("dyngi_imgcmp"), std::string::npos) << bad << ": " << b.err;
+  }
+}
+
 // --gi vct with its options: every stage it declares is timed, and its own figures are in the stats.
 TEST(SampleVct, TimesEveryStageAndReportsItsSettings) {
   TempDir dir;

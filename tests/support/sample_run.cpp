@@ -8,16 +8,20 @@
 namespace dyngi::test {
 
 SampleRun runSample(const std::string& exe, const std::string& args, const TempDir& dir, int timeoutSeconds) {
-  std::string errFile = dir.file("stderr.txt");
-  std::string cmd = "timeout -s KILL " + std::to_string(timeoutSeconds) + " " + exe + " " + args + " >/dev/null 2>" + errFile;
+  std::string errFile = dir.file("stderr.txt"), outFile = dir.file("stdout.txt");
+  std::string cmd = "timeout -s KILL " + std::to_string(timeoutSeconds) + " " + exe + " " + args + " >" + outFile + " 2>" + errFile;
   int status = std::system(cmd.c_str());
   SampleRun r;
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   if (r.exitCode == 128 + 9 || r.exitCode == 137) r.exitCode = 124;  // killed by timeout's SIGKILL
-  std::ifstream f(errFile);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  r.err = ss.str();
+  auto read = [](const std::string& path) {
+    std::ifstream f(path);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+  };
+  r.err = read(errFile);
+  r.out = read(outFile);
   return r;
 }
 

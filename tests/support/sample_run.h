@@ -9,6 +9,7 @@ namespace dyngi::test {
 struct SampleRun {
   int exitCode = -1;   // 128 + signal when it died of one; 124 when `timeoutSeconds` ran out
   std::string err;     // everything it wrote to stderr
+  std::string out;     // and to stdout
 };
 
 // `args` go to the shell as they are. A run longer than timeoutSeconds is killed (a hang is a failure,
