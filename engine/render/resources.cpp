@@ -291,6 +291,7 @@ Image createTexture(VulkanContext& ctx, uint32_t width, uint32_t height, const u
 size_t formatBytesPerPixel(VkFormat format) {
   switch (format) {
     case VK_FORMAT_R8G8B8A8_UNORM:
+    case VK_FORMAT_R8G8B8A8_SNORM:
     case VK_FORMAT_R8G8B8A8_SRGB:
     case VK_FORMAT_B8G8R8A8_UNORM:
     case VK_FORMAT_D32_SFLOAT:
@@ -347,6 +348,13 @@ std::vector<glm::vec4> readbackImageLevel(VulkanContext& ctx, Image& img, uint32
       break;
     case VK_FORMAT_R8G8B8A8_UNORM:
       for (size_t i = 0; i < n; ++i) out[i] = glm::vec4(src[i * 4], src[i * 4 + 1], src[i * 4 + 2], src[i * 4 + 3]) / 255.0f;
+      break;
+    case VK_FORMAT_R8G8B8A8_SNORM:
+      for (size_t i = 0; i < n; ++i) {
+        int8_t b[4];
+        std::memcpy(b, src + i * 4, 4);
+        out[i] = glm::max(glm::vec4(b[0], b[1], b[2], b[3]) / 127.0f, glm::vec4(-1.0f));
+      }
       break;
     default: throw VulkanError("readback: unsupported format");
   }

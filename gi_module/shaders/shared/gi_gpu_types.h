@@ -231,6 +231,7 @@ struct RsmPush {
 #define DYNGI_VCT_INJECT_BINDING_PREVIOUS 7
 #define DYNGI_VCT_INJECT_BINDING_DIRECT 8
 #define DYNGI_VCT_INJECT_BINDING_RADIANCE 9
+#define DYNGI_VCT_INJECT_BINDING_NORMALS 10
 // vct_bounce: one more bounce per occupied voxel (cones over the radiance volume), then vct_commit
 #define DYNGI_VCT_BOUNCE_BINDING_NODES 0
 #define DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS 1
@@ -243,6 +244,7 @@ struct RsmPush {
 // vct_mips: one level of the radiance mip chain (isotropic) or of the six-direction atlas
 #define DYNGI_VCT_MIPS_BINDING_SOURCE 0
 #define DYNGI_VCT_MIPS_BINDING_DEST 1
+#define DYNGI_VCT_MIPS_BINDING_NORMALS 2
 // vct_trace: the screen's cones; vct_upsample: to full resolution
 #define DYNGI_VCT_TRACE_BINDING_FRAME 0
 #define DYNGI_VCT_TRACE_BINDING_G_POSITION 1

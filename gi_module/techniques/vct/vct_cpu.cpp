@@ -59,7 +59,15 @@ VolumeLevel vctOpaqueAxisDownsample(const VolumeLevel& s) {
   });
 }
 
-VolumeLevel vctAnisoDownsample(const VolumeLevel& s, uint32_t sourceSlabWidth, uint32_t destSlabWidth) {
+VolumeLevel vctAnisoDownsample(const VolumeLevel& s, uint32_t sourceSlabWidth, uint32_t destSlabWidth, const VolumeLevel* normals) {
+  // The child at c as a cone travelling along `axis` (negative: -axis) sees it (vct_mips.comp, kSharedSource).
+  auto seen = [&](const glm::ivec3& c, glm::vec4 texel, uint32_t axis, bool negative) {
+    if (!normals) return texel;
+    const glm::vec4 n = normals->at(c.x, c.y, c.z);
+    constexpr float kParallel = 0.1f;
+    const bool shown = n.w <= 0.5f || (negative ? n[int(axis)] >= -kParallel : -n[int(axis)] >= -kParallel);
+    return shown ? texel : glm::vec4(0.0f, 0.0f, 0.0f, texel.a);
+  };
   return makeLevel(kSlabs * destSlabWidth, destSlabWidth, destSlabWidth, [&](uint32_t x, uint32_t y, uint32_t z) {
     const uint32_t slab = x / destSlabWidth, axis = slab / 2;
     const bool negative = (slab & 1u) != 0;
@@ -71,7 +79,8 @@ VolumeLevel vctAnisoDownsample(const VolumeLevel& s, uint32_t sourceSlabWidth, u
     glm::vec4 sum(0.0f);
     for (int j = 0; j < 4; ++j) {
       const glm::ivec3 c = base + (j & 1) * u + (j >> 1) * v;
-      const glm::vec4 lo = s.at(c.x + offsetX, c.y, c.z), hi = s.at(c.x + along.x + offsetX, c.y + along.y, c.z + along.z);
+      const glm::ivec3 d = c + along;
+      const glm::vec4 lo = seen(c, s.at(c.x + offsetX, c.y, c.z), axis, negative), hi = seen(d, s.at(d.x + offsetX, d.y, d.z), axis, negative);
       sum += negative ? over(hi, lo) : over(lo, hi);
     }
     return sum * 0.25f;

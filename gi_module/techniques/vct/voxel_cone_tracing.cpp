@@ -29,13 +29,14 @@ constexpr VkPipelineStageFlags2 kComputeAndTransfer = VK_PIPELINE_STAGE_2_COMPUT
 constexpr VkAccessFlags2 kReadWrite = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
                                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
 
-Image makeVolume(render::VulkanContext& ctx, uint32_t w, uint32_t h, uint32_t d, uint32_t mips, const char* name) {
+Image makeVolume(render::VulkanContext& ctx, uint32_t w, uint32_t h, uint32_t d, uint32_t mips, const char* name,
+                 VkFormat format = kRadianceFormat) {
   render::ImageDesc desc;
   desc.width = w;
   desc.height = h;
   desc.depth = d;
   desc.mips = mips;
-  desc.format = kRadianceFormat;
+  desc.format = format;
   desc.usage = kVolumeUsage;
   desc.viewType = VK_IMAGE_VIEW_TYPE_3D;
   desc.name = name;
@@ -76,10 +77,13 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
                            {DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_PREVIOUS, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_DIRECT, kStorageImage, kCS},
-                           {DYNGI_VCT_INJECT_BINDING_RADIANCE, kStorageImage, kCS}};
+                           {DYNGI_VCT_INJECT_BINDING_RADIANCE, kStorageImage, kCS},
+                           {DYNGI_VCT_INJECT_BINDING_NORMALS, kStorageImage, kCS}};
   inject_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_inject_comp), leafB, sizeof(gpu::VctInjectPush), "vct_inject");
 
-  const Binding mipsB[] = {{DYNGI_VCT_MIPS_BINDING_SOURCE, kStorageImage, kCS}, {DYNGI_VCT_MIPS_BINDING_DEST, kStorageImage, kCS}};
+  const Binding mipsB[] = {{DYNGI_VCT_MIPS_BINDING_SOURCE, kStorageImage, kCS},
+                           {DYNGI_VCT_MIPS_BINDING_DEST, kStorageImage, kCS},
+                           {DYNGI_VCT_MIPS_BINDING_NORMALS, kStorageImage, kCS}};
   const Binding bounceB[] = {{DYNGI_VCT_BOUNCE_BINDING_NODES, kSSBO, kCS},       {DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS, kSSBO, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_LEVELS, kSSBO, kCS},      {DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES, kSSBO, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_DIRECT, kStorageImage, kCS}, {DYNGI_VCT_BOUNCE_BINDING_RADIANCE, kSampled, kCS},
@@ -169,6 +173,7 @@ void VoxelConeTracing::ensureVolumes(uint32_t res) {
     radiance_ = makeVolume(ctx_, res, res, res, levels, "vct radiance");
     direct_[0] = makeVolume(ctx_, res, res, res, 1, "vct direct radiance A");
     direct_[1] = makeVolume(ctx_, res, res, res, 1, "vct direct radiance B");
+    normals_ = makeVolume(ctx_, res, res, res, 1, "vct voxel normals", VK_FORMAT_R8G8B8A8_SNORM);
     frames_ = 0;
   }
   const uint32_t half = std::max(res / 2, 1u);
@@ -177,7 +182,7 @@ void VoxelConeTracing::ensureVolumes(uint32_t res) {
   res_ = res;
   rebuiltLastFrame_ = true;
   ctx_.immediate([&](VkCommandBuffer cmd) {
-    for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_}) {
+    for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_, &normals_}) {
       if (!img->valid()) continue;
       img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
       const VkClearColorValue zero{};
@@ -185,7 +190,7 @@ void VoxelConeTracing::ensureVolumes(uint32_t res) {
       vkCmdClearColorImage(cmd, img->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
     }
   });
-  stats_.volumeBytes = volumeBytes(radiance_) + volumeBytes(aniso_) + volumeBytes(direct_[0]) * 2 + volumeBytes(bounced_);
+  stats_.volumeBytes = volumeBytes(radiance_) + volumeBytes(aniso_) + volumeBytes(direct_[0]) * 2 + volumeBytes(bounced_) + volumeBytes(normals_);
 }
 
 uint32_t VoxelConeTracing::traceScale() const {
@@ -262,7 +267,11 @@ void VoxelConeTracing::recordMips(VkCommandBuffer cmd) {
   const bool aniso = options_.anisotropic;
   auto level = [&](const Pipeline& p, VkImageView source, VkImageView dest, uint32_t w, uint32_t h, uint32_t d, gpu::VctMipsPush pc) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
-    DescriptorWrites().storageImage(DYNGI_VCT_MIPS_BINDING_SOURCE, source).storageImage(DYNGI_VCT_MIPS_BINDING_DEST, dest).push(ctx_, cmd, p);
+    DescriptorWrites()
+        .storageImage(DYNGI_VCT_MIPS_BINDING_SOURCE, source)
+        .storageImage(DYNGI_VCT_MIPS_BINDING_DEST, dest)
+        .storageImage(DYNGI_VCT_MIPS_BINDING_NORMALS, normals_.view())
+        .push(ctx_, cmd, p);
     vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
     vkCmdDispatch(cmd, dispatchGroups(w, 4), dispatchGroups(h, 4), dispatchGroups(d, 4));
     render::computeWriteBarrier(cmd);
@@ -293,7 +302,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   ensureTraceTargets(frame.targets.width, frame.targets.height);
   // Back to GENERAL after a read-back (tests); the frames before finished at the renderer's fence, and
   // the passes below order themselves with global barriers.
-  for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_, &traced_[0].diffuse, &traced_[0].specular, &traced_[0].surface,
+  for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_, &normals_, &traced_[0].diffuse, &traced_[0].specular, &traced_[0].surface,
                      &traced_[1].diffuse, &traced_[1].specular, &traced_[1].surface, &filterAlongX_, &filteredDiffuse_})
     if (img->valid() && img->layout() != VK_IMAGE_LAYOUT_GENERAL) img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, kComputeAndTransfer, kReadWrite);
   frame.lights.shadowMaps->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
@@ -336,7 +345,8 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
         .storageImage(DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, frame.lights.shadowMaps->view())
         .storageImage(DYNGI_VCT_INJECT_BINDING_PREVIOUS, direct_[previous].view())
         .storageImage(DYNGI_VCT_INJECT_BINDING_DIRECT, direct_[current_].view())
-        .storageImage(DYNGI_VCT_INJECT_BINDING_RADIANCE, radiance_.mipView(0));
+        .storageImage(DYNGI_VCT_INJECT_BINDING_RADIANCE, radiance_.mipView(0))
+        .storageImage(DYNGI_VCT_INJECT_BINDING_NORMALS, normals_.view());
     recordLeafPass(cmd, inject_, &pc, sizeof(pc), w);
     stats_.injected = true;
   }

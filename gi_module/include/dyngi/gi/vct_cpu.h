@@ -22,8 +22,10 @@ VolumeLevel vctBoxDownsample(const VolumeLevel& source);
 // The isotropic next level with each texel's opacity from its most opaque axis (opaqueAxisMips).
 VolumeLevel vctOpaqueAxisDownsample(const VolumeLevel& source);
 // The next level of the six-direction atlas (vct_mips.comp, anisotropic): from one isotropic source
-// (sourceSlabWidth 0) or from the atlas level below.
-VolumeLevel vctAnisoDownsample(const VolumeLevel& source, uint32_t sourceSlabWidth, uint32_t destSlabWidth);
+// (sourceSlabWidth 0) with its voxels' normals (`normals`: xyz, w 1 one-sided, 0 two-sided; a one-sided
+// voxel's radiance shows only to cones meeting its front), or from the atlas level below (normals null).
+VolumeLevel vctAnisoDownsample(const VolumeLevel& source, uint32_t sourceSlabWidth, uint32_t destSlabWidth,
+                               const VolumeLevel* normals = nullptr);
 
 // textureLod with linear filtering and mip interpolation, clamped to the edge.
 glm::vec4 sampleVolumeLod(const std::vector<VolumeLevel>& levels, const glm::vec3& uvw, float lod);

@@ -38,7 +38,8 @@ struct VctOptions {
   uint32_t diffuseFilterRadius = 3;
   static constexpr uint32_t kMaxDiffuseFilterRadius = 4;  // the filter's taps grow with it: 2 (2r + 1)
   // Opacity and radiance of the mip chain per direction (6 volumes of half resolution, composited front
-  // to back along each axis): a thin wall stays opaque at coarse mips, so less light leaks through it.
+  // to back along each axis): a thin wall stays opaque at coarse mips, so less light leaks through it,
+  // and a one-sided surface shows its light only to the directions that meet its front.
   bool anisotropic = true;
   // Isotropic volumes only: a coarse texel takes the opacity of its most opaque axis (its children
   // composited front to back along it) instead of their mean, so thin walls and floors stay opaque.

@@ -55,6 +55,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   // this frame's injected direct radiance. Valid after the first frame.
   render::Image& radianceVolume() { return radiance_; }
   render::Image& anisotropicVolume() { return aniso_; }
+  render::Image& voxelNormals() { return normals_; }
   render::Image& directVolume() { return direct_[current_]; }
   // Marches one cone per ray (voxel units: origin, direction) through the volume as it stands, on the
   // GPU (vct_cone_probe.comp): rgb radiance, a opacity. Synchronous.
@@ -84,6 +85,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   render::Image aniso_;        // 6 (res/2) x res/2 x res/2, mips (anisotropic only)
   render::Image direct_[2];    // res^3: the injected radiance this frame and last (temporal blending)
   render::Image bounced_;      // res^3: a bounce's output before it is committed to radiance_ level 0
+  render::Image normals_;      // res^3, RGBA8 snorm: each occupied voxel's normal (vct_inject.comp), for the atlas' first level
   // The traced pixels, this frame's and last (alternating): diffuse (AO in alpha), specular (alpha: frames
   // since traced; both alphas -1: missing), the surface each saw (vct_reproject.comp's record).
   struct TracedPixels {

@@ -3,7 +3,8 @@
 // the renderer's shadow maps at the voxel's surface) plus its emission, as isotropic radiance with
 // opacity 1. Blended per voxel with the previous frame's radiance (temporalBlend), except where it
 // changed by more than temporalResponse (relative), so a light switched off leaves no trail. Written to
-// DIRECT (the frame's history, what bounces add to) and to level 0 of the radiance volume.
+// DIRECT (the frame's history, what bounces add to) and to level 0 of the radiance volume; the voxel's
+// normal to NORMALS, for the anisotropic atlas (vct_mips.comp: a one-sided voxel's back is black).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 #include "shared/gi_gpu_types.h"
@@ -19,6 +20,9 @@ layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, r32f) uniform re
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_PREVIOUS, rgba16f) uniform readonly image3D previous;
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_DIRECT, rgba16f) uniform writeonly image3D direct;
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_RADIANCE, rgba16f) uniform writeonly image3D radiance;
+// The voxel's surface normal for the atlas' first level (vct_mips.comp): w 1, or 0 where its fragments
+// face both ways (a wall thinner than a voxel: seen from both sides).
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_NORMALS, rgba8_snorm) uniform writeonly image3D normals;
 layout(push_constant) uniform Push { DYNGI_VCT_INJECT_PUSH };
 #include "shared/shadows.glsl"
 #include "vct_leaves.glsl"
@@ -65,6 +69,7 @@ void inject(uint i) {
   }
   imageStore(direct, leaf.voxel, vec4(L, 1.0));
   imageStore(radiance, leaf.voxel, vec4(L, 1.0));
+  imageStore(normals, leaf.voxel, vec4(n, twoSided ? 0.0 : 1.0));
 }
 
 void main() {

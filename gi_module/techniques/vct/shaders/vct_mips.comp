@@ -18,6 +18,7 @@ layout(constant_id = 1) const bool kOpaqueAxis = false;
 layout(constant_id = 2) const bool kSharedSource = false;
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_SOURCE, rgba16f) uniform readonly image3D source;
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_DEST, rgba16f) uniform writeonly image3D dest;
+layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_NORMALS, rgba8_snorm) uniform readonly image3D normals;  // kSharedSource: vct_inject.comp's
 layout(push_constant) uniform Push { DYNGI_VCT_MIPS_PUSH };
 
 vec4 child(uint slab, ivec3 base, ivec3 offset) {
@@ -25,6 +26,8 @@ vec4 child(uint slab, ivec3 base, ivec3 offset) {
   c.x += int(slab * sourceSlabWidth);
   return imageLoad(source, c);
 }
+
+const float kVctParallel = 0.1;  // |n_axis| under this: the surface is parallel to the axis
 
 vec4 over(vec4 front, vec4 back) { return front + (1.0 - front.a) * back; }
 
@@ -61,17 +64,38 @@ void main() {
   if (kSharedSource) {
     if (p.x >= int(destSlabWidth)) return;
     ivec3 b = 2 * p;
-    vec4 c0 = imageLoad(source, b), c1 = imageLoad(source, b + ivec3(1, 0, 0)), c2 = imageLoad(source, b + ivec3(0, 1, 0)),
-         c3 = imageLoad(source, b + ivec3(1, 1, 0)), c4 = imageLoad(source, b + ivec3(0, 0, 1)), c5 = imageLoad(source, b + ivec3(1, 0, 1)),
-         c6 = imageLoad(source, b + ivec3(0, 1, 1)), c7 = imageLoad(source, b + ivec3(1, 1, 1));
+    vec4 c[8];
+    // Per child and axis, 1 where a cone travelling along -axis (+axis) sees its radiance: a one-sided
+    // surface shows it only to cones that meet its front, its back is black (it still blocks them). A
+    // thin wall's lit side then no longer reaches, through the sampler's filtering across the wall, the
+    // cones on the other side, and a box's lit top not the cones passing under its edge. Two-sided
+    // voxels (w 0: a wall thinner than a voxel) and a surface parallel to the axis show it both ways;
+    // parallel within kVctParallel, so that the normal's rounding does not hide a floor from one side.
+    vec3 seenTravellingMinus[8], seenTravellingPlus[8];
+    for (int i = 0; i < 8; ++i) {
+      ivec3 q = b + ivec3(i & 1, (i >> 1) & 1, i >> 2);
+      c[i] = imageLoad(source, q);
+      vec4 n = imageLoad(normals, q);
+      seenTravellingMinus[i] = n.w > 0.5 ? step(-kVctParallel, n.xyz) : vec3(1.0);
+      seenTravellingPlus[i] = n.w > 0.5 ? step(-kVctParallel, -n.xyz) : vec3(1.0);
+    }
     int w = int(destSlabWidth);
+    // Child i as a cone travelling along +axis (plus) or -axis sees it.
+#define SEEN(i, axis, plus) vec4(c[i].rgb * ((plus) ? seenTravellingPlus[i][axis] : seenTravellingMinus[i][axis]), c[i].a)
     // Child i sits at (i & 1, i >> 1 & 1, i >> 2): the pairs along x are (0,1) (2,3) (4,5) (6,7), ...
-    imageStore(dest, p, 0.25 * (over(c0, c1) + over(c2, c3) + over(c4, c5) + over(c6, c7)));
-    imageStore(dest, p + ivec3(w, 0, 0), 0.25 * (over(c1, c0) + over(c3, c2) + over(c5, c4) + over(c7, c6)));
-    imageStore(dest, p + ivec3(2 * w, 0, 0), 0.25 * (over(c0, c2) + over(c1, c3) + over(c4, c6) + over(c5, c7)));
-    imageStore(dest, p + ivec3(3 * w, 0, 0), 0.25 * (over(c2, c0) + over(c3, c1) + over(c6, c4) + over(c7, c5)));
-    imageStore(dest, p + ivec3(4 * w, 0, 0), 0.25 * (over(c0, c4) + over(c1, c5) + over(c2, c6) + over(c3, c7)));
-    imageStore(dest, p + ivec3(5 * w, 0, 0), 0.25 * (over(c4, c0) + over(c5, c1) + over(c6, c2) + over(c7, c3)));
+    imageStore(dest, p, 0.25 * (over(SEEN(0, 0, true), SEEN(1, 0, true)) + over(SEEN(2, 0, true), SEEN(3, 0, true)) +
+                                over(SEEN(4, 0, true), SEEN(5, 0, true)) + over(SEEN(6, 0, true), SEEN(7, 0, true))));
+    imageStore(dest, p + ivec3(w, 0, 0), 0.25 * (over(SEEN(1, 0, false), SEEN(0, 0, false)) + over(SEEN(3, 0, false), SEEN(2, 0, false)) +
+                                                 over(SEEN(5, 0, false), SEEN(4, 0, false)) + over(SEEN(7, 0, false), SEEN(6, 0, false))));
+    imageStore(dest, p + ivec3(2 * w, 0, 0), 0.25 * (over(SEEN(0, 1, true), SEEN(2, 1, true)) + over(SEEN(1, 1, true), SEEN(3, 1, true)) +
+                                                     over(SEEN(4, 1, true), SEEN(6, 1, true)) + over(SEEN(5, 1, true), SEEN(7, 1, true))));
+    imageStore(dest, p + ivec3(3 * w, 0, 0), 0.25 * (over(SEEN(2, 1, false), SEEN(0, 1, false)) + over(SEEN(3, 1, false), SEEN(1, 1, false)) +
+                                                     over(SEEN(6, 1, false), SEEN(4, 1, false)) + over(SEEN(7, 1, false), SEEN(5, 1, false))));
+    imageStore(dest, p + ivec3(4 * w, 0, 0), 0.25 * (over(SEEN(0, 2, true), SEEN(4, 2, true)) + over(SEEN(1, 2, true), SEEN(5, 2, true)) +
+                                                     over(SEEN(2, 2, true), SEEN(6, 2, true)) + over(SEEN(3, 2, true), SEEN(7, 2, true))));
+    imageStore(dest, p + ivec3(5 * w, 0, 0), 0.25 * (over(SEEN(4, 2, false), SEEN(0, 2, false)) + over(SEEN(5, 2, false), SEEN(1, 2, false)) +
+                                                     over(SEEN(6, 2, false), SEEN(2, 2, false)) + over(SEEN(7, 2, false), SEEN(3, 2, false))));
+#undef SEEN
     return;
   }
   uint slab = uint(p.x) / destSlabWidth;
