@@ -354,14 +354,15 @@ TEST_F(RenderTest, VctLeakThroughAThinWallPerMipChain) {
   // The mean halves a thin wall's opacity at every level: light passes. The opaque axis keeps the wall
   // opaque for every direction: under the goal of 5 percent. The anisotropic atlas keeps it opaque along
   // its normal, but room A's lit floor runs under the wall and a texel straddling the wall shows it to a
-  // room-B cone travelling down and towards the wall through the -y slab: about 10 percent at both
-  // resolutions. Bounds hold today's figures.
+  // room-B cone travelling down and towards the wall through the -y slab: 11 percent at 128^3, 12 at
+  // 256^3 (13 at 128^3 before the atlas showed one-sided voxels' backs black: the wall's room-A face,
+  // seen from room B, now shows black to the cones filtered across the wall). Bounds hold today's figures.
   for (uint32_t res : resolutions) {
     const double mean = leak[{res, 0}], opaqueAxis = leak[{res, 1}], aniso = leak[{res, 2}];
     EXPECT_LT(opaqueAxis, 0.05) << res;
     EXPECT_LT(opaqueAxis, mean) << res;
     EXPECT_LT(aniso, mean) << res;
-    EXPECT_LT(aniso, 0.15) << res;
+    EXPECT_LT(aniso, res == 128u ? 0.12 : 0.13) << res;
   }
 }
 
