@@ -48,7 +48,7 @@ uint64_t volumeBytes(const Image& img) {
   uint64_t bytes = 0;
   const auto& d = img.desc();
   for (uint32_t m = 0; m < d.mips; ++m)
-    bytes += uint64_t(std::max(d.width >> m, 1u)) * std::max(d.height >> m, 1u) * std::max(d.depth >> m, 1u) * 8;
+    bytes += uint64_t(std::max(d.width >> m, 1u)) * std::max(d.height >> m, 1u) * std::max(d.depth >> m, 1u) * render::formatBytesPerPixel(d.format);
   return bytes;
 }
 
