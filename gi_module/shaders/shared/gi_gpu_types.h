@@ -293,6 +293,10 @@ struct RsmPush {
 // footprint's largest fraction of its distance from the surface it left.
 #define DYNGI_VCT_MAX_STEPS 160
 #define DYNGI_VCT_SURFACE_CLEARANCE 0.5
+// The atlas' first level (vct_mips.comp and vctAnisoDownsample): a one-sided voxel whose normal's
+// component along an axis is under this in size is parallel to that axis, seen from both of its sides
+// (so that the normal's rounding does not hide a floor from one side).
+#define DYNGI_VCT_PARALLEL 0.1
 
 // Bindings of the shared indirect gather (gather.glsl); a technique's gather variant adds its own after
 // them (temporal_gather.comp).

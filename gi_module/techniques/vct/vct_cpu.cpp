@@ -11,6 +11,7 @@ namespace {
 constexpr uint32_t kSlabs = DYNGI_VCT_SLABS;
 constexpr int kMaxSteps = DYNGI_VCT_MAX_STEPS;
 constexpr float kSurfaceClearance = float(DYNGI_VCT_SURFACE_CLEARANCE);
+constexpr float kParallel = float(DYNGI_VCT_PARALLEL);
 glm::vec4 over(const glm::vec4& front, const glm::vec4& back) { return front + (1.0f - front.a) * back; }
 
 // A w x h x d level with each texel from texel(x, y, z).
@@ -64,7 +65,6 @@ VolumeLevel vctAnisoDownsample(const VolumeLevel& s, uint32_t sourceSlabWidth, u
   auto seen = [&](const glm::ivec3& c, glm::vec4 texel, uint32_t axis, bool negative) {
     if (!normals) return texel;
     const glm::vec4 n = normals->at(c.x, c.y, c.z);
-    constexpr float kParallel = 0.1f;
     const bool shown = n.w <= 0.5f || (negative ? n[int(axis)] >= -kParallel : -n[int(axis)] >= -kParallel);
     return shown ? texel : glm::vec4(0.0f, 0.0f, 0.0f, texel.a);
   };

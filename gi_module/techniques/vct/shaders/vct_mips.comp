@@ -27,7 +27,7 @@ vec4 child(uint slab, ivec3 base, ivec3 offset) {
   return imageLoad(source, c);
 }
 
-const float kVctParallel = 0.1;  // |n_axis| under this: the surface is parallel to the axis
+const float kVctParallel = DYNGI_VCT_PARALLEL;
 
 vec4 over(vec4 front, vec4 back) { return front + (1.0 - front.a) * back; }
 
@@ -69,8 +69,8 @@ void main() {
     // surface shows it only to cones that meet its front, its back is black (it still blocks them). A
     // thin wall's lit side then no longer reaches, through the sampler's filtering across the wall, the
     // cones on the other side, and a box's lit top not the cones passing under its edge. Two-sided
-    // voxels (w 0: a wall thinner than a voxel) and a surface parallel to the axis show it both ways;
-    // parallel within kVctParallel, so that the normal's rounding does not hide a floor from one side.
+    // voxels (w 0: a wall thinner than a voxel) and a surface parallel to the axis (within kVctParallel)
+    // show it both ways.
     vec3 seenTravellingMinus[8], seenTravellingPlus[8];
     for (int i = 0; i < 8; ++i) {
       ivec3 q = b + ivec3(i & 1, (i >> 1) & 1, i >> 2);
