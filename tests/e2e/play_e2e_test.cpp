@@ -70,20 +70,27 @@ nlohmann::json readJson(const std::string& path) {
   return nlohmann::json::parse(f, nullptr, false);
 }
 
-// An Xvfb server on a free display for the test's lifetime.
+// An Xvfb server on a free display for the test's lifetime. Xvfb picks the display itself (-displayfd)
+// and writes its number once it accepts connections, so two tests starting at once never share one.
 class VirtualDisplay {
  public:
   VirtualDisplay() {
-    for (int n = 71; n < 99; ++n) {
-      if (std::filesystem::exists("/tmp/.X" + std::to_string(n) + "-lock")) continue;
-      const std::string pidFile = dir_.file("xvfb.pid");
-      const std::string cmd = "Xvfb :" + std::to_string(n) + " -screen 0 1024x800x24 -nolisten tcp >/dev/null 2>&1 & echo $! > " + pidFile;
-      if (std::system(cmd.c_str()) != 0) return;
-      std::ifstream(pidFile) >> pid_;
-      for (int i = 0; i < 100 && !std::filesystem::exists("/tmp/.X11-unix/X" + std::to_string(n)); ++i)
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      if (std::filesystem::exists("/tmp/.X11-unix/X" + std::to_string(n))) display_ = ":" + std::to_string(n);
-      return;
+    const std::string pidFile = dir_.file("xvfb.pid"), displayFile = dir_.file("xvfb.display");
+    std::string cmd = "Xvfb -displayfd 3 -screen 0 1024x800x24 -nolisten tcp 3>";
+    cmd += displayFile;
+    cmd += " >/dev/null 2>&1 & echo $! > ";
+    cmd += pidFile;
+    if (std::system(cmd.c_str()) != 0) return;
+    std::ifstream(pidFile) >> pid_;
+    for (int i = 0; i < 200; ++i) {
+      std::stringstream text;
+      text << std::ifstream(displayFile).rdbuf();
+      int n = -1;
+      if (text.str().find('\n') != std::string::npos && (text >> n) && n >= 0) {
+        display_ = std::string(":").append(std::to_string(n));
+        return;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
   }
   ~VirtualDisplay() {
