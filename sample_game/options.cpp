@@ -90,6 +90,9 @@ std::string usage() {
       "  --memory-log FILE.tsv                  every 100 frames: frame, resident memory, live Vulkan allocations\n"
       "  --warmup N                             frames left out of the medians (default 2, fewer for shorter runs;\n"
       "                                         e.g. T + 2 to time the steady state once every temporal set is filled)\n"
+      "  --stage-times timestamps|fenced        how --stats times each pass: GPU timestamps (default; on lavapipe they\n"
+      "                                         miss compute work) or the CPU clock between fences at every pass'\n"
+      "                                         ends (each pass' own cost; the frame loses the overlap between passes)\n"
       "  --view NAME                            final | voxels | svo-steps | a technique's debug view (below)\n"
       "  --clip NAME                            glTF animation clip to play (default: the first)\n"
       "  --ui on|off|auto                       the settings panel (default auto: in a window, not headless)\n"
@@ -151,6 +154,13 @@ std::optional<Options> parseOptions(int argc, const char* const* argv, std::stri
     else if (a == "--view") { if (!value(o.view)) return std::nullopt; }
     else if (a == "--input-script") { if (!value(o.inputScript)) return std::nullopt; }
     else if (a == "--record") { if (!value(o.recordDir)) return std::nullopt; }
+    else if (a == "--stage-times") {
+      if (!value(o.stageTimes)) return std::nullopt;
+      if (o.stageTimes != "timestamps" && o.stageTimes != "fenced") {
+        error = "--stage-times wants timestamps or fenced, got '" + o.stageTimes + "'";
+        return std::nullopt;
+      }
+    }
     else if (a == "--ui") {
       if (!value(o.ui)) return std::nullopt;
       if (o.ui != "on" && o.ui != "off" && o.ui != "auto") {

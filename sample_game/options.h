@@ -36,6 +36,7 @@ struct Options {
   std::string inputScript;                  // --input-script: replayed clicks and keys (play/input.h), fixed time step
   std::string recordDir;                    // --record: every frame's displayed image as DIR/frame_NNNNN.png
   std::string ui = "auto";                  // on | off | auto (on in a window, off headless): the settings panel
+  std::string stageTimes = "timestamps";    // --stage-times: timestamps | fenced (render::GpuTimer::Mode)
   float exposure = 1.0f;
   bool validation = false;
   bool help = false;

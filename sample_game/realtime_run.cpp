@@ -148,6 +148,7 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
   render::VulkanContext ctx(co);
   render::RendererSettings rs;
   rs.exposure = o.exposure;
+  rs.stageTiming = o.stageTimes == "fenced" ? render::GpuTimer::Mode::Fenced : render::GpuTimer::Mode::Timestamps;
   render::Renderer renderer(ctx, rs);
   std::unique_ptr<render::Swapchain> swapchain;
   uint32_t width = o.width, height = o.height;
@@ -180,6 +181,7 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
   else if (gi.standaloneVoxels) scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(*gi.standaloneVoxels, assets));
 
   stats.device = ctx.deviceName();
+  stats.stageTimes = o.stageTimes;
   stats.warmupFrames = o.warmupFrames();  // Mesa compiles pipelines on first use: keep them out of the medians
   MemoryLog memoryLog;
   if (!memoryLog.open(o.memoryLog)) return 1;

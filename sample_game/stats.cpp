@@ -52,6 +52,7 @@ std::string RunStats::toJson() const {
     for (auto& [name, v] : m) o[name] = number(v.percentile(0.5));
     return o;
   };
+  j["stage_times"] = stageTimes;
   j["stages_ms"] = medians(gpuStageMs);
   j["cpu_ms"] = medians(cpuStageMs);
   j["counts"] = nlohmann::ordered_json::object();

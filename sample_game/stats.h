@@ -37,6 +37,7 @@ class SampleSeries {
 
 struct RunStats {
   std::string scene, gi, device;
+  std::string stageTimes = "timestamps";  // how stages_ms was timed (--stage-times)
   uint32_t width = 0, height = 0;
   int frames = 0, warmupFrames = 0;
   SampleSeries frameMs;

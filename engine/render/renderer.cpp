@@ -61,7 +61,7 @@ void Renderer::create() {
 
   const uint8_t white[4] = {255, 255, 255, 255};
   whiteTexture_ = createTexture(ctx, 1, 1, white, false, "white");
-  if (settings.gpuTimestamps) timer_ = std::make_unique<GpuTimer>(ctx);
+  if (settings.gpuTimestamps) timer_ = std::make_unique<GpuTimer>(ctx, settings.stageTiming);
   shadow_ = std::make_unique<ShadowPass>(ctx, ShadowPass::Settings{.mapSize = settings.shadowMapSize, .maxLayers = settings.maxShadowLayers});
   gbuffer_ = std::make_unique<GBufferPass>(ctx);
   lighting_ = std::make_unique<LightingPass>(ctx);
@@ -187,7 +187,6 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   DYNGI_VK(vkBeginCommandBuffer(cmd_, &bi));
-  if (timer_) timer_->beginFrame(cmd_);
   auto submitAndWait = [this] {
     DYNGI_VK(vkEndCommandBuffer(cmd_));
     VkCommandBufferSubmitInfo part{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
@@ -202,6 +201,7 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
     again.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     DYNGI_VK(vkBeginCommandBuffer(cmd_, &again));
   };
+  if (timer_) timer_->beginFrame(cmd_, submitAndWait);
   FrameContext frame{ctx_, cmd_, timer_.get(), snapshot, targets_, frameUniforms_, fu, meshes, linearSampler_, nearestSampler_, textures,
                      submitAndWait};
   frame.lights = LightInputs{&shadow_->lights(), &shadow_->matrices(), &shadow_->shadowMap(), shadow_->lightCount()};
@@ -228,7 +228,8 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
   }
 
   if (imageIndex != UINT32_MAX && !settings_.featuresOnly) {
-    ScopedPass scope(ctx_, timer_.get(), cmd_, "present_blit");
+    // Not fenced: a submission before the last would write the swapchain image before it is acquired.
+    ScopedPass scope(ctx_, timer_ && timer_->mode() == GpuTimer::Mode::Timestamps ? timer_.get() : nullptr, cmd_, "present_blit");
     targets_.ldr.transition(cmd_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkImage sw = swapchain->image(imageIndex);
     auto swBarrier = [&](VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcS, VkAccessFlags2 srcA,

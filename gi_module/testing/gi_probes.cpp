@@ -85,7 +85,7 @@ double VoxelProbe::dispatchMarch(const render::Pipeline& pipeline, const std::ve
   Buffer segBuf(ctx_, packed.size() * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "march segments");
   segBuf.upload(packed.data(), packed.size() * 16);
   Buffer results(ctx_, segments.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "march results");
-  render::GpuTimer timer(ctx_, 2);
+  render::GpuTimer timer(ctx_, render::GpuTimer::Mode::Timestamps, 2);
   auto t0 = std::chrono::steady_clock::now();
   ctx_.immediate([&](VkCommandBuffer cmd) {
     timer.beginFrame(cmd);

@@ -206,6 +206,39 @@ TEST(SampleVct, TimesEveryStageAndReportsItsSettings) {
   EXPECT_NE(b.err.find("--cones"), std::string::npos) << b.err;
 }
 
+// --stage-times fenced times each pass by the CPU clock between fences at its ends. Its truth is the
+// frame's own wall time: the passes, run one after another, add up to most of it and never to more, and
+// four times the cone trace's work shows up in the trace's figure as much as in the frame's. (On lavapipe
+// the timestamps of the default mode miss compute work: the trace read under a millisecond.)
+TEST(SampleStats, FencedStageTimesAccountForTheFrame) {
+  struct Run {
+    double frame = 0, sum = 0, trace = 0;
+  };
+  auto run = [](const char* traceFrames) {
+    TempDir dir;
+    SampleRun r = runSample(std::string("--headless --size 128x128 --frames 10 --warmup 4 --gi vct --voxel-res 64 --stage-times fenced "
+                                        "--trace-frames ") + traceFrames + " --stats " + dir.file("stats.json"), dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(dir.file("stats.json")), nullptr, false);
+    Run out;
+    if (j.is_discarded()) return out;
+    EXPECT_EQ(j.value("stage_times", std::string()), "fenced");
+    out.frame = j["frame_ms"].value("median", 0.0);
+    for (auto& [name, ms] : j["stages_ms"].items()) out.sum += ms.get<double>();
+    out.trace = j["stages_ms"].value("trace", 0.0);
+    return out;
+  };
+  const Run spread = run("4"), every = run("1");
+  for (const Run& r : {spread, every}) {
+    EXPECT_LE(r.sum, 1.1 * r.frame) << "passes timed one after another cannot add up to more than the frame";
+    EXPECT_GE(r.sum, 0.5 * r.frame) << "the passes are most of the frame";
+  }
+  const double moreFrame = every.frame - spread.frame, moreTrace = every.trace - spread.trace;
+  ASSERT_GT(moreFrame, 0.2 * spread.frame) << "tracing every pixel each frame costs visibly more";
+  EXPECT_GT(moreTrace, 0.5 * moreFrame) << "and the trace's figure shows it";
+  EXPECT_LT(moreTrace, 1.5 * moreFrame);
+}
+
 TEST(SampleAnimate, EveryScriptedSceneRendersAGoodFrame) {
   for (const char* scene : {"static", "moving-spot", "rotating-object", "moving-camera", "walking-fox", "fox-and-spot", "fox-spot-light-on"}) {
     if (std::string(scene).find("fox") != std::string::npos) {

@@ -1,5 +1,8 @@
 #pragma once
-// Named GPU time sections from timestamp queries, read back after the frame's fence.
+// Named GPU time sections, read after the frame's fence: from timestamp queries, or (Mode::Fenced) from
+// the CPU clock between fences at each section's ends.
+#include <chrono>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -10,12 +13,16 @@ namespace dyngi::render {
 
 class GpuTimer {
  public:
-  GpuTimer(VulkanContext& ctx, uint32_t maxSections = 64);
+  enum class Mode { Timestamps, Fenced };
+  GpuTimer(VulkanContext& ctx, Mode mode = Mode::Timestamps, uint32_t maxSections = 64);
   ~GpuTimer();
   GpuTimer(const GpuTimer&) = delete;
   GpuTimer& operator=(const GpuTimer&) = delete;
 
-  void beginFrame(VkCommandBuffer cmd);        // resets the queries this frame uses
+  // Resets the queries this frame uses. Fenced: `fence` submits what was recorded, waits for it and
+  // reopens the command buffer (FrameContext::submitAndWait); every section's ends call it.
+  void beginFrame(VkCommandBuffer cmd, std::function<void()> fence = {});
+  Mode mode() const { return mode_; }
   uint32_t begin(VkCommandBuffer cmd, const char* name);
   void end(VkCommandBuffer cmd, uint32_t section);
   void resolve();                              // call after the frame's fence has signalled
@@ -23,24 +30,29 @@ class GpuTimer {
   const std::vector<std::pair<std::string, double>>& results() const { return results_; }
 
  private:
+  using Clock = std::chrono::steady_clock;
   VulkanContext& ctx_;
+  Mode mode_;
   VkQueryPool pool_ = VK_NULL_HANDLE;
   uint32_t max_;
+  std::function<void()> fence_;
   std::vector<std::string> names_;
+  std::vector<std::pair<Clock::time_point, Clock::time_point>> cpuTimes_;  // Fenced: per section
   std::vector<std::pair<std::string, double>> results_;
 };
 
-// Debug label + GPU timestamp around one pass's commands.
+// Debug label + timed section around one pass's commands.
 class ScopedPass {
  public:
   ScopedPass(const VulkanContext& ctx, GpuTimer* timer, VkCommandBuffer cmd, const char* name)
       : ctx_(ctx), timer_(timer), cmd_(cmd) {
-    ctx_.beginLabel(cmd, name);
+    // The timer outside the label: a fenced timer's submission never falls inside a label.
     if (timer_) section_ = timer_->begin(cmd, name);
+    ctx_.beginLabel(cmd, name);
   }
   ~ScopedPass() {
-    if (timer_) timer_->end(cmd_, section_);
     ctx_.endLabel(cmd_);
+    if (timer_) timer_->end(cmd_, section_);
   }
   ScopedPass(const ScopedPass&) = delete;
   ScopedPass& operator=(const ScopedPass&) = delete;
