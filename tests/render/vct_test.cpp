@@ -235,6 +235,19 @@ TEST_F(RenderTest, VctMipChainEqualsCpuFilters) {
           m == 0 ? gi::vctAnisoDownsample(radiance[0], 0, slab, &normals) : gi::vctAnisoDownsample(atlas[m - 1], 2 * slab, slab);
       EXPECT_LT(maxRelativeDifference(atlas[m], cpu), 2e-3) << "anisotropic level " << m;
     }
+    // The atlas is written at the SVO's occupied nodes only: after a box moves, the texels it left must
+    // be empty again, as the CPU filters of the new level 0 say.
+    run.world.write<scene::Transform>(run.named("tall_box")).translation.x += 0.4f;
+    run.step(1);
+    const std::vector<gi::VolumeLevel> movedRadiance = readLevels(context(), vct.radianceVolume());
+    const std::vector<gi::VolumeLevel> movedAtlas = readLevels(context(), vct.anisotropicVolume());
+    const gi::VolumeLevel movedNormals = readLevels(context(), vct.voxelNormals()).at(0);
+    for (size_t m = 0; m < movedAtlas.size(); ++m) {
+      const uint32_t slab = movedAtlas[m].h;
+      const gi::VolumeLevel cpu = m == 0 ? gi::vctAnisoDownsample(movedRadiance[0], 0, slab, &movedNormals)
+                                         : gi::vctAnisoDownsample(movedAtlas[m - 1], 2 * slab, slab);
+      EXPECT_LT(maxRelativeDifference(movedAtlas[m], cpu), 2e-3) << "anisotropic level " << m << " after the tall box moved";
+    }
   }
 }
 

@@ -245,6 +245,10 @@ struct RsmPush {
 #define DYNGI_VCT_MIPS_BINDING_SOURCE 0
 #define DYNGI_VCT_MIPS_BINDING_DEST 1
 #define DYNGI_VCT_MIPS_BINDING_NORMALS 2
+// The anisotropic atlas is built over the SVO's occupied nodes only (the rest of it is cleared):
+#define DYNGI_VCT_MIPS_BINDING_NODES 3
+#define DYNGI_VCT_MIPS_BINDING_NODE_CELLS 4
+#define DYNGI_VCT_MIPS_BINDING_LEVELS 5
 // vct_trace: the screen's cones; vct_upsample: to full resolution
 #define DYNGI_VCT_TRACE_BINDING_FRAME 0
 #define DYNGI_VCT_TRACE_BINDING_G_POSITION 1
@@ -467,7 +471,8 @@ struct TemporalQueue {
   float temporalBlend;                                                             \
   float temporalResponse;
 #define DYNGI_VCT_BOUNCE_PUSH DYNGI_VCT_CONE_PARAMS uint depth; uint leafCapacity; uint commit; /* 0 trace, 1 copy OUT to RADIANCE */
-#define DYNGI_VCT_MIPS_PUSH uint destSlabWidth; /* texels; the isotropic chain has one slab */ uint sourceSlabWidth; /* 0: one source slab */
+#define DYNGI_VCT_MIPS_PUSH uint destSlabWidth; /* texels; the isotropic chain has one slab */ uint sourceSlabWidth; /* 0: one source slab */ \
+  uint nodeLevel; /* anisotropic: the SVO level whose cells are this atlas level's texels */
 #define DYNGI_VCT_TRACE_PUSH DYNGI_VCT_CONE_PARAMS uint traceScale; uint specular; uint turnCones; /* 1: each traced pixel turns its cone set */ \
   uint traceFrames; /* 1, 2 or 4: the frames over which every traced pixel is traced once */ uint tracePhase; /* frame index mod traceFrames */
 #define DYNGI_VCT_REPROJECT_PUSH                                                     \
@@ -527,7 +532,7 @@ static_assert(sizeof(SvoLeafAttributesPush) == 12 && sizeof(SvoMarchPush) == 32 
 static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && sizeof(VplSamplePush) == 16);
 static_assert(sizeof(VplTailPush) == 8 && sizeof(CompensatePush) == 20);
 static_assert(sizeof(VplBouncePush) == 44 && sizeof(ManyLightsDebugPush) == 12 && sizeof(IndirectFilterPush) == 4);
-static_assert(sizeof(VctInjectPush) == 40 && sizeof(VctBouncePush) == 52 && sizeof(VctMipsPush) == 8);
+static_assert(sizeof(VctInjectPush) == 40 && sizeof(VctBouncePush) == 52 && sizeof(VctMipsPush) == 12);
 static_assert(sizeof(VctTracePush) == 60 && sizeof(VctReprojectPush) == 84 && sizeof(VctUpsamplePush) == 4 && sizeof(VctFilterPush) == 16 && sizeof(VctDebugPush) == 48 && sizeof(VctProbePush) == 48);
 }  // namespace dyngi::gi::gpu
 #endif

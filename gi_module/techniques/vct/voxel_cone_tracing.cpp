@@ -58,9 +58,10 @@ void clearLevel0(VkCommandBuffer cmd, Image& img) {
   vkCmdClearColorImage(cmd, img.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &level0);
 }
 
-// Leaves of the SVO are visited by an indirect dispatch sized by the build (SvoLevel::dispatch).
-constexpr VkDeviceSize leafDispatchOffset(uint32_t depth) {
-  return VkDeviceSize(depth) * sizeof(gpu::SvoLevel) + offsetof(gpu::SvoLevel, dispatch);
+// The nodes of an SVO level (its leaves at level depth) are visited by an indirect dispatch sized by the
+// build (SvoLevel::dispatch).
+constexpr VkDeviceSize levelDispatchOffset(uint32_t level) {
+  return VkDeviceSize(level) * sizeof(gpu::SvoLevel) + offsetof(gpu::SvoLevel, dispatch);
 }
 }  // namespace
 
@@ -81,9 +82,9 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
                            {DYNGI_VCT_INJECT_BINDING_NORMALS, kStorageImage, kCS}};
   inject_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_inject_comp), leafB, sizeof(gpu::VctInjectPush), "vct_inject");
 
-  const Binding mipsB[] = {{DYNGI_VCT_MIPS_BINDING_SOURCE, kStorageImage, kCS},
-                           {DYNGI_VCT_MIPS_BINDING_DEST, kStorageImage, kCS},
-                           {DYNGI_VCT_MIPS_BINDING_NORMALS, kStorageImage, kCS}};
+  const Binding mipsB[] = {{DYNGI_VCT_MIPS_BINDING_SOURCE, kStorageImage, kCS},     {DYNGI_VCT_MIPS_BINDING_DEST, kStorageImage, kCS},
+                           {DYNGI_VCT_MIPS_BINDING_NORMALS, kStorageImage, kCS},    {DYNGI_VCT_MIPS_BINDING_NODES, kSSBO, kCS},
+                           {DYNGI_VCT_MIPS_BINDING_NODE_CELLS, kSSBO, kCS},         {DYNGI_VCT_MIPS_BINDING_LEVELS, kSSBO, kCS}};
   const Binding bounceB[] = {{DYNGI_VCT_BOUNCE_BINDING_NODES, kSSBO, kCS},       {DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS, kSSBO, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_LEVELS, kSSBO, kCS},      {DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES, kSSBO, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_DIRECT, kStorageImage, kCS}, {DYNGI_VCT_BOUNCE_BINDING_RADIANCE, kSampled, kCS},
@@ -254,7 +255,7 @@ void VoxelConeTracing::recordLeafPass(VkCommandBuffer cmd, const Pipeline& pipel
       .storageBuffer(DYNGI_VCT_INJECT_BINDING_ATTRIBUTES, voxels_.leafAttributes().handle())
       .push(ctx_, cmd, pipeline);
   vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, pushBytes, push);
-  vkCmdDispatchIndirect(cmd, voxels_.levels().handle(), leafDispatchOffset(voxels_.volume().depth()));
+  vkCmdDispatchIndirect(cmd, voxels_.levels().handle(), levelDispatchOffset(voxels_.volume().depth()));
   render::computeWriteBarrier(cmd);
 }
 static_assert(DYNGI_VCT_INJECT_BINDING_NODES == DYNGI_VCT_BOUNCE_BINDING_NODES &&
@@ -263,33 +264,48 @@ static_assert(DYNGI_VCT_INJECT_BINDING_NODES == DYNGI_VCT_BOUNCE_BINDING_NODES &
                   DYNGI_VCT_INJECT_BINDING_ATTRIBUTES == DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES,
               "the passes over leaves share their first four bindings (recordLeafPass)");
 
-void VoxelConeTracing::recordMips(VkCommandBuffer cmd) {
+void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool clearAtlas) {
   const bool aniso = options_.anisotropic;
-  auto level = [&](const Pipeline& p, VkImageView source, VkImageView dest, uint32_t w, uint32_t h, uint32_t d, gpu::VctMipsPush pc) {
+  auto bind = [&](const Pipeline& p, VkImageView source, VkImageView dest, const gpu::VctMipsPush& pc) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
     DescriptorWrites()
         .storageImage(DYNGI_VCT_MIPS_BINDING_SOURCE, source)
         .storageImage(DYNGI_VCT_MIPS_BINDING_DEST, dest)
         .storageImage(DYNGI_VCT_MIPS_BINDING_NORMALS, normals_.view())
+        .storageBuffer(DYNGI_VCT_MIPS_BINDING_NODES, voxels_.nodes().handle())
+        .storageBuffer(DYNGI_VCT_MIPS_BINDING_NODE_CELLS, voxels_.nodeCells().handle())
+        .storageBuffer(DYNGI_VCT_MIPS_BINDING_LEVELS, voxels_.levels().handle())
         .push(ctx_, cmd, p);
     vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
-    vkCmdDispatch(cmd, dispatchGroups(w, 4), dispatchGroups(h, 4), dispatchGroups(d, 4));
-    render::computeWriteBarrier(cmd);
   };
   if (!aniso) {
     const Pipeline& p = mips_[options_.opaqueAxisMips ? 2 : 0];
     for (uint32_t m = 1; m < radiance_.desc().mips; ++m) {
       const uint32_t s = std::max(res_ >> m, 1u);
-      level(p, radiance_.mipView(m - 1), radiance_.mipView(m), s, s, s, {s, 0});
+      bind(p, radiance_.mipView(m - 1), radiance_.mipView(m), {s, 0, 0});
+      vkCmdDispatch(cmd, dispatchGroups(s, 4), dispatchGroups(s, 4), dispatchGroups(s, 4));
+      render::computeWriteBarrier(cmd);
     }
     return;
   }
-  // The atlas: its level 0 from the isotropic level 0 (one source slab; one invocation writes a texel of
-  // all six slabs), then each level from the one below (one invocation a texel of one slab).
-  for (uint32_t m = 0; m < aniso_.desc().mips; ++m) {
-    const uint32_t slab = std::max((res_ / 2) >> m, 1u);
+  // The atlas: written only where the SVO has an occupied node, so the rest must be zero. It is when
+  // the occupied set is last frame's (each of its texels is written again); otherwise it is cleared.
+  if (clearAtlas) {
+    const VkClearColorValue zero{};
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1};
+    vkCmdClearColorImage(cmd, aniso_.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+    render::computeWriteBarrier(cmd);
+  }
+  // Level m's texels are 2^(m+1) voxels wide: the cells of SVO level depth - 1 - m. Level 0 from the
+  // isotropic level 0 (one source slab), each coarser one from the one below; one invocation per node
+  // writes its texel in all six slabs.
+  const uint32_t depth = voxels_.volume().depth();
+  for (uint32_t m = 0; m < aniso_.desc().mips && m < depth; ++m) {
+    const uint32_t slab = std::max((res_ / 2) >> m, 1u), nodeLevel = depth - 1 - m;
     const VkImageView source = m == 0 ? radiance_.mipView(0) : aniso_.mipView(m - 1);
-    level(mips_[m == 0 ? 3 : 1], source, aniso_.mipView(m), m == 0 ? slab : DYNGI_VCT_SLABS * slab, slab, slab, {slab, m == 0 ? 0u : 2 * slab});
+    bind(mips_[m == 0 ? 3 : 1], source, aniso_.mipView(m), {slab, m == 0 ? 0u : 2 * slab, nodeLevel});
+    vkCmdDispatchIndirect(cmd, voxels_.levels().handle(), levelDispatchOffset(nodeLevel));
+    render::computeWriteBarrier(cmd);
   }
 }
 
@@ -353,7 +369,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   rebuiltLastFrame_ = rebuilt;
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "mips");
-    recordMips(cmd);
+    recordMips(cmd, stats_.cleared);
   }
   const VkImageView anisoView = aniso ? aniso_.view() : radiance_.view();  // bound either way; read when anisotropic
   {
@@ -372,7 +388,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
       DescriptorWrites c;
       c.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, bounced_.view()).storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, radiance_.mipView(0));
       recordLeafPass(cmd, commit_, &pc, sizeof(pc), c);
-      recordMips(cmd);
+      recordMips(cmd, false);  // the same occupied set as this frame's first chain
     }
   }
   const uint32_t scale = traceScale();

@@ -64,7 +64,8 @@ class VoxelConeTracing final : public render::RenderFeature {
  private:
   void ensureVolumes(uint32_t res);
   void ensureTraceTargets(uint32_t width, uint32_t height);
-  void recordMips(VkCommandBuffer cmd);
+  // The mip chain, or the anisotropic atlas (cleared first when clearAtlas: the occupied set changed).
+  void recordMips(VkCommandBuffer cmd, bool clearAtlas);
   void recordLeafPass(VkCommandBuffer cmd, const render::Pipeline& pipeline, const void* push, uint32_t pushBytes,
                       render::DescriptorWrites& writes);
   template <class Push>

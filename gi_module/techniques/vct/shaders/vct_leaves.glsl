@@ -4,15 +4,7 @@
 #ifndef DYNGI_VCT_LEAVES_GLSL
 #define DYNGI_VCT_LEAVES_GLSL
 
-uint vctCompactBits(uint v) {  // bit 3i of v to bit i (the inverse of svoSpreadBits)
-  v &= 0x09249249u;
-  v = (v | (v >> 2)) & 0x030C30C3u;
-  v = (v | (v >> 4)) & 0x0300F00Fu;
-  v = (v | (v >> 8)) & 0x030000FFu;
-  v = (v | (v >> 16)) & 0x000003FFu;
-  return v;
-}
-ivec3 vctCellOf(uint code) { return ivec3(vctCompactBits(code), vctCompactBits(code >> 1), vctCompactBits(code >> 2)); }
+#include "vct_cells.glsl"
 
 struct VctLeaf {
   ivec3 voxel;

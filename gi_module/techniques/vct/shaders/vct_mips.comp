@@ -5,8 +5,12 @@
 // each of the 4 pairs of children along d's axis is composited front to back as a cone travelling along
 // d meets them (front + (1 - front.a) back), and the 4 are averaged: a wall one voxel thick stays opaque
 // along its normal at every level instead of fading to 1/2, 1/4, ... (Crassin et al. 2011).
+// The atlas is written only at the texels of occupied SVO nodes (one invocation per node writes its
+// texel in all six slabs; the rest of the atlas is cleared): about a tenth of a dense pass' texels, which
+// on lavapipe made this the most expensive VCT pass.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
+#include "vct_cells.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(constant_id = 0) const bool kAnisotropic = false;
 // Isotropic only: each texel's opacity is that of its most opaque axis (the children composited front to
@@ -19,6 +23,9 @@ layout(constant_id = 2) const bool kSharedSource = false;
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_SOURCE, rgba16f) uniform readonly image3D source;
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_DEST, rgba16f) uniform writeonly image3D dest;
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_NORMALS, rgba8_snorm) uniform readonly image3D normals;  // kSharedSource: vct_inject.comp's
+layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
+layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
 layout(push_constant) uniform Push { DYNGI_VCT_MIPS_PUSH };
 
 vec4 child(uint slab, ivec3 base, ivec3 offset) {
@@ -31,88 +38,102 @@ const float kVctParallel = DYNGI_VCT_PARALLEL;
 
 vec4 over(vec4 front, vec4 back) { return front + (1.0 - front.a) * back; }
 
+// Atlas level 0 at texel p, all six slabs, from the isotropic level 0 and the voxels' normals.
+void atlasFromLevel0(ivec3 p) {
+  ivec3 b = 2 * p;
+  vec4 c[8];
+  // Per child and axis, 1 where a cone travelling along -axis (+axis) sees its radiance: a one-sided
+  // surface shows it only to cones that meet its front, its back is black (it still blocks them). A
+  // thin wall's lit side then no longer reaches, through the sampler's filtering across the wall, the
+  // cones on the other side, and a box's lit top not the cones passing under its edge. Two-sided
+  // voxels (w 0: a wall thinner than a voxel) and a surface parallel to the axis (within kVctParallel)
+  // show it both ways.
+  vec3 seenTravellingMinus[8], seenTravellingPlus[8];
+  for (int i = 0; i < 8; ++i) {
+    ivec3 q = b + ivec3(i & 1, (i >> 1) & 1, i >> 2);
+    c[i] = imageLoad(source, q);
+    vec4 n = imageLoad(normals, q);
+    seenTravellingMinus[i] = n.w > 0.5 ? step(-kVctParallel, n.xyz) : vec3(1.0);
+    seenTravellingPlus[i] = n.w > 0.5 ? step(-kVctParallel, -n.xyz) : vec3(1.0);
+  }
+  int w = int(destSlabWidth);
+  // Child i as a cone travelling along +axis (plus) or -axis sees it.
+#define SEEN(i, axis, plus) vec4(c[i].rgb * ((plus) ? seenTravellingPlus[i][axis] : seenTravellingMinus[i][axis]), c[i].a)
+  // Child i sits at (i & 1, i >> 1 & 1, i >> 2): the pairs along x are (0,1) (2,3) (4,5) (6,7), ...
+  imageStore(dest, p, 0.25 * (over(SEEN(0, 0, true), SEEN(1, 0, true)) + over(SEEN(2, 0, true), SEEN(3, 0, true)) +
+                              over(SEEN(4, 0, true), SEEN(5, 0, true)) + over(SEEN(6, 0, true), SEEN(7, 0, true))));
+  imageStore(dest, p + ivec3(w, 0, 0), 0.25 * (over(SEEN(1, 0, false), SEEN(0, 0, false)) + over(SEEN(3, 0, false), SEEN(2, 0, false)) +
+                                               over(SEEN(5, 0, false), SEEN(4, 0, false)) + over(SEEN(7, 0, false), SEEN(6, 0, false))));
+  imageStore(dest, p + ivec3(2 * w, 0, 0), 0.25 * (over(SEEN(0, 1, true), SEEN(2, 1, true)) + over(SEEN(1, 1, true), SEEN(3, 1, true)) +
+                                                   over(SEEN(4, 1, true), SEEN(6, 1, true)) + over(SEEN(5, 1, true), SEEN(7, 1, true))));
+  imageStore(dest, p + ivec3(3 * w, 0, 0), 0.25 * (over(SEEN(2, 1, false), SEEN(0, 1, false)) + over(SEEN(3, 1, false), SEEN(1, 1, false)) +
+                                                   over(SEEN(6, 1, false), SEEN(4, 1, false)) + over(SEEN(7, 1, false), SEEN(5, 1, false))));
+  imageStore(dest, p + ivec3(4 * w, 0, 0), 0.25 * (over(SEEN(0, 2, true), SEEN(4, 2, true)) + over(SEEN(1, 2, true), SEEN(5, 2, true)) +
+                                                   over(SEEN(2, 2, true), SEEN(6, 2, true)) + over(SEEN(3, 2, true), SEEN(7, 2, true))));
+  imageStore(dest, p + ivec3(5 * w, 0, 0), 0.25 * (over(SEEN(4, 2, false), SEEN(0, 2, false)) + over(SEEN(5, 2, false), SEEN(1, 2, false)) +
+                                                   over(SEEN(6, 2, false), SEEN(2, 2, false)) + over(SEEN(7, 2, false), SEEN(3, 2, false))));
+#undef SEEN
+}
+
+// A coarser atlas level at texel p of every slab, from the level below's slabs.
+void atlasFromAtlas(ivec3 p) {
+  ivec3 base = 2 * p;
+  for (uint slab = 0u; slab < DYNGI_VCT_SLABS; ++slab) {
+    uint axis = slab / 2u;
+    bool negative = (slab & 1u) != 0u;
+    // The pair along `axis`: the child a cone travelling along +axis meets first has the lower coordinate.
+    ivec3 along = axis == 0u ? ivec3(1, 0, 0) : (axis == 1u ? ivec3(0, 1, 0) : ivec3(0, 0, 1));
+    ivec3 u = axis == 0u ? ivec3(0, 1, 0) : ivec3(1, 0, 0);
+    ivec3 v = axis == 2u ? ivec3(0, 1, 0) : ivec3(0, 0, 1);
+    vec4 sum = vec4(0.0);
+    for (int j = 0; j < 4; ++j) {
+      ivec3 o = (j & 1) * u + (j >> 1) * v;
+      vec4 lo = child(slab, base, o), hi = child(slab, base, o + along);
+      sum += negative ? over(hi, lo) : over(lo, hi);
+    }
+    imageStore(dest, p + ivec3(int(slab * destSlabWidth), 0, 0), sum * 0.25);
+  }
+}
+
 void main() {
+  if (kAnisotropic) {
+    // Grid-stride rounds over the occupied nodes of nodeLevel, dispatched with the level's indirect
+    // arguments (levels[nodeLevel].dispatch: DYNGI_SVO_ITEMS_PER_INVOCATION nodes per invocation).
+    uint stride = gl_NumWorkGroups.x * 64u, first = levels[nodeLevel].range.x, count = levels[nodeLevel].range.y;
+    uint i = gl_WorkGroupID.x * 64u + gl_LocalInvocationIndex;
+    for (uint r = 0u; r < DYNGI_SVO_ITEMS_PER_INVOCATION; ++r, i += stride) {
+      if (i >= count || nodes[first + i] == 0u) continue;  // an empty sibling: its texel stays cleared
+      ivec3 p = vctCellOf(nodeCells[first + i]);
+      if (kSharedSource) atlasFromLevel0(p);
+      else atlasFromAtlas(p);
+    }
+    return;
+  }
   ivec3 size = imageSize(dest);
   ivec3 p = ivec3(gl_GlobalInvocationID);
   if (any(greaterThanEqual(p, size))) return;
-  if (!kAnisotropic && !kOpaqueAxis) {
+  if (!kOpaqueAxis) {
     ivec3 base = 2 * p;
     vec4 sum = vec4(0.0);
     for (int i = 0; i < 8; ++i) sum += imageLoad(source, base + ivec3(i & 1, (i >> 1) & 1, i >> 2));
     imageStore(dest, p, sum * 0.125);
     return;
   }
-  if (!kAnisotropic) {
-    ivec3 base = 2 * p;
-    vec4 c[8];
-    for (int i = 0; i < 8; ++i) c[i] = imageLoad(source, base + ivec3(i & 1, (i >> 1) & 1, i >> 2));
-    vec4 best = vec4(0.0);
-    for (int axis = 0; axis < 3; ++axis) {
-      int step = 1 << axis;  // the child index bit of this axis
-      vec4 sum = vec4(0.0);
-      for (int i = 0; i < 8; ++i) {
-        if ((i & step) != 0) continue;
-        vec4 lo = c[i], hi = c[i | step];
-        sum += 0.5 * (over(lo, hi) + over(hi, lo));  // both directions along the axis: the same opacity
-      }
-      sum *= 0.25;
-      if (sum.a > best.a) best = sum;
-    }
-    imageStore(dest, p, best);
-    return;
-  }
-  if (kSharedSource) {
-    if (p.x >= int(destSlabWidth)) return;
-    ivec3 b = 2 * p;
-    vec4 c[8];
-    // Per child and axis, 1 where a cone travelling along -axis (+axis) sees its radiance: a one-sided
-    // surface shows it only to cones that meet its front, its back is black (it still blocks them). A
-    // thin wall's lit side then no longer reaches, through the sampler's filtering across the wall, the
-    // cones on the other side, and a box's lit top not the cones passing under its edge. Two-sided
-    // voxels (w 0: a wall thinner than a voxel) and a surface parallel to the axis (within kVctParallel)
-    // show it both ways.
-    vec3 seenTravellingMinus[8], seenTravellingPlus[8];
+  // kOpaqueAxis: each texel's opacity that of its most opaque axis.
+  ivec3 base = 2 * p;
+  vec4 c[8];
+  for (int i = 0; i < 8; ++i) c[i] = imageLoad(source, base + ivec3(i & 1, (i >> 1) & 1, i >> 2));
+  vec4 best = vec4(0.0);
+  for (int axis = 0; axis < 3; ++axis) {
+    int step = 1 << axis;  // the child index bit of this axis
+    vec4 sum = vec4(0.0);
     for (int i = 0; i < 8; ++i) {
-      ivec3 q = b + ivec3(i & 1, (i >> 1) & 1, i >> 2);
-      c[i] = imageLoad(source, q);
-      vec4 n = imageLoad(normals, q);
-      seenTravellingMinus[i] = n.w > 0.5 ? step(-kVctParallel, n.xyz) : vec3(1.0);
-      seenTravellingPlus[i] = n.w > 0.5 ? step(-kVctParallel, -n.xyz) : vec3(1.0);
+      if ((i & step) != 0) continue;
+      vec4 lo = c[i], hi = c[i | step];
+      sum += 0.5 * (over(lo, hi) + over(hi, lo));  // both directions along the axis: the same opacity
     }
-    int w = int(destSlabWidth);
-    // Child i as a cone travelling along +axis (plus) or -axis sees it.
-#define SEEN(i, axis, plus) vec4(c[i].rgb * ((plus) ? seenTravellingPlus[i][axis] : seenTravellingMinus[i][axis]), c[i].a)
-    // Child i sits at (i & 1, i >> 1 & 1, i >> 2): the pairs along x are (0,1) (2,3) (4,5) (6,7), ...
-    imageStore(dest, p, 0.25 * (over(SEEN(0, 0, true), SEEN(1, 0, true)) + over(SEEN(2, 0, true), SEEN(3, 0, true)) +
-                                over(SEEN(4, 0, true), SEEN(5, 0, true)) + over(SEEN(6, 0, true), SEEN(7, 0, true))));
-    imageStore(dest, p + ivec3(w, 0, 0), 0.25 * (over(SEEN(1, 0, false), SEEN(0, 0, false)) + over(SEEN(3, 0, false), SEEN(2, 0, false)) +
-                                                 over(SEEN(5, 0, false), SEEN(4, 0, false)) + over(SEEN(7, 0, false), SEEN(6, 0, false))));
-    imageStore(dest, p + ivec3(2 * w, 0, 0), 0.25 * (over(SEEN(0, 1, true), SEEN(2, 1, true)) + over(SEEN(1, 1, true), SEEN(3, 1, true)) +
-                                                     over(SEEN(4, 1, true), SEEN(6, 1, true)) + over(SEEN(5, 1, true), SEEN(7, 1, true))));
-    imageStore(dest, p + ivec3(3 * w, 0, 0), 0.25 * (over(SEEN(2, 1, false), SEEN(0, 1, false)) + over(SEEN(3, 1, false), SEEN(1, 1, false)) +
-                                                     over(SEEN(6, 1, false), SEEN(4, 1, false)) + over(SEEN(7, 1, false), SEEN(5, 1, false))));
-    imageStore(dest, p + ivec3(4 * w, 0, 0), 0.25 * (over(SEEN(0, 2, true), SEEN(4, 2, true)) + over(SEEN(1, 2, true), SEEN(5, 2, true)) +
-                                                     over(SEEN(2, 2, true), SEEN(6, 2, true)) + over(SEEN(3, 2, true), SEEN(7, 2, true))));
-    imageStore(dest, p + ivec3(5 * w, 0, 0), 0.25 * (over(SEEN(4, 2, false), SEEN(0, 2, false)) + over(SEEN(5, 2, false), SEEN(1, 2, false)) +
-                                                     over(SEEN(6, 2, false), SEEN(2, 2, false)) + over(SEEN(7, 2, false), SEEN(3, 2, false))));
-#undef SEEN
-    return;
+    sum *= 0.25;
+    if (sum.a > best.a) best = sum;
   }
-  uint slab = uint(p.x) / destSlabWidth;
-  ivec3 local = ivec3(uint(p.x) % destSlabWidth, p.y, p.z);
-  ivec3 base = 2 * local;
-  uint axis = slab / 2u;
-  bool negative = (slab & 1u) != 0u;
-  uint sourceSlab = sourceSlabWidth == 0u ? 0u : slab;
-  // The pair along `axis`: the child a cone travelling along +axis meets first has the lower coordinate.
-  ivec3 along = axis == 0u ? ivec3(1, 0, 0) : (axis == 1u ? ivec3(0, 1, 0) : ivec3(0, 0, 1));
-  ivec3 u = axis == 0u ? ivec3(0, 1, 0) : ivec3(1, 0, 0);
-  ivec3 v = axis == 2u ? ivec3(0, 1, 0) : ivec3(0, 0, 1);
-  vec4 sum = vec4(0.0);
-  for (int j = 0; j < 4; ++j) {
-    ivec3 o = (j & 1) * u + (j >> 1) * v;
-    vec4 lo = child(sourceSlab, base, o), hi = child(sourceSlab, base, o + along);
-    sum += negative ? over(hi, lo) : over(lo, hi);
-  }
-  imageStore(dest, p, sum * 0.25);
+  imageStore(dest, p, best);
 }
