@@ -63,6 +63,25 @@ DenseVoxelGrid VoxelProbe::readbackFragmentGrid() {
   return grid;
 }
 
+DenseVoxelGrid VoxelProbe::readbackLeafCells() {
+  const uint32_t depth = voxels_.volume().depth();
+  const glm::uvec4 range = render::readbackBuffer<gpu::SvoLevel>(voxels_.ctx_, voxels_.levels().handle(), depth + 1)[depth].range;
+  const std::vector<uint32_t> nodes = readbackNodes();
+  const std::vector<uint32_t> cells = render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.nodeCells().handle(), nodes.size());
+  auto compact = [](uint32_t code, uint32_t axis) {  // bit 3i + axis of a Morton code to bit i
+    uint32_t v = 0;
+    for (uint32_t i = 0; i < 10; ++i) v |= ((code >> (3 * i + axis)) & 1u) << i;
+    return v;
+  };
+  DenseVoxelGrid grid(voxels_.volume().resolution);
+  for (uint32_t i = 0; i < range.y && range.x + i < nodes.size(); ++i)
+    if (nodes[range.x + i] != 0) {
+      const uint32_t code = cells[range.x + i];
+      grid.set(compact(code, 0), compact(code, 1), compact(code, 2));
+    }
+  return grid;
+}
+
 double VoxelProbe::marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels) {
   return dispatchMarch(marchPipeline(true), segments, out, epsVoxels);
 }

@@ -28,6 +28,8 @@ class VoxelProbe {
   std::vector<uint32_t> readbackNodes();
   std::vector<VoxelFragment> readbackFragments();  // every fragment written
   DenseVoxelGrid readbackFragmentGrid();           // every voxel some fragment marks
+  // Every occupied leaf's voxel as its node cell (Morton code) says: where radiance injection puts it.
+  DenseVoxelGrid readbackLeafCells();
   // Visibility of world-space segments through the SVO on the GPU (svo_march.comp); out[i] = 1 when
   // occluded. Returns the GPU time of the march dispatch in ms.
   double marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels = 1e-3f);

@@ -209,15 +209,20 @@ uint64_t SvoBuilder::bytes() const { return nodes_.size() + nodeCells_.size() + 
 
 void SvoBuilder::resizeNodePool(uint32_t groups, uint64_t keepGroups) {
   vkDeviceWaitIdle(ctx_.device());
-  Buffer fresh(ctx_, VkDeviceSize(groups) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo nodes");
+  Buffer freshNodes(ctx_, VkDeviceSize(groups) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo nodes");
+  Buffer freshCells(ctx_, VkDeviceSize(groups) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo node cells");
   keepGroups = std::min<uint64_t>(keepGroups, groups);
-  if (keepGroups > 0)  // the current SVO stays readable until the next build
+  // The current SVO stays readable until the next build, which may be many frames away (a still scene):
+  // its nodes and their cells (where radiance injection puts each leaf, where the VCT atlas puts each
+  // node's texel) both come along.
+  if (keepGroups > 0)
     ctx_.immediate([&](VkCommandBuffer cmd) {
       VkBufferCopy copy{0, 0, keepGroups * 8 * 4};
-      vkCmdCopyBuffer(cmd, nodes_.handle(), fresh.handle(), 1, &copy);
+      vkCmdCopyBuffer(cmd, nodes_.handle(), freshNodes.handle(), 1, &copy);
+      vkCmdCopyBuffer(cmd, nodeCells_.handle(), freshCells.handle(), 1, &copy);
     });
-  nodes_ = std::move(fresh);
-  nodeCells_ = Buffer(ctx_, VkDeviceSize(groups) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo node cells");
+  nodes_ = std::move(freshNodes);
+  nodeCells_ = std::move(freshCells);
   nodeGroupCapacity_ = groups;
 }
 

@@ -383,6 +383,21 @@ TEST_F(VoxelTest, NodePoolGrowsWhenTheSceneNeedsMore) {
   EXPECT_EQ(diff(leaves(), exact).missing, 0u);
 }
 
+// The first build has the whole node pool, which then shrinks to what the SVO uses while the SVO itself
+// stands until something changes. Its node cells (where radiance injection puts each leaf, where the VCT
+// atlas puts each node's texel) must come along, in a still scene as many frames later as it likes.
+TEST_F(VoxelTest, ShrunkNodePoolKeepsTheLeavesWhereTheyAre) {
+  run("cornell", 64, 1);
+  const gi::DenseVoxelGrid fragments = gi::VoxelProbe(*voxels).readbackFragmentGrid();
+  for (int still = 0; still < 2; ++still) {
+    GridDiff d = diff(gi::VoxelProbe(*voxels).readbackLeafCells(), fragments);
+    EXPECT_GT(d.reference, 1000u);
+    EXPECT_EQ(d.missing + d.extra, 0u) << "frame " << frame << ": leaf cells against the voxelized set";
+    step();
+    EXPECT_FALSE(voxels->stats().rebuilt) << "nothing moved: the SVO stands";
+  }
+}
+
 TEST_F(VoxelTest, ObjectLeavingTheVolumeIsClippedNotFatal) {
   run("cornell", 64, 1);
   ecs::Entity box{};
