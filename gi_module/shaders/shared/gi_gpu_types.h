@@ -176,16 +176,21 @@ struct RsmPush {
 #define DYNGI_SVO_EXPAND_BINDING_OCCUPANCY 2
 #define DYNGI_SVO_EXPAND_BINDING_LEVELS 3
 #define DYNGI_SVO_EXPAND_BINDING_COUNTERS 4
-// svo_leaf_attributes. A leaf's attributes are DYNGI_LEAF_ATTRIBUTE_INTS ints at leaf * that, sums over
-// its fragments (integer atomics): albedo 0..255 per channel, the fragment count, the normal x 127, the
-// emitted radiance x 256 per channel and the count of emitting fragments (emission is their mean: a
-// light panel on a ceiling shares its voxels with the ceiling, and a mean over both would halve it).
-#define DYNGI_LEAF_ATTRIBUTE_INTS 12u
-#define DYNGI_LEAF_ALBEDO 0u
-#define DYNGI_LEAF_COUNT 3u
-#define DYNGI_LEAF_NORMAL 4u
-#define DYNGI_LEAF_EMISSION 7u
-#define DYNGI_LEAF_EMITTERS 10u
+// svo_leaf_attributes. A leaf's attributes are DYNGI_LEAF_ATTRIBUTE_INTS uints at leaf * that, sums over
+// its first DYNGI_LEAF_MAX_FRAGMENTS fragments (integer atomics; voxel/shaders/leaf_attributes.glsl
+// averages them): the fragment count (all of them), the albedo 0..255 per channel and the normal
+// x 127 + 127 per axis, two 16-bit sums to a uint (under 65536 for 256 fragments: four atomics a
+// fragment where there were eight), the emitted radiance x 256 per channel and the count of emitting
+// fragments (emission is their mean: a light panel on a ceiling shares its voxels with the ceiling, and a
+// mean over both would halve it), added by emitting fragments only.
+#define DYNGI_LEAF_ATTRIBUTE_INTS 8u
+#define DYNGI_LEAF_COUNT 0u
+#define DYNGI_LEAF_ALBEDO_RG 1u
+#define DYNGI_LEAF_ALBEDO_B_NORMAL_X 2u
+#define DYNGI_LEAF_NORMAL_YZ 3u
+#define DYNGI_LEAF_EMISSION 4u
+#define DYNGI_LEAF_EMITTERS 7u
+#define DYNGI_LEAF_MAX_FRAGMENTS 256u
 #define DYNGI_LEAF_EMISSION_SCALE 256.0
 #define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS 0
 #define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES 1

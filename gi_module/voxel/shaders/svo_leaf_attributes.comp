@@ -1,14 +1,14 @@
 #version 460
 // Accumulates each fragment's albedo, normal and emission into its leaf (integer atomics; the layout is
-// DYNGI_LEAF_* in gi_gpu_types.h). Kept in a buffer apart from
-// the nodes so the visibility march never touches it.
+// DYNGI_LEAF_* in gi_gpu_types.h, read through leaf_attributes.glsl). Kept in a buffer apart from the
+// nodes so the visibility march never touches it.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS) readonly buffer Fragments { uvec4 fragments[]; };
 layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES) buffer Attributes { int attributes[]; };  // DYNGI_LEAF_ATTRIBUTE_INTS per leaf
+layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES) buffer Attributes { uint attributes[]; };  // DYNGI_LEAF_ATTRIBUTE_INTS per leaf
 layout(push_constant) uniform Push { DYNGI_SVO_LEAF_ATTRIBUTES_PUSH };
 
 vec3 unpackEmission(uint e) {
@@ -30,17 +30,19 @@ void accumulate(uint i) {
   }
   uint leaf = node - levels[depth].range.x;
   if (leaf >= leafCapacity) return;
-  vec4 albedo = unpackUnorm4x8(f.y);
-  vec4 normal = unpackSnorm4x8(f.z);
-  vec3 e = min(unpackEmission(f.w) * DYNGI_LEAF_EMISSION_SCALE, vec3(8.0e6));
   uint base = leaf * DYNGI_LEAF_ATTRIBUTE_INTS;
-  for (uint c = 0u; c < 3u; ++c) {
-    atomicAdd(attributes[base + DYNGI_LEAF_ALBEDO + c], int(round(albedo[c] * 255.0)));
-    atomicAdd(attributes[base + DYNGI_LEAF_NORMAL + c], int(round(normal[c] * 127.0)));
-    atomicAdd(attributes[base + DYNGI_LEAF_EMISSION + c], int(round(e[c])));
+  // Every fragment counts; the first DYNGI_LEAF_MAX_FRAGMENTS are summed (the 16-bit halves' limit).
+  if (atomicAdd(attributes[base + DYNGI_LEAF_COUNT], 1u) >= DYNGI_LEAF_MAX_FRAGMENTS) return;
+  uvec3 albedo = uvec3(round(unpackUnorm4x8(f.y).rgb * 255.0));
+  uvec3 normal = uvec3(round(unpackSnorm4x8(f.z).xyz * 127.0) + 127.0);
+  atomicAdd(attributes[base + DYNGI_LEAF_ALBEDO_RG], albedo.r | (albedo.g << 16));
+  atomicAdd(attributes[base + DYNGI_LEAF_ALBEDO_B_NORMAL_X], albedo.b | (normal.x << 16));
+  atomicAdd(attributes[base + DYNGI_LEAF_NORMAL_YZ], normal.y | (normal.z << 16));
+  if (f.w != 0u) {
+    vec3 e = min(unpackEmission(f.w) * DYNGI_LEAF_EMISSION_SCALE, vec3(8.0e6));
+    for (uint c = 0u; c < 3u; ++c) atomicAdd(attributes[base + DYNGI_LEAF_EMISSION + c], uint(round(e[c])));
+    atomicAdd(attributes[base + DYNGI_LEAF_EMITTERS], 1u);
   }
-  atomicAdd(attributes[base + DYNGI_LEAF_COUNT], 1);
-  if (f.w != 0u) atomicAdd(attributes[base + DYNGI_LEAF_EMITTERS], 1);
 }
 
 void main() {

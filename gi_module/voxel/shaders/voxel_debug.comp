@@ -9,9 +9,10 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_ATTRIBUTES) readonly buffer Attributes { int attributes[]; };
+layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_ATTRIBUTES) readonly buffer Attributes { uint attributes[]; };
 layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_OUT_HDR, rgba32f) uniform writeonly image2D outHdr;
 #include "svo_traverse.glsl"
+#include "leaf_attributes.glsl"
 layout(push_constant) uniform Push { DYNGI_VOXEL_DEBUG_PUSH };
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
@@ -29,14 +30,10 @@ void main() {
     color = vec3(s, 0.2 * (1.0 - abs(2.0 * s - 1.0)), 1.0 - s) * 0.6;
   } else if (node != 0xFFFFFFFFu) {
     uint leaf = node - levels[depth].range.x;
-    uint base = leaf * DYNGI_LEAF_ATTRIBUTE_INTS;
-    float count = max(float(attributes[base + DYNGI_LEAF_COUNT]), 1.0);
-    uint a = base + DYNGI_LEAF_ALBEDO, nb = base + DYNGI_LEAF_NORMAL, e = base + DYNGI_LEAF_EMISSION;
-    vec3 albedo = vec3(attributes[a], attributes[a + 1u], attributes[a + 2u]) / (255.0 * count);
-    vec3 n = vec3(attributes[nb], attributes[nb + 1u], attributes[nb + 2u]);
+    LeafAttributes attr = leafAttributes(leaf);
+    vec3 n = attr.normalSum;
     float lambert = length(n) > 0.0 ? abs(dot(normalize(n), dirWorld)) : 1.0;
-    color = albedo * (0.25 + 0.75 * lambert) * 0.8 + vec3(attributes[e], attributes[e + 1u], attributes[e + 2u]) /
-                                                                 (DYNGI_LEAF_EMISSION_SCALE * max(float(attributes[base + DYNGI_LEAF_EMITTERS]), 1.0));
+    color = attr.albedo * (0.25 + 0.75 * lambert) * 0.8 + attr.emission;
   }
   imageStore(outHdr, px, vec4(color, 1.0));
 }

@@ -7,8 +7,9 @@ layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_VPLS) buffer Vpls { GpuVpl vpls[]; };
 layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_ATTRIBUTES) readonly buffer Attributes { int attributes[]; };
+layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_ATTRIBUTES) readonly buffer Attributes { uint attributes[]; };
 #include "svo_traverse.glsl"
+#include "leaf_attributes.glsl"
 layout(push_constant) uniform Push { DYNGI_VPL_BOUNCE_PUSH };
 
 float halton(uint i, uint base) {
@@ -56,11 +57,9 @@ void main() {
   uint node = svoFirstHit(o, dir, 0.0, 1e30, depth, res, tHit, steps);
   if (node != 0xFFFFFFFFu) {
     uint leaf = node - levels[depth].range.x;
-    uint base = leaf * DYNGI_LEAF_ATTRIBUTE_INTS;
-    uint a = base + DYNGI_LEAF_ALBEDO, nb = base + DYNGI_LEAF_NORMAL;
-    float cnt = max(float(attributes[base + DYNGI_LEAF_COUNT]), 1.0);
-    vec3 albedo = vec3(attributes[a], attributes[a + 1u], attributes[a + 2u]) / (255.0 * cnt);
-    vec3 vn = vec3(attributes[nb], attributes[nb + 1u], attributes[nb + 2u]);
+    LeafAttributes attr = leafAttributes(leaf);
+    vec3 albedo = attr.albedo;
+    vec3 vn = attr.normalSum;
     vn = length(vn) > 0.0 ? normalize(vn) : -dir;
     if (dot(vn, dir) > 0.0) vn = -vn;  // face the incoming ray
     vec3 hitVoxel = o + dir * tHit;

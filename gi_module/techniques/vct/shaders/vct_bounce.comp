@@ -10,7 +10,7 @@ layout(constant_id = 0) const bool kAnisotropic = false;
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES) readonly buffer Attributes { int attributes[]; };
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES) readonly buffer Attributes { uint attributes[]; };
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_DIRECT, rgba16f) uniform readonly image3D direct;
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_RADIANCE) uniform sampler3D vctRadiance;
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_ANISO) uniform sampler3D vctAniso;

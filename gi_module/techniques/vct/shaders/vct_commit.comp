@@ -7,7 +7,7 @@ layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES) readonly buffer Attributes { int attributes[]; };
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES) readonly buffer Attributes { uint attributes[]; };
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_DIRECT, rgba16f) uniform readonly image3D bounced;
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_OUT, rgba16f) uniform writeonly image3D radiance;
 layout(push_constant) uniform Push { DYNGI_VCT_BOUNCE_PUSH };

@@ -13,7 +13,7 @@ layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_ATTRIBUTES) readonly buffer Attributes { int attributes[]; };
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_ATTRIBUTES) readonly buffer Attributes { uint attributes[]; };
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES) readonly buffer ShadowMatrices { mat4 shadowViewProj[]; };
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, r32f) uniform readonly image2DArray shadowMaps;

@@ -4,6 +4,7 @@
 #ifndef DYNGI_VCT_LEAVES_GLSL
 #define DYNGI_VCT_LEAVES_GLSL
 
+#include "leaf_attributes.glsl"
 #include "vct_cells.glsl"
 
 struct VctLeaf {
@@ -17,15 +18,12 @@ struct VctLeaf {
 bool vctLeaf(uint i, out VctLeaf leaf) {
   uint node = levels[depth].range.x + i;
   if (i >= levels[depth].range.y || nodes[node] == 0u || i >= leafCapacity) return false;
-  uint base = i * DYNGI_LEAF_ATTRIBUTE_INTS;
-  float count = float(attributes[base + DYNGI_LEAF_COUNT]);
-  if (count <= 0.0) return false;
-  uint a = base + DYNGI_LEAF_ALBEDO, n = base + DYNGI_LEAF_NORMAL, e = base + DYNGI_LEAF_EMISSION;
+  LeafAttributes a = leafAttributes(i);
+  if (a.count == 0u) return false;
   leaf.voxel = vctCellOf(nodeCells[node]);
-  leaf.albedo = vec3(attributes[a], attributes[a + 1u], attributes[a + 2u]) / (255.0 * count);
-  leaf.normalSum = vec3(attributes[n], attributes[n + 1u], attributes[n + 2u]) / (127.0 * count);
-  float emitters = max(float(attributes[base + DYNGI_LEAF_EMITTERS]), 1.0);
-  leaf.emission = vec3(attributes[e], attributes[e + 1u], attributes[e + 2u]) / (DYNGI_LEAF_EMISSION_SCALE * emitters);
+  leaf.albedo = a.albedo;
+  leaf.normalSum = a.normalSum;
+  leaf.emission = a.emission;
   return true;
 }
 
