@@ -6,8 +6,8 @@
 // d meets them (front + (1 - front.a) back), and the 4 are averaged: a wall one voxel thick stays opaque
 // along its normal at every level instead of fading to 1/2, 1/4, ... (Crassin et al. 2011).
 // The atlas is written only at the texels of occupied SVO nodes (one invocation per node writes its
-// texel in all six slabs; the rest of the atlas is cleared): about a tenth of a dense pass' texels, which
-// on lavapipe made this the most expensive VCT pass.
+// texel in all six slabs; the rest of the atlas is cleared). A dense pass over every texel took twice as
+// long at 512^2 on lavapipe (docs/BENCHMARKS.md, session 21).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
 #include "vct_cells.glsl"
