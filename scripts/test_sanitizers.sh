@@ -3,11 +3,10 @@
 # no recovery: the first report fails the test). Builds build-asan/ and runs every unit, GI, end-to-end and
 # render test; extra arguments go to ctest.
 #
-# The render tests run two at a time here (DYNGI_SERIAL_RENDER_TESTS=OFF), unlike the Release job: under
-# the sanitizers they wait on page faults, not on the CPU. ASan gives lavapipe's large allocations fresh
-# pages, and on a virtual machine each fault costs the kernel tens of microseconds. Eight render tests
-# took 85-97 s one at a time and 27-28 s two at a time (three or four at a time: no better). The
-# end-to-end tests stay one at a time (tests/CMakeLists.txt says why).
+# The render and end-to-end tests run two at a time here (DYNGI_SERIAL_GPU_TESTS=OFF), unlike the Release
+# job: under the sanitizers they wait on page faults, not on the CPU. ASan gives lavapipe's large
+# allocations fresh pages, and on a virtual machine each fault costs the kernel tens of microseconds. Eight
+# render tests took 85-97 s one at a time and 27-28 s two at a time (three or four at a time: no better).
 #
 # Lavapipe leaks a little at exit, and the Vulkan loader unloads the driver before LeakSanitizer's
 # report, so those leaks show as "<unknown module>" with no way to tell them from ours. The driver is
@@ -17,7 +16,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDYNGI_SANITIZE=ON -DDYNGI_BUILD_TESTS=ON \
-  -DDYNGI_TEST_TIMEOUT_SCALE=6 -DDYNGI_SERIAL_RENDER_TESTS=OFF >/dev/null
+  -DDYNGI_TEST_TIMEOUT_SCALE=6 -DDYNGI_SERIAL_GPU_TESTS=OFF >/dev/null
 cmake --build build-asan -j"$(nproc)" --target dyngi_unit_tests dyngi_gi_tests dyngi_render_tests dyngi_e2e_tests dyngi_sample
 
 driver=$(ls /usr/lib/*/libvulkan_lvp.so 2>/dev/null | head -1 || true)
