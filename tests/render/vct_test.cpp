@@ -556,17 +556,24 @@ TEST_F(RenderTest, VctFollowsMovedLightsAndObjectsAndSwitchedLights) {
 
   // The tall box's top face (y = 1.2 m) moves away: its voxels are empty the next frame.
   const glm::ivec3 top(glm::floor(vol.toVoxel({-0.35f, 1.2f, -0.35f}) - glm::vec3(0, 0.01f, 0)));
-  auto occupiedAround = [&](const glm::ivec3& c) {
-    const gi::VolumeLevel l0 = readLevels(context(), vct.radianceVolume()).front();
+  auto occupiedAround = [&](const glm::ivec3& c, render::Image& volume) {
+    const gi::VolumeLevel l0 = readLevels(context(), volume).front();
     int n = 0;
     for (int dz = -1; dz <= 1; ++dz)
       for (int dx = -1; dx <= 1; ++dx) n += l0.at(c.x + dx, c.y, c.z + dz).a > 0.5f;
     return n;
   };
-  EXPECT_GE(occupiedAround(top), 5) << "the box's top is voxelized";
+  EXPECT_GE(occupiedAround(top, vct.radianceVolume()), 5) << "the box's top is voxelized";
+  EXPECT_GE(occupiedAround(top, vct.directVolume()), 5);
   run.world.write<scene::Transform>(run.named("tall_box")).translation = {0.5f, 0.6f, -0.5f};
   run.step();
-  EXPECT_EQ(occupiedAround(top), 0) << "the voxels the box left are empty";
+  EXPECT_EQ(occupiedAround(top, vct.radianceVolume()), 0) << "the voxels the box left are empty";
+  // The injected radiance alternates between two volumes (the blend reads last frame's): the one written
+  // next was last written before the move, and holds the box's old voxels until they are zeroed.
+  for (int frame = 0; frame < 2; ++frame) {
+    EXPECT_EQ(occupiedAround(top, vct.directVolume()), 0) << "frame " << frame << " after the move: the direct radiance the box left";
+    run.step();
+  }
 
   // The spot switched off: no light is left to bounce (temporal blending keeps no trail of it).
   run.step(2);
