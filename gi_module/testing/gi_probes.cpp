@@ -1,5 +1,6 @@
 #include "testing/gi_probes.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -80,6 +81,37 @@ DenseVoxelGrid VoxelProbe::readbackLeafCells() {
       grid.set(compact(code, 0), compact(code, 1), compact(code, 2));
     }
   return grid;
+}
+
+VoxelProbe::LeafListCheck VoxelProbe::checkLeafList() {
+  LeafListCheck check;
+  const uint32_t depth = voxels_.volume().depth();
+  const glm::uvec4 range = render::readbackBuffer<gpu::SvoLevel>(voxels_.ctx_, voxels_.levels().handle(), depth + 1)[depth].range;
+  const std::vector<uint32_t> nodes = readbackNodes();
+  const std::vector<uint32_t> header = render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.leafList().handle(), DYNGI_SVO_LEAF_LIST_HEADER);
+  const uint64_t room = voxels_.leafList().size() / 4 - DYNGI_SVO_LEAF_LIST_HEADER;
+  check.countFits = header[3] <= room;
+  const uint32_t count = uint32_t(std::min<uint64_t>(header[3], room));
+  const std::vector<uint32_t> list =
+      render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.leafList().handle(), DYNGI_SVO_LEAF_LIST_HEADER + size_t(count));
+  check.entries.assign(list.begin() + DYNGI_SVO_LEAF_LIST_HEADER, list.end());
+  const uint32_t perGroup = 64 * DYNGI_SVO_ITEMS_PER_INVOCATION;
+  check.dispatchCovers = uint64_t(header[0]) * perGroup >= count && header[1] == 1 && header[2] == 1 && (count == 0 || header[0] > 0);
+  std::vector<uint8_t> seen(nodes.size(), 0);
+  for (uint32_t node : check.entries) {
+    const bool leaf = node >= range.x && node - range.x < range.y && node < nodes.size() && nodes[node] != 0;
+    if (!leaf) {
+      ++check.stray;
+      continue;
+    }
+    if (seen[node]++) ++check.duplicates;
+  }
+  for (uint32_t i = 0; i < range.y && range.x + i < nodes.size(); ++i)
+    if (nodes[range.x + i] != 0) {
+      ++check.occupied;
+      if (!seen[range.x + i]) ++check.missed;
+    }
+  return check;
 }
 
 double VoxelProbe::marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels) {

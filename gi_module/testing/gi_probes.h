@@ -30,6 +30,16 @@ class VoxelProbe {
   DenseVoxelGrid readbackFragmentGrid();           // every voxel some fragment marks
   // Every occupied leaf's voxel as its node cell (Morton code) says: where radiance injection puts it.
   DenseVoxelGrid readbackLeafCells();
+  // The occupied leaves as the leaf list holds them (what VCT's passes over leaves walk): its entries
+  // (node indices), and, against the nodes, how many of them are not an occupied node of the leaf level
+  // (`stray`) and how many occupied leaf-level nodes it misses (`missed`). Its header's dispatch size
+  // must cover its count (`dispatchCovers`).
+  struct LeafListCheck {
+    std::vector<uint32_t> entries;
+    uint64_t occupied = 0, stray = 0, missed = 0, duplicates = 0;
+    bool dispatchCovers = false, countFits = false;  // countFits: the header's count fits the buffer
+  };
+  LeafListCheck checkLeafList();
   // Visibility of world-space segments through the SVO on the GPU (svo_march.comp); out[i] = 1 when
   // occluded. Returns the GPU time of the march dispatch in ms.
   double marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels = 1e-3f);

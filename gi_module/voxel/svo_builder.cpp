@@ -17,6 +17,8 @@ namespace dyngi::gi {
 
 namespace {
 constexpr uint32_t kMinNodeGroups = 1u << 12;  // the node pool never shrinks below this (128 KB)
+// The leaf list holds at most one entry per node of the pool, after its header.
+VkDeviceSize leafListBytes(uint32_t groups) { return (VkDeviceSize(groups) * 8 + DYNGI_SVO_LEAF_LIST_HEADER) * 4; }
 }  // namespace
 
 SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t maxNodeGroups) : ctx_(ctx), maxNodeGroups_(maxNodeGroups) {
@@ -28,13 +30,15 @@ SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t
                             {DYNGI_SVO_LEVEL_BINDING_COUNTERS, kSSBO, kCS},
                             {DYNGI_SVO_LEVEL_BINDING_NODES, kSSBO, kCS},
                             {DYNGI_SVO_LEVEL_BINDING_NODE_CELLS, kSSBO, kCS},
-                            {DYNGI_SVO_LEVEL_BINDING_OCCUPANCY, kSSBO, kCS}};
+                            {DYNGI_SVO_LEVEL_BINDING_OCCUPANCY, kSSBO, kCS},
+                            {DYNGI_SVO_LEVEL_BINDING_LEAF_LIST, kSSBO, kCS}};
   level_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_level_comp), levelB, sizeof(gpu::SvoLevelPush), "svo_level");
   const Binding expandB[] = {{DYNGI_SVO_EXPAND_BINDING_NODES, kSSBO, kCS},
                              {DYNGI_SVO_EXPAND_BINDING_NODE_CELLS, kSSBO, kCS},
                              {DYNGI_SVO_EXPAND_BINDING_OCCUPANCY, kSSBO, kCS},
                              {DYNGI_SVO_EXPAND_BINDING_LEVELS, kSSBO, kCS},
-                             {DYNGI_SVO_EXPAND_BINDING_COUNTERS, kSSBO, kCS}};
+                             {DYNGI_SVO_EXPAND_BINDING_COUNTERS, kSSBO, kCS},
+                             {DYNGI_SVO_EXPAND_BINDING_LEAF_LIST, kSSBO, kCS}};
   expand_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_expand_comp), expandB, sizeof(gpu::SvoExpandPush), "svo_expand");
   const Binding attrB[] = {{DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS, kSSBO, kCS},
                            {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES, kSSBO, kCS},
@@ -54,6 +58,8 @@ SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t
   nodeGroupCapacity_ = std::max(maxNodeGroups, 2u);
   nodes_ = Buffer(ctx, VkDeviceSize(nodeGroupCapacity_) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo nodes");
   nodeCells_ = Buffer(ctx, VkDeviceSize(nodeGroupCapacity_) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo node cells");
+  leafList_ = Buffer(ctx, leafListBytes(nodeGroupCapacity_), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                     MemoryUsage::GpuOnly, "svo leaf list");
   levels_ = Buffer(ctx, sizeof(gpu::SvoLevel) * DYNGI_SVO_MAX_LEVELS, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                    MemoryUsage::Readback, "svo levels");
   svoCounters_ = Buffer(ctx, sizeof(gpu::SvoCounters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
@@ -146,8 +152,9 @@ void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragm
           .storageBuffer(DYNGI_SVO_LEVEL_BINDING_NODES, nodes_.handle())
           .storageBuffer(DYNGI_SVO_LEVEL_BINDING_NODE_CELLS, nodeCells_.handle())
           .storageBuffer(DYNGI_SVO_LEVEL_BINDING_OCCUPANCY, occupancy_.handle())
+          .storageBuffer(DYNGI_SVO_LEVEL_BINDING_LEAF_LIST, leafList_.handle())
           .push(ctx_, cmd, level_);
-      const gpu::SvoLevelPush lp{l};
+      const gpu::SvoLevelPush lp{l, depth};
       vkCmdPushConstants(cmd, level_.layout(), kCS, 0, sizeof(lp), &lp);
       vkCmdDispatch(cmd, 1, 1, 1);
       render::computeWriteBarrier(cmd);
@@ -159,6 +166,7 @@ void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragm
           .storageBuffer(DYNGI_SVO_EXPAND_BINDING_OCCUPANCY, occupancy_.handle())
           .storageBuffer(DYNGI_SVO_EXPAND_BINDING_LEVELS, levels_.handle())
           .storageBuffer(DYNGI_SVO_EXPAND_BINDING_COUNTERS, svoCounters_.handle())
+          .storageBuffer(DYNGI_SVO_EXPAND_BINDING_LEAF_LIST, leafList_.handle())
           .push(ctx_, cmd, expand_);
       const gpu::SvoExpandPush ep{l, depth};
       vkCmdPushConstants(cmd, expand_.layout(), kCS, 0, sizeof(ep), &ep);
@@ -205,12 +213,14 @@ bool SvoBuilder::frameFinished(VoxelStats& stats) {
   return stats.poolOverflow && want > groups;  // the conservative SVO stands until the next build
 }
 
-uint64_t SvoBuilder::bytes() const { return nodes_.size() + nodeCells_.size() + occupancy_.size(); }
+uint64_t SvoBuilder::bytes() const { return nodes_.size() + nodeCells_.size() + leafList_.size() + occupancy_.size(); }
 
 void SvoBuilder::resizeNodePool(uint32_t groups, uint64_t keepGroups) {
   vkDeviceWaitIdle(ctx_.device());
   Buffer freshNodes(ctx_, VkDeviceSize(groups) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo nodes");
   Buffer freshCells(ctx_, VkDeviceSize(groups) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo node cells");
+  Buffer freshLeaves(ctx_, leafListBytes(groups), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryUsage::GpuOnly,
+                     "svo leaf list");
   keepGroups = std::min<uint64_t>(keepGroups, groups);
   // The current SVO stays readable until the next build, which may be many frames away (a still scene):
   // its nodes and their cells (where radiance injection puts each leaf, where the VCT atlas puts each
@@ -220,9 +230,13 @@ void SvoBuilder::resizeNodePool(uint32_t groups, uint64_t keepGroups) {
       VkBufferCopy copy{0, 0, keepGroups * 8 * 4};
       vkCmdCopyBuffer(cmd, nodes_.handle(), freshNodes.handle(), 1, &copy);
       vkCmdCopyBuffer(cmd, nodeCells_.handle(), freshCells.handle(), 1, &copy);
+      // The kept SVO's leaves are nodes of its first keepGroups groups: at most 8 per group.
+      const VkBufferCopy leaves{0, 0, leafListBytes(uint32_t(keepGroups))};
+      vkCmdCopyBuffer(cmd, leafList_.handle(), freshLeaves.handle(), 1, &leaves);
     });
   nodes_ = std::move(freshNodes);
   nodeCells_ = std::move(freshCells);
+  leafList_ = std::move(freshLeaves);
   nodeGroupCapacity_ = groups;
 }
 

@@ -35,8 +35,10 @@ class SvoBuilder {
   const render::Buffer& nodes() const { return nodes_; }
   const render::Buffer& levels() const { return levels_; }
   const render::Buffer& nodeCells() const { return nodeCells_; }
+  // The occupied leaves' node indices, compacted (DYNGI_SVO_LEAF_LIST_HEADER in gi_gpu_types.h).
+  const render::Buffer& leafList() const { return leafList_; }
   render::Buffer& counters() { return svoCounters_; }
-  uint64_t bytes() const;  // nodes, node cells and the occupancy pyramid
+  uint64_t bytes() const;  // nodes, node cells, the leaf list and the occupancy pyramid
 
  private:
   // Records the mark pass over chunks [firstChunk, firstChunk + chunkCount) into `target`.
@@ -49,6 +51,7 @@ class SvoBuilder {
   uint32_t nodeGroupCapacity_ = 0;
   render::Buffer nodes_, levels_, svoCounters_;
   render::Buffer nodeCells_;  // per node, leaves included: its cell's Morton code (svo_expand.comp), sized like nodes_
+  render::Buffer leafList_;   // the occupied leaves' node indices after a header (svo_expand.comp, svo_level.comp)
   render::Buffer occupancy_;  // occupancy pyramid of every level (svo_mark.comp)
   // The pyramid of the entities in staticEntities_ alone: a build starts from a copy of it and marks the
   // moving entities' fragments only. Rebuilt when one of them moves or is removed, or when a moving

@@ -49,6 +49,7 @@ VoxelScene::~VoxelScene() = default;
 const render::Buffer& VoxelScene::nodes() const { return svo_->nodes(); }
 const render::Buffer& VoxelScene::levels() const { return svo_->levels(); }
 const render::Buffer& VoxelScene::nodeCells() const { return svo_->nodeCells(); }
+const render::Buffer& VoxelScene::leafList() const { return svo_->leafList(); }
 
 void VoxelScene::setDebugView(VoxelDebugView v) {
   settings_.debugView = v;

@@ -199,6 +199,19 @@ TEST_F(VoxelTest, AgreesWithEmbreeAwayFromSurfaces) {
   EXPECT_EQ(embreeOnly, 0) << "voxelization is conservative: a triangle in the way always occupies a voxel";
 }
 
+// The leaf list (what VCT's passes over leaves walk) is exactly the leaf level's occupied nodes, each once.
+static void expectLeafListIsTheOccupiedLeaves(gi::VoxelScene& voxels, const std::string& when) {
+  const gi::VoxelProbe::LeafListCheck c = gi::VoxelProbe(voxels).checkLeafList();
+  ASSERT_TRUE(c.countFits) << when;
+  EXPECT_GT(c.occupied, 1000u) << when;
+  EXPECT_EQ(c.entries.size(), c.occupied) << when;
+  EXPECT_EQ(c.stray, 0u) << when << ": entries that are not occupied leaves";
+  EXPECT_EQ(c.missed, 0u) << when << ": occupied leaves missing from the list";
+  EXPECT_EQ(c.duplicates, 0u) << when;
+  EXPECT_EQ(c.occupied, voxels.stats().leaves) << when;
+  EXPECT_TRUE(c.dispatchCovers) << when << ": the header's dispatch covers the list";
+}
+
 TEST_F(VoxelTest, MovingObjectsReVoxelizeOnlyThemselvesAndMatchARebuild) {
   run("cornell-dynamic", 64, 2);
   for (int f = 0; f < 3; ++f) {
@@ -208,6 +221,7 @@ TEST_F(VoxelTest, MovingObjectsReVoxelizeOnlyThemselvesAndMatchARebuild) {
   }
   GridDiff d = diff(leaves(), scratchLeaves());
   EXPECT_EQ(d.missing + d.extra, 0u) << "voxels the boxes left are gone, new ones are there";
+  expectLeafListIsTheOccupiedLeaves(*voxels, "after the boxes moved");
   // And nothing moves: nothing is re-voxelized, the SVO is kept.
   auto& motion = world;  // stop the scripted motion
   std::vector<ecs::Entity> movers;
@@ -393,6 +407,7 @@ TEST_F(VoxelTest, ShrunkNodePoolKeepsTheLeavesWhereTheyAre) {
     GridDiff d = diff(gi::VoxelProbe(*voxels).readbackLeafCells(), fragments);
     EXPECT_GT(d.reference, 1000u);
     EXPECT_EQ(d.missing + d.extra, 0u) << "frame " << frame << ": leaf cells against the voxelized set";
+    expectLeafListIsTheOccupiedLeaves(*voxels, "after the pool shrank, frame " + std::to_string(frame));
     step();
     EXPECT_FALSE(voxels->stats().rebuilt) << "nothing moved: the SVO stands";
   }

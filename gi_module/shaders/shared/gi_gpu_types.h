@@ -176,6 +176,13 @@ struct RsmPush {
 #define DYNGI_SVO_EXPAND_BINDING_OCCUPANCY 2
 #define DYNGI_SVO_EXPAND_BINDING_LEVELS 3
 #define DYNGI_SVO_EXPAND_BINDING_COUNTERS 4
+#define DYNGI_SVO_EXPAND_BINDING_LEAF_LIST 5
+// The occupied leaves, compacted (svo_expand.comp appends each leaf's node index): a header of
+// DYNGI_SVO_LEAF_LIST_HEADER uints (indirect dispatch args x, 1, 1 for passes taking
+// DYNGI_SVO_ITEMS_PER_INVOCATION leaves per invocation in 64-wide groups, then the count; written by
+// svo_level.comp at the leaf level), then the entries. Passes over leaves walk it instead of the leaf
+// level's slots, half of which are empty siblings on surfaces.
+#define DYNGI_SVO_LEAF_LIST_HEADER 4u
 // svo_leaf_attributes. A leaf's attributes are DYNGI_LEAF_ATTRIBUTE_INTS uints at leaf * that, sums over
 // its first DYNGI_LEAF_MAX_FRAGMENTS fragments (integer atomics; voxel/shaders/leaf_attributes.glsl
 // averages them): the fragment count (all of them), the albedo 0..255 per channel and the normal
@@ -202,6 +209,7 @@ struct RsmPush {
 #define DYNGI_SVO_LEVEL_BINDING_NODES 2
 #define DYNGI_SVO_LEVEL_BINDING_NODE_CELLS 3
 #define DYNGI_SVO_LEVEL_BINDING_OCCUPANCY 4
+#define DYNGI_SVO_LEVEL_BINDING_LEAF_LIST 5
 // svo_march
 #define DYNGI_SVO_MARCH_BINDING_NODES 0
 #define DYNGI_SVO_MARCH_BINDING_SEGMENTS 1
@@ -226,7 +234,7 @@ struct RsmPush {
 
 // Voxel cone tracing (techniques/vct/): the passes over the occupied voxels (SVO leaves) and the screen.
 // vct_inject: direct light and emission of each occupied voxel into the radiance volume
-#define DYNGI_VCT_INJECT_BINDING_NODES 0
+#define DYNGI_VCT_INJECT_BINDING_LEAF_LIST 0  /* the SVO's compacted leaf list */
 #define DYNGI_VCT_INJECT_BINDING_NODE_CELLS 1
 #define DYNGI_VCT_INJECT_BINDING_LEVELS 2
 #define DYNGI_VCT_INJECT_BINDING_ATTRIBUTES 3
@@ -238,7 +246,7 @@ struct RsmPush {
 #define DYNGI_VCT_INJECT_BINDING_RADIANCE 9
 #define DYNGI_VCT_INJECT_BINDING_NORMALS 10
 // vct_bounce: one more bounce per occupied voxel (cones over the radiance volume), then vct_commit
-#define DYNGI_VCT_BOUNCE_BINDING_NODES 0
+#define DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST 0  /* the SVO's compacted leaf list */
 #define DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS 1
 #define DYNGI_VCT_BOUNCE_BINDING_LEVELS 2
 #define DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES 3
@@ -421,7 +429,7 @@ struct TemporalQueue {
 // reads as plain names, e.g. `layout(push_constant) uniform Push { DYNGI_SVO_MARK_PUSH };`. Members are
 // scalars after an optional leading vec4, so std430 and C++ place them alike.
 #define DYNGI_SVO_MARK_PUSH uint firstChunk; uint depth;
-#define DYNGI_SVO_LEVEL_PUSH uint level;
+#define DYNGI_SVO_LEVEL_PUSH uint level; uint depth; /* the leaf level */
 #define DYNGI_SVO_EXPAND_PUSH uint level; uint depth;
 #define DYNGI_SVO_LEAF_ATTRIBUTES_PUSH uint depth; uint leafCapacity; uint slots;
 #define DYNGI_SVO_MARCH_PUSH                                                         \
@@ -532,7 +540,7 @@ static_assert(sizeof(GatherPush) + sizeof(AccumulatePush) <= 128);
 static_assert(sizeof(TemporalQueue) == 16);
 static_assert(sizeof(SvoLevel) == 32);
 static_assert(sizeof(SvoCounters) == 16);
-static_assert(sizeof(SvoMarkPush) == 8 && sizeof(SvoLevelPush) == 4 && sizeof(SvoExpandPush) == 8);
+static_assert(sizeof(SvoMarkPush) == 8 && sizeof(SvoLevelPush) == 8 && sizeof(SvoExpandPush) == 8);
 static_assert(sizeof(SvoLeafAttributesPush) == 12 && sizeof(SvoMarchPush) == 32 && sizeof(VoxelDebugPush) == 28);
 static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && sizeof(VplSamplePush) == 16);
 static_assert(sizeof(VplTailPush) == 8 && sizeof(CompensatePush) == 20);

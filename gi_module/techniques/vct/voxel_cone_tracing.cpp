@@ -69,7 +69,7 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
     : ctx_(ctx), voxels_(voxels), options_(options) {
   voxels_.enableLeafAttributes();  // albedo, normal and emission per voxel: what injection lights
 
-  const Binding leafB[] = {{DYNGI_VCT_INJECT_BINDING_NODES, kSSBO, kCS},
+  const Binding leafB[] = {{DYNGI_VCT_INJECT_BINDING_LEAF_LIST, kSSBO, kCS},
                            {DYNGI_VCT_INJECT_BINDING_NODE_CELLS, kSSBO, kCS},
                            {DYNGI_VCT_INJECT_BINDING_LEVELS, kSSBO, kCS},
                            {DYNGI_VCT_INJECT_BINDING_ATTRIBUTES, kSSBO, kCS},
@@ -85,11 +85,11 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
   const Binding mipsB[] = {{DYNGI_VCT_MIPS_BINDING_SOURCE, kStorageImage, kCS},     {DYNGI_VCT_MIPS_BINDING_DEST, kStorageImage, kCS},
                            {DYNGI_VCT_MIPS_BINDING_NORMALS, kStorageImage, kCS},    {DYNGI_VCT_MIPS_BINDING_NODES, kSSBO, kCS},
                            {DYNGI_VCT_MIPS_BINDING_NODE_CELLS, kSSBO, kCS},         {DYNGI_VCT_MIPS_BINDING_LEVELS, kSSBO, kCS}};
-  const Binding bounceB[] = {{DYNGI_VCT_BOUNCE_BINDING_NODES, kSSBO, kCS},       {DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS, kSSBO, kCS},
+  const Binding bounceB[] = {{DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST, kSSBO, kCS},       {DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS, kSSBO, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_LEVELS, kSSBO, kCS},      {DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES, kSSBO, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_DIRECT, kStorageImage, kCS}, {DYNGI_VCT_BOUNCE_BINDING_RADIANCE, kSampled, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_ANISO, kSampled, kCS},    {DYNGI_VCT_BOUNCE_BINDING_OUT, kStorageImage, kCS}};
-  const Binding commitB[] = {{DYNGI_VCT_BOUNCE_BINDING_NODES, kSSBO, kCS},
+  const Binding commitB[] = {{DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST, kSSBO, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS, kSSBO, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_LEVELS, kSSBO, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES, kSSBO, kCS},
@@ -249,16 +249,16 @@ void VoxelConeTracing::fillConeParams(Push& p) const {
 void VoxelConeTracing::recordLeafPass(VkCommandBuffer cmd, const Pipeline& pipeline, const void* push, uint32_t pushBytes,
                                       DescriptorWrites& writes) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
-  writes.storageBuffer(DYNGI_VCT_INJECT_BINDING_NODES, voxels_.nodes().handle())
+  writes.storageBuffer(DYNGI_VCT_INJECT_BINDING_LEAF_LIST, voxels_.leafList().handle())
       .storageBuffer(DYNGI_VCT_INJECT_BINDING_NODE_CELLS, voxels_.nodeCells().handle())
       .storageBuffer(DYNGI_VCT_INJECT_BINDING_LEVELS, voxels_.levels().handle())
       .storageBuffer(DYNGI_VCT_INJECT_BINDING_ATTRIBUTES, voxels_.leafAttributes().handle())
       .push(ctx_, cmd, pipeline);
   vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, pushBytes, push);
-  vkCmdDispatchIndirect(cmd, voxels_.levels().handle(), levelDispatchOffset(voxels_.volume().depth()));
+  vkCmdDispatchIndirect(cmd, voxels_.leafList().handle(), 0);  // the list's header: its dispatch
   render::computeWriteBarrier(cmd);
 }
-static_assert(DYNGI_VCT_INJECT_BINDING_NODES == DYNGI_VCT_BOUNCE_BINDING_NODES &&
+static_assert(DYNGI_VCT_INJECT_BINDING_LEAF_LIST == DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST &&
                   DYNGI_VCT_INJECT_BINDING_NODE_CELLS == DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS &&
                   DYNGI_VCT_INJECT_BINDING_LEVELS == DYNGI_VCT_BOUNCE_BINDING_LEVELS &&
                   DYNGI_VCT_INJECT_BINDING_ATTRIBUTES == DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES,

@@ -14,6 +14,9 @@ layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_NODE_CELLS) buffer NodeCells 
 layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_OCCUPANCY) readonly buffer Occupancy { uint occupancy[]; };
 layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_COUNTERS) buffer Counters { SvoCounters counters; };
+// The occupied leaves' node indices after DYNGI_SVO_LEAF_LIST_HEADER uints (gi_gpu_types.h): appended by
+// the expand of the level above the leaves, as many as the leaf counter counts.
+layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_LEAF_LIST) writeonly buffer LeafList { uint leafList[]; };
 layout(push_constant) uniform Push { DYNGI_SVO_EXPAND_PUSH };
 
 // The occupancy of the 8 children of the cell with Morton code m at level l (bit c: child c).
@@ -26,12 +29,12 @@ void expand(uint node) {
   bool want = nodes[node] == DYNGI_SVO_FLAG;  // occupied, not yet subdivided
   uint g;
   DYNGI_SUBGROUP_APPEND(counters.groups.x, want, g)
-  uint leaves = 0u;
+  uint leaves = 0u, children = 0u;
   if (want && g >= counters.groups.y) {
     counters.groups.z = 1u;  // overflow: the node stays flagged without children (treated as occupied)
   } else if (want) {
     uint code = nodeCells[node];
-    uint children = childOccupancy(level, code);
+    children = childOccupancy(level, code);
     bool childrenAreLeaves = level + 1u == depth;
     for (uint c = 0u; c < 8u; ++c) {
       bool o = ((children >> c) & 1u) != 0u;
@@ -41,8 +44,12 @@ void expand(uint node) {
     if (childrenAreLeaves) leaves = bitCount(children);
     nodes[node] = DYNGI_SVO_FLAG | g;
   }
-  uint subgroupLeaves = subgroupAdd(leaves);
-  if (subgroupLeaves > 0u && subgroupElect()) atomicAdd(counters.groups.w, subgroupLeaves);
+  // The leaves into the list, one atomic per subgroup (as DYNGI_SUBGROUP_APPEND, for counts).
+  uint subgroupLeaves = subgroupAdd(leaves), first = subgroupExclusiveAdd(leaves), base = 0u;
+  if (subgroupLeaves > 0u && subgroupElect()) base = atomicAdd(counters.groups.w, subgroupLeaves);
+  base = subgroupBroadcastFirst(base) + first + DYNGI_SVO_LEAF_LIST_HEADER;
+  for (uint c = 0u; c < 8u && leaves > 0u; ++c)
+    if (((children >> c) & 1u) != 0u && base < uint(leafList.length())) leafList[base++] = 8u * g + c;
 }
 
 void main() {

@@ -7,7 +7,7 @@
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 64) in;
 layout(constant_id = 0) const bool kAnisotropic = false;
-layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST) readonly buffer LeafList { uint leafList[]; };
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES) readonly buffer Attributes { uint attributes[]; };

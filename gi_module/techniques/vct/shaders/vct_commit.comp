@@ -4,7 +4,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 64) in;
-layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST) readonly buffer LeafList { uint leafList[]; };
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES) readonly buffer Attributes { uint attributes[]; };

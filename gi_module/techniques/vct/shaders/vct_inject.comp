@@ -10,7 +10,7 @@
 #include "shared/gi_gpu_types.h"
 #include "shared/lighting.glsl"
 layout(local_size_x = 64) in;
-layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_LEAF_LIST) readonly buffer LeafList { uint leafList[]; };
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_ATTRIBUTES) readonly buffer Attributes { uint attributes[]; };
