@@ -34,7 +34,7 @@ cd build-asan
 ctest --output-on-failure -j"$(nproc)" -L 'unit|gi' "$@"
 # The end-to-end and render tests run with a 2 MiB quarantine (ASan's default: 256 MiB). Lavapipe's
 # JIT-compiled shader code itself allocates (posix_memalign) and frees small blocks while it runs a
-# dispatch, every frame (95% of the page faults under perf); with the default quarantine none is
+# dispatch, every frame (three quarters of the page faults under perf); with the default quarantine none is
 # reused, each frame takes fresh pages (~50k faults a frame at 768^2), and on this virtual machine a
 # page fault costs ~150-200 us of kernel time. The scripted window session's headless replay (768^2,
 # VCT, validation) took 354 s with the default and 10.6 s with this one (12.75 s and 0.044 s median
