@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <unordered_map>
 
 #include <glm/gtc/packing.hpp>
 
@@ -111,6 +112,51 @@ VoxelProbe::LeafListCheck VoxelProbe::checkLeafList() {
       ++check.occupied;
       if (!seen[range.x + i]) ++check.missed;
     }
+  return check;
+}
+
+VoxelProbe::LeafAttributesCheck VoxelProbe::checkLeafAttributes() {
+  LeafAttributesCheck check;
+  const uint32_t depth = voxels_.volume().depth();
+  const glm::uvec4 range = render::readbackBuffer<gpu::SvoLevel>(voxels_.ctx_, voxels_.levels().handle(), depth + 1)[depth].range;
+  const std::vector<uint32_t> nodes = readbackNodes();
+  const std::vector<uint32_t> cells = render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.nodeCells().handle(), nodes.size());
+  const uint64_t capacity = std::min<uint64_t>(voxels_.leafCapacity(), range.y);
+  const std::vector<uint32_t> attributes =
+      render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.leafAttributes().handle(), size_t(capacity * DYNGI_LEAF_ATTRIBUTE_INTS));
+  // The sums svo_leaf_attributes.comp makes, per Morton code of the voxel.
+  struct Sums {
+    uint32_t count = 0, rg = 0, bx = 0, yz = 0;
+  };
+  std::unordered_map<uint32_t, Sums> expected;
+  auto spread = [](uint32_t v) {
+    uint32_t out = 0;
+    for (uint32_t i = 0; i < 10; ++i) out |= ((v >> i) & 1u) << (3 * i);
+    return out;
+  };
+  for (const VoxelFragment& f : readbackFragments()) {
+    Sums& s = expected[spread(f.cell.x) | (spread(f.cell.y) << 1) | (spread(f.cell.z) << 2)];
+    const glm::uvec3 albedo(glm::round(glm::vec3(f.albedo) * 255.0f));
+    const glm::uvec3 normal(glm::round(glm::clamp(f.normal, -1.0f, 1.0f) * 127.0f) + 127.0f);
+    ++s.count;
+    s.rg += albedo.r | (albedo.g << 16);
+    s.bx += albedo.b | (normal.x << 16);
+    s.yz += normal.y | (normal.z << 16);
+  }
+  for (uint64_t i = 0; i < capacity && range.x + i < nodes.size(); ++i) {
+    if (nodes[range.x + i] == 0) continue;
+    ++check.leaves;
+    const uint32_t* a = &attributes[i * DYNGI_LEAF_ATTRIBUTE_INTS];
+    const auto found = expected.find(cells[range.x + i]);
+    const Sums s = found == expected.end() ? Sums{} : found->second;
+    if (a[DYNGI_LEAF_COUNT] != s.count) {
+      ++check.wrongCount;
+      continue;
+    }
+    if (s.count > DYNGI_LEAF_MAX_FRAGMENTS) continue;  // which fragments were summed is the GPU's order
+    check.wrongAlbedo += a[DYNGI_LEAF_ALBEDO_RG] != s.rg || (a[DYNGI_LEAF_ALBEDO_B_NORMAL_X] & 0xFFFFu) != (s.bx & 0xFFFFu);
+    check.wrongNormal += (a[DYNGI_LEAF_ALBEDO_B_NORMAL_X] >> 16) != (s.bx >> 16) || a[DYNGI_LEAF_NORMAL_YZ] != s.yz;
+  }
   return check;
 }
 

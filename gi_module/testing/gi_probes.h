@@ -40,6 +40,12 @@ class VoxelProbe {
     bool dispatchCovers = false, countFits = false;  // countFits: the header's count fits the buffer
   };
   LeafListCheck checkLeafList();
+  // Every occupied leaf's attribute sums (svo_leaf_attributes.comp) against the fragments in its voxel,
+  // summed here: fragment count, albedo and normal sums (cells of up to DYNGI_LEAF_MAX_FRAGMENTS).
+  struct LeafAttributesCheck {
+    uint64_t leaves = 0, wrongCount = 0, wrongAlbedo = 0, wrongNormal = 0;
+  };
+  LeafAttributesCheck checkLeafAttributes();
   // Visibility of world-space segments through the SVO on the GPU (svo_march.comp); out[i] = 1 when
   // occluded. Returns the GPU time of the march dispatch in ms.
   double marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels = 1e-3f);

@@ -212,6 +212,16 @@ static void expectLeafListIsTheOccupiedLeaves(gi::VoxelScene& voxels, const std:
   EXPECT_TRUE(c.dispatchCovers) << when << ": the header's dispatch covers the list";
 }
 
+// Every occupied leaf's attribute sums (what radiance injection lights) are those of the fragments in its
+// voxel, summed on the CPU; in a build that overflowed the node pool too, for the leaves it has.
+static void expectLeafAttributesSumTheirFragments(gi::VoxelScene& voxels, const std::string& when) {
+  const gi::VoxelProbe::LeafAttributesCheck c = gi::VoxelProbe(voxels).checkLeafAttributes();
+  std::printf("%s: %llu leaves, attribute sums wrong: count %llu, albedo %llu, normal %llu\n", when.c_str(), (unsigned long long)c.leaves,
+              (unsigned long long)c.wrongCount, (unsigned long long)c.wrongAlbedo, (unsigned long long)c.wrongNormal);
+  EXPECT_GT(c.leaves, 1000u) << when;
+  EXPECT_EQ(c.wrongCount + c.wrongAlbedo + c.wrongNormal, 0u) << when;
+}
+
 TEST_F(VoxelTest, MovingObjectsReVoxelizeOnlyThemselvesAndMatchARebuild) {
   run("cornell-dynamic", 64, 2);
   for (int f = 0; f < 3; ++f) {
@@ -222,6 +232,7 @@ TEST_F(VoxelTest, MovingObjectsReVoxelizeOnlyThemselvesAndMatchARebuild) {
   GridDiff d = diff(leaves(), scratchLeaves());
   EXPECT_EQ(d.missing + d.extra, 0u) << "voxels the boxes left are gone, new ones are there";
   expectLeafListIsTheOccupiedLeaves(*voxels, "after the boxes moved");
+  expectLeafAttributesSumTheirFragments(*voxels, "after the boxes moved");
   // And nothing moves: nothing is re-voxelized, the SVO is kept.
   auto& motion = world;  // stop the scripted motion
   std::vector<ecs::Entity> movers;
@@ -389,12 +400,14 @@ TEST_F(VoxelTest, NodePoolGrowsWhenTheSceneNeedsMore) {
               double(smallPool) / (1 << 20), int(voxels->stats().poolOverflow), first.missing, first.extra);
   EXPECT_TRUE(voxels->stats().poolOverflow) << "the test means to overflow the shrunken pool";
   EXPECT_EQ(first.missing, 0u) << "an overflowing build is conservative";
+  expectLeafAttributesSumTheirFragments(*voxels, "the build that overflowed");
   step();
   EXPECT_FALSE(voxels->stats().poolOverflow);
   // Exact again: the same leaves as a from-scratch build with a pool big enough from the start.
   GridDiff second = diff(leaves(), scratchLeaves());
   EXPECT_EQ(second.missing + second.extra, 0u);
   EXPECT_EQ(diff(leaves(), exact).missing, 0u);
+  expectLeafAttributesSumTheirFragments(*voxels, "the build after");
 }
 
 // The first build has the whole node pool, which then shrinks to what the SVO uses while the SVO itself
