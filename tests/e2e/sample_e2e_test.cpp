@@ -197,9 +197,9 @@ TEST(SampleVct, TimesEveryStageAndReportsItsSettings) {
   EXPECT_EQ(o.stats["settings"].value("bounces", 0.0), 2.0) << o.stats["settings"].dump();
   EXPECT_EQ(o.stats["settings"].value("cones", 0.0), 4.0);
   // Its volumes at 64^3 with 2 bounces, by hand: the radiance chain (299593 RGBA16F texels), the atlas
-  // (192 x 32 x 32 and 5 levels below, 224694), two direct images and the bounce's (64^3 each), the
-  // normals (64^3 RGBA8): 11534328 bytes, 11 MiB.
-  EXPECT_NEAR(o.stats["vct"].value("volume_mib", 0.0), 11534328.0 / 1048576.0, 1e-3);
+  // (192 x 32 x 32 and 5 levels below, 224694), two direct images and the bounce's (64^3 each):
+  // 10485752 bytes, 10 MiB.
+  EXPECT_NEAR(o.stats["vct"].value("volume_mib", 0.0), 10485752.0 / 1048576.0, 1e-3);
   // A value out of its range is one clear error line and exit 2.
   TempDir bad;
   SampleRun b = runSample("--headless --frames 1 --size 32x32 --gi vct --cones 0" + withOutputs(bad), bad);

@@ -224,15 +224,16 @@ TEST_F(RenderTest, VctMipChainEqualsCpuFilters) {
       continue;
     }
     const std::vector<gi::VolumeLevel> atlas = readLevels(context(), vct.anisotropicVolume());
-    const gi::VolumeLevel normals = readLevels(context(), vct.voxelNormals()).at(0);
+    const gi::VolumeLevel seen = readLevels(context(), vct.directVolume()).at(0);  // its alpha: which cones see a voxel
     size_t hiddenBacks = 0;  // one-sided voxels, whose back the first atlas level shows black
-    for (size_t i = 0; i < normals.texels.size(); ++i) hiddenBacks += radiance[0].texels[i].a > 0.5f && normals.texels[i].w > 0.5f;
+    for (size_t i = 0; i < seen.texels.size(); ++i)
+      hiddenBacks += radiance[0].texels[i].a > 0.5f && !gi::vctSeenBothSides(seen.texels[i].a);
     EXPECT_GT(hiddenBacks, occupied / 2) << "most of the Cornell box's voxels are one-sided";
     ASSERT_EQ(atlas.size(), radiance.size() - 1);
     for (size_t m = 0; m < atlas.size(); ++m) {
       const uint32_t slab = atlas[m].h;
       const gi::VolumeLevel cpu =
-          m == 0 ? gi::vctAnisoDownsample(radiance[0], 0, slab, &normals) : gi::vctAnisoDownsample(atlas[m - 1], 2 * slab, slab);
+          m == 0 ? gi::vctAnisoDownsample(radiance[0], 0, slab, &seen) : gi::vctAnisoDownsample(atlas[m - 1], 2 * slab, slab);
       EXPECT_LT(maxRelativeDifference(atlas[m], cpu), 2e-3) << "anisotropic level " << m;
     }
     // The atlas is written at the SVO's occupied nodes only: after a box moves, the texels it left must
@@ -241,10 +242,10 @@ TEST_F(RenderTest, VctMipChainEqualsCpuFilters) {
     run.step(1);
     const std::vector<gi::VolumeLevel> movedRadiance = readLevels(context(), vct.radianceVolume());
     const std::vector<gi::VolumeLevel> movedAtlas = readLevels(context(), vct.anisotropicVolume());
-    const gi::VolumeLevel movedNormals = readLevels(context(), vct.voxelNormals()).at(0);
+    const gi::VolumeLevel movedSeen = readLevels(context(), vct.directVolume()).at(0);
     for (size_t m = 0; m < movedAtlas.size(); ++m) {
       const uint32_t slab = movedAtlas[m].h;
-      const gi::VolumeLevel cpu = m == 0 ? gi::vctAnisoDownsample(movedRadiance[0], 0, slab, &movedNormals)
+      const gi::VolumeLevel cpu = m == 0 ? gi::vctAnisoDownsample(movedRadiance[0], 0, slab, &movedSeen)
                                          : gi::vctAnisoDownsample(movedAtlas[m - 1], 2 * slab, slab);
       EXPECT_LT(maxRelativeDifference(movedAtlas[m], cpu), 2e-3) << "anisotropic level " << m << " after the tall box moved";
     }

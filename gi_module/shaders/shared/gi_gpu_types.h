@@ -244,7 +244,6 @@ struct RsmPush {
 #define DYNGI_VCT_INJECT_BINDING_PREVIOUS 7
 #define DYNGI_VCT_INJECT_BINDING_DIRECT 8
 #define DYNGI_VCT_INJECT_BINDING_RADIANCE 9
-#define DYNGI_VCT_INJECT_BINDING_NORMALS 10
 // vct_bounce: one more bounce per occupied voxel (cones over the radiance volume), then vct_commit
 #define DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST 0  /* the SVO's compacted leaf list */
 #define DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS 1
@@ -257,7 +256,7 @@ struct RsmPush {
 // vct_mips: one level of the radiance mip chain (isotropic) or of the six-direction atlas
 #define DYNGI_VCT_MIPS_BINDING_SOURCE 0
 #define DYNGI_VCT_MIPS_BINDING_DEST 1
-#define DYNGI_VCT_MIPS_BINDING_NORMALS 2
+#define DYNGI_VCT_MIPS_BINDING_SEEN 2
 // The anisotropic atlas is built over the SVO's occupied nodes only (the rest of it is cleared):
 #define DYNGI_VCT_MIPS_BINDING_NODES 3
 #define DYNGI_VCT_MIPS_BINDING_NODE_CELLS 4
@@ -314,6 +313,12 @@ struct RsmPush {
 // component along an axis is under this in size is parallel to that axis, seen from both of its sides
 // (so that the normal's rounding does not hide a floor from one side).
 #define DYNGI_VCT_PARALLEL 0.1
+// Which cones see an occupied voxel's radiance, in the alpha of the direct-radiance volume (vct_inject.comp
+// writes it, the atlas' first level reads it: vct_seen.glsl, vctSeenMask in vct_cpu.cpp): 1 + a 6-bit
+// mask, 0 for an empty voxel. Bit 2 axis is set when a cone travelling along +axis meets the voxel's
+// front, bit 2 axis + 1 along -axis; a voxel whose fragments face both ways has all six
+// (DYNGI_VCT_SEEN_BOTH_SIDES).
+#define DYNGI_VCT_SEEN_BOTH_SIDES 63u
 
 // Bindings of the shared indirect gather (gather.glsl); a technique's gather variant adds its own after
 // them (temporal_gather.comp).

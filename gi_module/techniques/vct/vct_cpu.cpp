@@ -11,7 +11,6 @@ namespace {
 constexpr uint32_t kSlabs = DYNGI_VCT_SLABS;
 constexpr int kMaxSteps = DYNGI_VCT_MAX_STEPS;
 constexpr float kSurfaceClearance = float(DYNGI_VCT_SURFACE_CLEARANCE);
-constexpr float kParallel = float(DYNGI_VCT_PARALLEL);
 glm::vec4 over(const glm::vec4& front, const glm::vec4& back) { return front + (1.0f - front.a) * back; }
 
 // A w x h x d level with each texel from texel(x, y, z).
@@ -60,12 +59,14 @@ VolumeLevel vctOpaqueAxisDownsample(const VolumeLevel& s) {
   });
 }
 
-VolumeLevel vctAnisoDownsample(const VolumeLevel& s, uint32_t sourceSlabWidth, uint32_t destSlabWidth, const VolumeLevel* normals) {
+uint32_t vctSeenMask(float code) { return uint32_t(std::max(code, 1.0f)) - 1u; }
+bool vctSeenBothSides(float code) { return vctSeenMask(code) == DYNGI_VCT_SEEN_BOTH_SIDES; }
+
+VolumeLevel vctAnisoDownsample(const VolumeLevel& s, uint32_t sourceSlabWidth, uint32_t destSlabWidth, const VolumeLevel* seenVolume) {
   // The child at c as a cone travelling along `axis` (negative: -axis) sees it (vct_mips.comp, kSharedSource).
   auto seen = [&](const glm::ivec3& c, glm::vec4 texel, uint32_t axis, bool negative) {
-    if (!normals) return texel;
-    const glm::vec4 n = normals->at(c.x, c.y, c.z);
-    const bool shown = n.w <= 0.5f || (negative ? n[int(axis)] >= -kParallel : -n[int(axis)] >= -kParallel);
+    if (!seenVolume) return texel;
+    const bool shown = (vctSeenMask(seenVolume->at(c.x, c.y, c.z).a) >> (2 * axis + (negative ? 1 : 0))) & 1u;
     return shown ? texel : glm::vec4(0.0f, 0.0f, 0.0f, texel.a);
   };
   return makeLevel(kSlabs * destSlabWidth, destSlabWidth, destSlabWidth, [&](uint32_t x, uint32_t y, uint32_t z) {

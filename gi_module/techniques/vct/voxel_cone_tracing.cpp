@@ -78,12 +78,11 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
                            {DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_PREVIOUS, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_DIRECT, kStorageImage, kCS},
-                           {DYNGI_VCT_INJECT_BINDING_RADIANCE, kStorageImage, kCS},
-                           {DYNGI_VCT_INJECT_BINDING_NORMALS, kStorageImage, kCS}};
+                           {DYNGI_VCT_INJECT_BINDING_RADIANCE, kStorageImage, kCS}};
   inject_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_inject_comp), leafB, sizeof(gpu::VctInjectPush), "vct_inject");
 
   const Binding mipsB[] = {{DYNGI_VCT_MIPS_BINDING_SOURCE, kStorageImage, kCS},     {DYNGI_VCT_MIPS_BINDING_DEST, kStorageImage, kCS},
-                           {DYNGI_VCT_MIPS_BINDING_NORMALS, kStorageImage, kCS},    {DYNGI_VCT_MIPS_BINDING_NODES, kSSBO, kCS},
+                           {DYNGI_VCT_MIPS_BINDING_SEEN, kStorageImage, kCS},       {DYNGI_VCT_MIPS_BINDING_NODES, kSSBO, kCS},
                            {DYNGI_VCT_MIPS_BINDING_NODE_CELLS, kSSBO, kCS},         {DYNGI_VCT_MIPS_BINDING_LEVELS, kSSBO, kCS}};
   const Binding bounceB[] = {{DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST, kSSBO, kCS},       {DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS, kSSBO, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_LEVELS, kSSBO, kCS},      {DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES, kSSBO, kCS},
@@ -114,7 +113,7 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
   // for the trace, with the specular cone or without.
   for (uint32_t aniso : {0u, 1u}) {
     const uint32_t spec[] = {aniso};
-    const uint32_t mipsSpec[] = {aniso, 0u, 0u};
+    const uint32_t mipsSpec[] = {aniso, 0u, 0u, 0u};
     mips_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", mipsSpec);
     bounce_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_bounce_comp), bounceB, sizeof(gpu::VctBouncePush), "vct_bounce", spec);
     debug_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_debug_comp), debugB, sizeof(gpu::VctDebugPush), "vct_debug", spec);
@@ -125,9 +124,12 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
           Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_trace_comp), traceB, sizeof(gpu::VctTracePush), "vct_trace", traceSpec);
     }
   }
-  const uint32_t opaqueAxisSpec[] = {0u, 1u, 0u}, atlasLevel0Spec[] = {1u, 0u, 1u};
+  // The atlas' first level: from the direct radiance alone (before a bounce is added to level 0), or from
+  // level 0 with the direct radiance's alpha (after).
+  const uint32_t opaqueAxisSpec[] = {0u, 1u, 0u, 0u}, atlasFromLevel0Spec[] = {1u, 0u, 1u, 0u}, atlasFromDirectSpec[] = {1u, 0u, 1u, 1u};
   mips_[2] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", opaqueAxisSpec);
-  mips_[3] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", atlasLevel0Spec);
+  mips_[3] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", atlasFromLevel0Spec);
+  mips_[4] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", atlasFromDirectSpec);
   const Binding upB[] = {{DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL, kStorageImage, kCS},
                          {DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR, kStorageImage, kCS},
                          {DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, kStorageImage, kCS},
@@ -174,7 +176,6 @@ void VoxelConeTracing::ensureVolumes(uint32_t res) {
     radiance_ = makeVolume(ctx_, res, res, res, levels, "vct radiance");
     direct_[0] = makeVolume(ctx_, res, res, res, 1, "vct direct radiance A");
     direct_[1] = makeVolume(ctx_, res, res, res, 1, "vct direct radiance B");
-    normals_ = makeVolume(ctx_, res, res, res, 1, "vct voxel normals", VK_FORMAT_R8G8B8A8_SNORM);
     frames_ = 0;
   }
   const uint32_t half = std::max(res / 2, 1u);
@@ -183,7 +184,7 @@ void VoxelConeTracing::ensureVolumes(uint32_t res) {
   res_ = res;
   rebuiltLastFrame_ = true;
   ctx_.immediate([&](VkCommandBuffer cmd) {
-    for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_, &normals_}) {
+    for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_}) {
       if (!img->valid()) continue;
       img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
       const VkClearColorValue zero{};
@@ -191,7 +192,7 @@ void VoxelConeTracing::ensureVolumes(uint32_t res) {
       vkCmdClearColorImage(cmd, img->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
     }
   });
-  stats_.volumeBytes = volumeBytes(radiance_) + volumeBytes(aniso_) + volumeBytes(direct_[0]) * 2 + volumeBytes(bounced_) + volumeBytes(normals_);
+  stats_.volumeBytes = volumeBytes(radiance_) + volumeBytes(aniso_) + volumeBytes(direct_[0]) * 2 + volumeBytes(bounced_);
 }
 
 uint32_t VoxelConeTracing::traceScale() const {
@@ -264,14 +265,14 @@ static_assert(DYNGI_VCT_INJECT_BINDING_LEAF_LIST == DYNGI_VCT_BOUNCE_BINDING_LEA
                   DYNGI_VCT_INJECT_BINDING_ATTRIBUTES == DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES,
               "the passes over leaves share their first four bindings (recordLeafPass)");
 
-void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool clearAtlas) {
+void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool clearAtlas, bool levelZeroIsDirect) {
   const bool aniso = options_.anisotropic;
   auto bind = [&](const Pipeline& p, VkImageView source, VkImageView dest, const gpu::VctMipsPush& pc) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
     DescriptorWrites()
         .storageImage(DYNGI_VCT_MIPS_BINDING_SOURCE, source)
         .storageImage(DYNGI_VCT_MIPS_BINDING_DEST, dest)
-        .storageImage(DYNGI_VCT_MIPS_BINDING_NORMALS, normals_.view())
+        .storageImage(DYNGI_VCT_MIPS_BINDING_SEEN, direct_[current_].view())
         .storageBuffer(DYNGI_VCT_MIPS_BINDING_NODES, voxels_.nodes().handle())
         .storageBuffer(DYNGI_VCT_MIPS_BINDING_NODE_CELLS, voxels_.nodeCells().handle())
         .storageBuffer(DYNGI_VCT_MIPS_BINDING_LEVELS, voxels_.levels().handle())
@@ -302,8 +303,8 @@ void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool clearAtlas) {
   const uint32_t depth = voxels_.volume().depth();
   for (uint32_t m = 0; m < aniso_.desc().mips && m < depth; ++m) {
     const uint32_t slab = std::max((res_ / 2) >> m, 1u), nodeLevel = depth - 1 - m;
-    const VkImageView source = m == 0 ? radiance_.mipView(0) : aniso_.mipView(m - 1);
-    bind(mips_[m == 0 ? 3 : 1], source, aniso_.mipView(m), {slab, m == 0 ? 0u : 2 * slab, nodeLevel});
+    const VkImageView source = m > 0 ? aniso_.mipView(m - 1) : (levelZeroIsDirect ? direct_[current_].view() : radiance_.mipView(0));
+    bind(mips_[m > 0 ? 1 : (levelZeroIsDirect ? 4 : 3)], source, aniso_.mipView(m), {slab, m == 0 ? 0u : 2 * slab, nodeLevel});
     vkCmdDispatchIndirect(cmd, voxels_.levels().handle(), levelDispatchOffset(nodeLevel));
     render::computeWriteBarrier(cmd);
   }
@@ -318,7 +319,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   ensureTraceTargets(frame.targets.width, frame.targets.height);
   // Back to GENERAL after a read-back (tests); the frames before finished at the renderer's fence, and
   // the passes below order themselves with global barriers.
-  for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_, &normals_, &traced_[0].diffuse, &traced_[0].specular, &traced_[0].surface,
+  for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_, &traced_[0].diffuse, &traced_[0].specular, &traced_[0].surface,
                      &traced_[1].diffuse, &traced_[1].specular, &traced_[1].surface, &filterAlongX_, &filteredDiffuse_})
     if (img->valid() && img->layout() != VK_IMAGE_LAYOUT_GENERAL) img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, kComputeAndTransfer, kReadWrite);
   frame.lights.shadowMaps->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
@@ -361,15 +362,14 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
         .storageImage(DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, frame.lights.shadowMaps->view())
         .storageImage(DYNGI_VCT_INJECT_BINDING_PREVIOUS, direct_[previous].view())
         .storageImage(DYNGI_VCT_INJECT_BINDING_DIRECT, direct_[current_].view())
-        .storageImage(DYNGI_VCT_INJECT_BINDING_RADIANCE, radiance_.mipView(0))
-        .storageImage(DYNGI_VCT_INJECT_BINDING_NORMALS, normals_.view());
+        .storageImage(DYNGI_VCT_INJECT_BINDING_RADIANCE, radiance_.mipView(0));
     recordLeafPass(cmd, inject_, &pc, sizeof(pc), w);
     stats_.injected = true;
   }
   rebuiltLastFrame_ = rebuilt;
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "mips");
-    recordMips(cmd, stats_.cleared);
+    recordMips(cmd, stats_.cleared, /*levelZeroIsDirect=*/true);
   }
   const VkImageView anisoView = aniso ? aniso_.view() : radiance_.view();  // bound either way; read when anisotropic
   {
@@ -388,7 +388,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
       DescriptorWrites c;
       c.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, bounced_.view()).storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, radiance_.mipView(0));
       recordLeafPass(cmd, commit_, &pc, sizeof(pc), c);
-      recordMips(cmd, false);  // the same occupied set as this frame's first chain
+      recordMips(cmd, false, false);  // the same occupied set as this frame's first chain; level 0 now has the bounce
     }
   }
   const uint32_t scale = traceScale();

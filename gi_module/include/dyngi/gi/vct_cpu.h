@@ -22,10 +22,15 @@ VolumeLevel vctBoxDownsample(const VolumeLevel& source);
 // The isotropic next level with each texel's opacity from its most opaque axis (opaqueAxisMips).
 VolumeLevel vctOpaqueAxisDownsample(const VolumeLevel& source);
 // The next level of the six-direction atlas (vct_mips.comp, anisotropic): from one isotropic source
-// (sourceSlabWidth 0) with its voxels' normals (`normals`: xyz, w 1 one-sided, 0 two-sided; a one-sided
-// voxel's radiance shows only to cones meeting its front), or from the atlas level below (normals null).
+// (sourceSlabWidth 0) with which cones see each voxel (`seen`: the direct-radiance volume, its alpha
+// the code of vct_seen.glsl; a one-sided voxel's radiance shows only to cones meeting its front), or from
+// the atlas level below (seen null).
 VolumeLevel vctAnisoDownsample(const VolumeLevel& source, uint32_t sourceSlabWidth, uint32_t destSlabWidth,
-                               const VolumeLevel* normals = nullptr);
+                               const VolumeLevel* seen = nullptr);
+// The mask of vct_seen.glsl's code (bit 2 axis: seen travelling along +axis, 2 axis + 1: along -axis).
+uint32_t vctSeenMask(float code);
+// True for a two-sided voxel's code (seen from all six directions).
+bool vctSeenBothSides(float code);
 
 // textureLod with linear filtering and mip interpolation, clamped to the edge.
 glm::vec4 sampleVolumeLod(const std::vector<VolumeLevel>& levels, const glm::vec3& uvw, float lod);

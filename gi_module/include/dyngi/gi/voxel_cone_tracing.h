@@ -55,7 +55,6 @@ class VoxelConeTracing final : public render::RenderFeature {
   // this frame's injected direct radiance. Valid after the first frame.
   render::Image& radianceVolume() { return radiance_; }
   render::Image& anisotropicVolume() { return aniso_; }
-  render::Image& voxelNormals() { return normals_; }
   render::Image& directVolume() { return direct_[current_]; }
   // Marches one cone per ray (voxel units: origin, direction) through the volume as it stands, on the
   // GPU (vct_cone_probe.comp): rgb radiance, a opacity. Synchronous.
@@ -65,7 +64,9 @@ class VoxelConeTracing final : public render::RenderFeature {
   void ensureVolumes(uint32_t res);
   void ensureTraceTargets(uint32_t width, uint32_t height);
   // The mip chain, or the anisotropic atlas (cleared first when clearAtlas: the occupied set changed).
-  void recordMips(VkCommandBuffer cmd, bool clearAtlas);
+  // levelZeroIsDirect: level 0 holds the direct radiance (no bounce added yet), which the atlas' first
+  // level then reads alone (vct_mips.comp, kSeenInSource).
+  void recordMips(VkCommandBuffer cmd, bool clearAtlas, bool levelZeroIsDirect);
   void recordLeafPass(VkCommandBuffer cmd, const render::Pipeline& pipeline, const void* push, uint32_t pushBytes,
                       render::DescriptorWrites& writes);
   template <class Push>
@@ -84,9 +85,8 @@ class VoxelConeTracing final : public render::RenderFeature {
   float historyVoxelSize_ = 0.0f;
   render::Image radiance_;     // res^3, full mip chain
   render::Image aniso_;        // 6 (res/2) x res/2 x res/2, mips (anisotropic only)
-  render::Image direct_[2];    // res^3: the injected radiance this frame and last (temporal blending)
+  render::Image direct_[2];    // res^3: the injected radiance this frame and last (temporal blending); alpha: which cones see the voxel (vct_seen.glsl)
   render::Image bounced_;      // res^3: a bounce's output before it is committed to radiance_ level 0
-  render::Image normals_;      // res^3, RGBA8 snorm: each occupied voxel's normal (vct_inject.comp), for the atlas' first level
   // The traced pixels, this frame's and last (alternating): diffuse (AO in alpha), specular (alpha: frames
   // since traced; both alphas -1: missing), the surface each saw (vct_reproject.comp's record).
   struct TracedPixels {
@@ -101,7 +101,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   bool traceHistory_ = false;      // traced_[last] holds last frame's pixels, valid to reproject
   glm::mat4 previousViewProj_{1.0f};
   VkSampler sampler_ = VK_NULL_HANDLE;
-  render::Pipeline inject_, mips_[4], bounce_[2], commit_, trace_[4], reproject_, filter_, upsample_, debug_[2], probe_[2];
+  render::Pipeline inject_, mips_[5], bounce_[2], commit_, trace_[4], reproject_, filter_, upsample_, debug_[2], probe_[2];
   VctFrameStats stats_;
 };
 

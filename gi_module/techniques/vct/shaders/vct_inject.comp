@@ -3,8 +3,8 @@
 // the renderer's shadow maps at the voxel's surface) plus its emission, as isotropic radiance with
 // opacity 1. Blended per voxel with the previous frame's radiance (temporalBlend), except where it
 // changed by more than temporalResponse (relative), so a light switched off leaves no trail. Written to
-// DIRECT (the frame's history, what bounces add to) and to level 0 of the radiance volume; the voxel's
-// normal to NORMALS, for the anisotropic atlas (vct_mips.comp: a one-sided voxel's back is black).
+// DIRECT (the frame's history, what bounces add to; its alpha says which cones see the voxel, for the
+// anisotropic atlas: vct_seen.glsl) and to level 0 of the radiance volume (opacity 1 in alpha).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 #include "shared/gi_gpu_types.h"
@@ -20,12 +20,10 @@ layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, r32f) uniform re
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_PREVIOUS, rgba16f) uniform readonly image3D previous;
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_DIRECT, rgba16f) uniform writeonly image3D direct;
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_RADIANCE, rgba16f) uniform writeonly image3D radiance;
-// The voxel's surface normal for the atlas' first level (vct_mips.comp): w 1, or 0 where its fragments
-// face both ways (a wall thinner than a voxel: seen from both sides).
-layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_NORMALS, rgba8_snorm) uniform writeonly image3D normals;
 layout(push_constant) uniform Push { DYNGI_VCT_INJECT_PUSH };
 #include "shared/shadows.glsl"
 #include "vct_leaves.glsl"
+#include "vct_seen.glsl"
 
 const float PI = 3.14159265358979;
 
@@ -67,9 +65,8 @@ void inject(uint i) {
       L = mix(L, prev.rgb, temporalBlend * clamp(1.0 - change / temporalResponse, 0.0, 1.0));
     }
   }
-  imageStore(direct, leaf.voxel, vec4(L, 1.0));
+  imageStore(direct, leaf.voxel, vec4(L, vctSeenCode(n, twoSided)));
   imageStore(radiance, leaf.voxel, vec4(L, 1.0));
-  imageStore(normals, leaf.voxel, vec4(n, twoSided ? 0.0 : 1.0));
 }
 
 void main() {

@@ -11,6 +11,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
 #include "vct_cells.glsl"
+#include "vct_seen.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(constant_id = 0) const bool kAnisotropic = false;
 // Isotropic only: each texel's opacity is that of its most opaque axis (the children composited front to
@@ -20,9 +21,13 @@ layout(constant_id = 1) const bool kOpaqueAxis = false;
 // Anisotropic only: the source is the isotropic level 0 (one slab), shared by the six destination slabs:
 // one invocation reads its 8 children once and writes the texel in all six.
 layout(constant_id = 2) const bool kSharedSource = false;
+// kSharedSource only: the source is the direct-radiance volume itself (level 0 before any bounce is
+// added: the same radiance), whose alpha holds the seen code (vct_seen.glsl) instead of the opacity: one
+// fetch a child instead of two.
+layout(constant_id = 3) const bool kSeenInSource = false;
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_SOURCE, rgba16f) uniform readonly image3D source;
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_DEST, rgba16f) uniform writeonly image3D dest;
-layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_NORMALS, rgba8_snorm) uniform readonly image3D normals;  // kSharedSource: vct_inject.comp's
+layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_SEEN, rgba16f) uniform readonly image3D seen;  // kSharedSource: the direct radiance, for its alpha
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
@@ -34,11 +39,9 @@ vec4 child(uint slab, ivec3 base, ivec3 offset) {
   return imageLoad(source, c);
 }
 
-const float kVctParallel = DYNGI_VCT_PARALLEL;
-
 vec4 over(vec4 front, vec4 back) { return front + (1.0 - front.a) * back; }
 
-// Atlas level 0 at texel p, all six slabs, from the isotropic level 0 and the voxels' normals.
+// Atlas level 0 at texel p, all six slabs, from the isotropic level 0 and which cones see each voxel.
 void atlasFromLevel0(ivec3 p) {
   ivec3 b = 2 * p;
   vec4 c[8];
@@ -46,15 +49,14 @@ void atlasFromLevel0(ivec3 p) {
   // surface shows it only to cones that meet its front, its back is black (it still blocks them). A
   // thin wall's lit side then no longer reaches, through the sampler's filtering across the wall, the
   // cones on the other side, and a box's lit top not the cones passing under its edge. Two-sided
-  // voxels (w 0: a wall thinner than a voxel) and a surface parallel to the axis (within kVctParallel)
-  // show it both ways.
+  // voxels (a wall thinner than a voxel) and a surface parallel to the axis show it both ways.
   vec3 seenTravellingMinus[8], seenTravellingPlus[8];
   for (int i = 0; i < 8; ++i) {
     ivec3 q = b + ivec3(i & 1, (i >> 1) & 1, i >> 2);
     c[i] = imageLoad(source, q);
-    vec4 n = imageLoad(normals, q);
-    seenTravellingMinus[i] = n.w > 0.5 ? step(-kVctParallel, n.xyz) : vec3(1.0);
-    seenTravellingPlus[i] = n.w > 0.5 ? step(-kVctParallel, -n.xyz) : vec3(1.0);
+    float code = kSeenInSource ? c[i].a : imageLoad(seen, q).a;
+    if (kSeenInSource) c[i].a = code > 0.0 ? 1.0 : 0.0;  // an occupied voxel is opaque
+    vctSeenFromCode(code, seenTravellingPlus[i], seenTravellingMinus[i]);
   }
   int w = int(destSlabWidth);
   // Child i as a cone travelling along +axis (plus) or -axis sees it.
