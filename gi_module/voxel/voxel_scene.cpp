@@ -112,6 +112,8 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   drawsToVoxelize_.clear();
   rangesToEmpty_.clear();
   voxelizedThisFrame_.clear();
+  staleBoxes_.clear();
+  staleEverywhere_ = false;
   rebuildSvo_ = false;
   stats_.rebuilt = false;
   stats_.entitiesVoxelized = 0;
@@ -137,6 +139,8 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     svo_->invalidateStaticOccupancy();
     ranges_.clear();
     rangesToEmpty_.clear();
+    voxelBoxes_.clear();
+    staleEverywhere_ = true;
     for (const auto& d : snapshot.draws) dirty_.insert(d.entity);
     allDirty_ = false;
     rebuildSvo_ = true;
@@ -147,15 +151,21 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     if (!r) continue;
     removedNow.push_back(e);
     rangesToEmpty_.push_back(*r);
+    if (const auto box = voxelBoxes_.find(e); box != voxelBoxes_.end()) {
+      staleBoxes_.push_back(box->second);
+      voxelBoxes_.erase(box);
+    }
     rebuildSvo_ = true;
   }
   removed_.clear();
   drawsToVoxelize_.clear();
   uint64_t newHighWater = ranges_.highWater();
   std::vector<std::pair<ecs::Entity, Range>> planned;
+  std::unordered_map<ecs::Entity, scene::Aabb> newBounds;  // voxel units, of the draws voxelized now
   for (size_t i = 0; i < snapshot.draws.size(); ++i) {
     const auto& d = snapshot.draws[i];
     if (!dirty_.count(d.entity)) continue;
+    newBounds[d.entity].extend(snapshot.assets->mesh(d.mesh).bounds.transformed(toVoxel * d.model));
     const uint64_t estimate = FragmentRanges::estimateFragments(snapshot.assets->mesh(d.mesh), toVoxel * d.model);
     planned.push_back({d.entity, ranges_.plan(d.entity, estimate, newHighWater, rangesToEmpty_)});
     drawsToVoxelize_.push_back(i);
@@ -164,6 +174,16 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   for (auto& [e, r] : planned) {
     ranges_.commit(e, r, frameIndex_);
     voxelizedThisFrame_.push_back(e);
+  }
+  // Each re-voxelized entity's old box is stale; its new one is what it covers now (a voxel of margin:
+  // the voxelization is conservative).
+  const float top = float(volume_.resolution - 1);
+  for (const auto& [e, bounds] : newBounds) {
+    if (const auto old = voxelBoxes_.find(e); old != voxelBoxes_.end()) staleBoxes_.push_back(old->second);
+    voxelBoxes_.erase(e);
+    const glm::vec3 lo = glm::floor(bounds.min) - 1.0f, hi = glm::floor(bounds.max) + 1.0f;
+    if (!bounds.valid() || glm::any(glm::greaterThan(lo, glm::vec3(top))) || glm::any(glm::lessThan(hi, glm::vec3(0.0f)))) continue;
+    voxelBoxes_[e] = VoxelBox{glm::uvec3(glm::clamp(lo, 0.0f, top)), glm::uvec3(glm::clamp(hi, 0.0f, top))};
   }
   ranges_.setHighWater(newHighWater);
   dirty_.clear();

@@ -244,6 +244,44 @@ TEST_F(VoxelTest, MovingObjectsReVoxelizeOnlyThemselvesAndMatchARebuild) {
   EXPECT_FALSE(voxels->stats().rebuilt);
 }
 
+// Every voxel that empties in a frame lies in one of that frame's stale boxes (what VCT clears instead of
+// its whole volumes): boxes moving, then one removed. The first frame is stale everywhere.
+TEST_F(VoxelTest, StaleBoxesHoldEveryVoxelThatEmptied) {
+  run("cornell-dynamic", 64, 1);
+  EXPECT_TRUE(voxels->staleEverywhere()) << "the first frame voxelizes everything";
+  step();
+  auto inAStaleBox = [&](uint32_t x, uint32_t y, uint32_t z) {
+    for (const gi::VoxelBox& b : voxels->staleBoxes())
+      if (glm::all(glm::greaterThanEqual(glm::uvec3(x, y, z), b.min)) && glm::all(glm::lessThanEqual(glm::uvec3(x, y, z), b.max))) return true;
+    return false;
+  };
+  for (int f = 0; f < 4; ++f) {
+    const gi::DenseVoxelGrid before = leaves();
+    if (f == 3) {  // the tall box goes
+      ecs::Entity tall{};
+      world.each<scene::Name>([&](ecs::Entity e, const scene::Name& n) {
+        if (n.value == "tall_box") tall = e;
+      });
+      ASSERT_TRUE(world.alive(tall));
+      world.destroy(tall);
+    }
+    step();
+    EXPECT_FALSE(voxels->staleEverywhere());
+    const gi::DenseVoxelGrid after = leaves();
+    uint64_t emptied = 0, outside = 0, boxVoxels = 0;
+    for (uint32_t z = 0; z < 64; ++z)
+      for (uint32_t y = 0; y < 64; ++y)
+        for (uint32_t x = 0; x < 64; ++x)
+          if (before.get(x, y, z) && !after.get(x, y, z)) ++emptied, outside += !inAStaleBox(x, y, z);
+    for (const gi::VoxelBox& b : voxels->staleBoxes()) boxVoxels += b.voxels();
+    std::printf("frame %llu: %llu voxels emptied, %llu outside the %zu stale boxes (%llu voxels)\n", (unsigned long long)frame,
+                (unsigned long long)emptied, (unsigned long long)outside, voxels->staleBoxes().size(), (unsigned long long)boxVoxels);
+    EXPECT_GT(emptied, 0u) << "frame " << frame << ": the test means voxels to empty";
+    EXPECT_EQ(outside, 0u) << "frame " << frame;
+    EXPECT_LT(boxVoxels, 64u * 64u * 64u / 4u) << "the boxes are the movers' (a sixth of the volume), not the volume";
+  }
+}
+
 // The build keeps the occupancy of entities that have not moved lately and marks only the moving ones'
 // fragments on top. An entity of the kept occupancy that starts moving, one that stops and settles, one
 // that moves again: the SVO must equal a from-scratch build every time, and a build with one mover

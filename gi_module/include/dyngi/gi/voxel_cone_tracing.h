@@ -20,7 +20,8 @@ namespace dyngi::gi {
 
 struct VctFrameStats {
   bool injected = false;    // radiance injected this frame (every frame while the technique runs)
-  bool cleared = false;     // the volume's level 0 was cleared first (the voxels changed)
+  bool clearedWhole = false;     // level 0 was cleared whole (the volume voxelized afresh, or most of it stale)
+  uint64_t clearedBoxVoxels = 0;  // otherwise, the voxels of level 0 cleared in boxes (VoxelScene::staleBoxes)
   uint32_t traceWidth = 0, traceHeight = 0;  // the resolution cones were traced at
   double tracedFraction = 1.0;  // of those, the share traced this frame (the rest reprojected)
   uint64_t volumeBytes = 0;  // radiance volumes, all levels
@@ -63,10 +64,18 @@ class VoxelConeTracing final : public render::RenderFeature {
  private:
   void ensureVolumes(uint32_t res);
   void ensureTraceTargets(uint32_t width, uint32_t height);
-  // The mip chain, or the anisotropic atlas (cleared first when clearAtlas: the occupied set changed).
-  // levelZeroIsDirect: level 0 holds the direct radiance (no bounce added yet), which the atlas' first
-  // level then reads alone (vct_mips.comp, kSeenInSource).
-  void recordMips(VkCommandBuffer cmd, bool clearAtlas, bool levelZeroIsDirect);
+  // The mip chain, or the anisotropic atlas. levelZeroIsDirect: level 0 holds the direct radiance (no
+  // bounce added yet), which the atlas' first level then reads alone (vct_mips.comp, kSeenInSource).
+  void recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect);
+  // Where voxels may have been emptied (VoxelScene::staleBoxes), over one or more frames.
+  struct StaleVoxels {
+    bool everywhere = false;
+    std::vector<VoxelBox> boxes;
+  };
+  // Zeroes level `mip` of `img` where `stale` says (texels 2^shift voxels wide, `slabs` slabs side by
+  // side along x): box by box (copies from a buffer of zeros), or the whole level when the boxes hold
+  // half the volume or more. Returns true for the whole level.
+  bool clearStale(VkCommandBuffer cmd, render::Image& img, uint32_t mip, const StaleVoxels& stale, uint32_t shift, uint32_t slabs);
   void recordLeafPass(VkCommandBuffer cmd, const render::Pipeline& pipeline, const void* push, uint32_t pushBytes,
                       render::DescriptorWrites& writes);
   template <class Push>
@@ -80,13 +89,14 @@ class VoxelConeTracing final : public render::RenderFeature {
   uint32_t res_ = 0;
   uint32_t current_ = 0;
   uint64_t frames_ = 0;
-  bool rebuiltLastFrame_ = true;
+  StaleVoxels lastStale_{true, {}};  // last frame's: the direct image written next was last written before it
   glm::vec3 historyOrigin_{0.0f};  // the volume last frame's radiance was injected into
   float historyVoxelSize_ = 0.0f;
   render::Image radiance_;     // res^3, full mip chain
   render::Image aniso_;        // 6 (res/2) x res/2 x res/2, mips (anisotropic only)
   render::Image direct_[2];    // res^3: the injected radiance this frame and last (temporal blending); alpha: which cones see the voxel (vct_seen.glsl)
   render::Image bounced_;      // res^3: a bounce's output before it is committed to radiance_ level 0
+  render::Buffer zeros_;       // what clearStale copies into the boxes it clears
   // The traced pixels, this frame's and last (alternating): diffuse (AO in alpha), specular (alpha: frames
   // since traced; both alphas -1: missing), the surface each saw (vct_reproject.comp's record).
   struct TracedPixels {

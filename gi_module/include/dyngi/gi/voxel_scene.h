@@ -24,6 +24,12 @@ namespace dyngi::gi {
 
 enum class VoxelDebugView { None, Voxels, SvoSteps };
 
+// A box of voxels of the volume, both corners included.
+struct VoxelBox {
+  glm::uvec3 min{0u}, max{0u};
+  uint64_t voxels() const { return uint64_t(max.x - min.x + 1) * (max.y - min.y + 1) * (max.z - min.z + 1); }
+};
+
 struct VoxelSettings {
   uint32_t resolution = 128;       // power of two, 64..512
   float padding = 0.05f;           // volume = scene bounds grown by this fraction per side
@@ -94,6 +100,13 @@ class VoxelScene final : public render::RenderFeature {
   // The leaf attributes' capacity in leaves (a leaf index at or past it has none).
   uint64_t leafCapacity() const { return attributeLeaves_; }
 
+  // Where voxels may have been emptied this frame: the boxes the re-voxelized and removed entities
+  // covered at their last voxelization (their bounds and a voxel of margin), or everywhere when the
+  // whole volume was voxelized afresh (the first frame, a new volume). A consumer that keeps per-voxel
+  // state (VCT's radiance volumes) clears these instead of the whole volume.
+  const std::vector<VoxelBox>& staleBoxes() const { return staleBoxes_; }
+  bool staleEverywhere() const { return staleEverywhere_; }
+
  private:
   friend class VoxelProbe;  // tests' and tools' read-backs (gi_module/testing)
   using Range = FragmentRange;
@@ -119,6 +132,9 @@ class VoxelScene final : public render::RenderFeature {
   bool rebuildSvo_ = false;
   bool storageMoved_ = false;  // fragments were moved or the derived buffers reallocated: rebuild the SVO
   std::vector<ecs::Entity> voxelizedThisFrame_;
+  std::unordered_map<ecs::Entity, VoxelBox> voxelBoxes_;  // each entity's box at its last voxelization
+  std::vector<VoxelBox> staleBoxes_;
+  bool staleEverywhere_ = false;
 
   render::Buffer fragments_, counters_, attributes_;
   uint64_t attributeLeaves_ = 0;  // leaf slots the attribute buffer holds
