@@ -168,7 +168,9 @@ void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragm
           .storageBuffer(DYNGI_SVO_EXPAND_BINDING_COUNTERS, svoCounters_.handle())
           .storageBuffer(DYNGI_SVO_EXPAND_BINDING_LEAF_LIST, leafList_.handle())
           .push(ctx_, cmd, expand_);
-      const gpu::SvoExpandPush ep{l, depth};
+      // The leaf list is for the passes over leaves, which read the leaf attributes (VCT's): without
+      // those, the leaves are only counted.
+      const gpu::SvoExpandPush ep{l, depth, attributes ? 1u : 0u};
       vkCmdPushConstants(cmd, expand_.layout(), kCS, 0, sizeof(ep), &ep);
       vkCmdDispatchIndirect(cmd, levels_.handle(), VkDeviceSize(l) * sizeof(gpu::SvoLevel) + offsetof(gpu::SvoLevel, dispatch));
       render::computeWriteBarrier(cmd);

@@ -435,7 +435,7 @@ struct TemporalQueue {
 // scalars after an optional leading vec4, so std430 and C++ place them alike.
 #define DYNGI_SVO_MARK_PUSH uint firstChunk; uint depth;
 #define DYNGI_SVO_LEVEL_PUSH uint level; uint depth; /* the leaf level */
-#define DYNGI_SVO_EXPAND_PUSH uint level; uint depth;
+#define DYNGI_SVO_EXPAND_PUSH uint level; uint depth; uint writeLeafList; /* 0: leaves counted, not listed (nothing walks the list) */
 #define DYNGI_SVO_LEAF_ATTRIBUTES_PUSH uint depth; uint leafCapacity; uint slots;
 #define DYNGI_SVO_MARCH_PUSH                                                         \
   vec4 worldToVoxel; /* xyz origin, w 1 / voxel size */                            \
@@ -545,7 +545,7 @@ static_assert(sizeof(GatherPush) + sizeof(AccumulatePush) <= 128);
 static_assert(sizeof(TemporalQueue) == 16);
 static_assert(sizeof(SvoLevel) == 32);
 static_assert(sizeof(SvoCounters) == 16);
-static_assert(sizeof(SvoMarkPush) == 8 && sizeof(SvoLevelPush) == 8 && sizeof(SvoExpandPush) == 8);
+static_assert(sizeof(SvoMarkPush) == 8 && sizeof(SvoLevelPush) == 8 && sizeof(SvoExpandPush) == 12);
 static_assert(sizeof(SvoLeafAttributesPush) == 12 && sizeof(SvoMarchPush) == 32 && sizeof(VoxelDebugPush) == 28);
 static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && sizeof(VplSamplePush) == 16);
 static_assert(sizeof(VplTailPush) == 8 && sizeof(CompensatePush) == 20);

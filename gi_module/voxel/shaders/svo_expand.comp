@@ -48,7 +48,7 @@ void expand(uint node) {
   uint subgroupLeaves = subgroupAdd(leaves), first = subgroupExclusiveAdd(leaves), base = 0u;
   if (subgroupLeaves > 0u && subgroupElect()) base = atomicAdd(counters.groups.w, subgroupLeaves);
   base = subgroupBroadcastFirst(base) + first + DYNGI_SVO_LEAF_LIST_HEADER;
-  for (uint c = 0u; c < 8u && leaves > 0u; ++c)
+  for (uint c = 0u; c < 8u && leaves > 0u && writeLeafList != 0u; ++c)
     if (((children >> c) & 1u) != 0u && base < uint(leafList.length())) leafList[base++] = 8u * g + c;
 }
 

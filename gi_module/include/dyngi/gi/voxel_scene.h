@@ -95,7 +95,8 @@ class VoxelScene final : public render::RenderFeature {
   // Per node, its cell's Morton code at its level (leaves included): where a leaf sits in the volume.
   const render::Buffer& nodeCells() const;
   // The occupied leaves, compacted: their node indices after a header of DYNGI_SVO_LEAF_LIST_HEADER uints
-  // (indirect dispatch args, count). What passes over the leaves walk.
+  // (indirect dispatch args, count). What passes over the leaves walk; built with the leaf attributes
+  // (enableLeafAttributes), whose readers they are.
   const render::Buffer& leafList() const;
   // The leaf attributes' capacity in leaves (a leaf index at or past it has none).
   uint64_t leafCapacity() const { return attributeLeaves_; }
