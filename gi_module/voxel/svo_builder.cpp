@@ -44,8 +44,11 @@ SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t
                            {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES, kSSBO, kCS},
                            {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS, kSSBO, kCS},
                            {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES, kSSBO, kCS}};
-  leafAttributes_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, sizeof(gpu::SvoLeafAttributesPush),
-                                     "svo_leaf_attributes");
+  for (uint32_t emission : {0u, 1u}) {
+    const uint32_t spec[] = {emission};
+    leafAttributes_[emission] = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, sizeof(gpu::SvoLeafAttributesPush),
+                                                  "svo_leaf_attributes", spec);
+  }
   // One bit per cell of every level 0..depth (DYNGI_SVO_LEVEL_BASE): level depth + 1 would start here.
   uint32_t depth = 0;
   while ((1u << depth) < resolution) ++depth;
@@ -120,7 +123,7 @@ void SvoBuilder::recordMark(VkCommandBuffer cmd, const render::Buffer& fragments
 }
 
 void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragments, uint32_t slots, uint32_t depth,
-                        const render::Buffer* attributes, uint64_t fragmentCapacity) {
+                        const render::Buffer* attributes, uint64_t fragmentCapacity, bool emission) {
   VkCommandBuffer cmd = frame.cmd;
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "svo_build");
@@ -179,15 +182,16 @@ void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragm
       // Leaf attributes, kept apart from the nodes.
       vkCmdFillBuffer(cmd, attributes->handle(), 0, VK_WHOLE_SIZE, 0);
       render::computeWriteBarrier(cmd);
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, leafAttributes_.handle());
+      const Pipeline& pipeline = leafAttributes_[emission ? 1 : 0];
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
       DescriptorWrites()
           .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS, fragments.handle())
           .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES, nodes_.handle())
           .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS, levels_.handle())
           .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES, attributes->handle())
-          .push(ctx_, cmd, leafAttributes_);
+          .push(ctx_, cmd, pipeline);
       const gpu::SvoLeafAttributesPush ap{depth, uint32_t(fragmentCapacity), slots};
-      vkCmdPushConstants(cmd, leafAttributes_.layout(), kCS, 0, sizeof(ap), &ap);
+      vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(ap), &ap);
       vkCmdDispatch(cmd, std::max(dispatchGroups(slots, perGroup), 1u), 1, 1);
       render::computeWriteBarrier(cmd);
     }

@@ -25,9 +25,10 @@ class SvoBuilder {
             VoxelStats& stats);
   // Everything is voxelized again: the static pyramid is rebuilt at the next build.
   void invalidateStaticOccupancy() { rebuildStaticOccupancy_ = true; }
-  // Records the build over `fragments` (`slots` slots); with `attributes`, the leaf attributes too.
+  // Records the build over `fragments` (`slots` slots); with `attributes`, the leaf attributes too
+  // (their emission sums only when `emission`: some fragment emits).
   void record(render::FrameContext& frame, const render::Buffer& fragments, uint32_t slots, uint32_t depth, const render::Buffer* attributes,
-              uint64_t fragmentCapacity);
+              uint64_t fragmentCapacity, bool emission);
   // After the build's frame: node and leaf counts into `stats`, the pool resized to follow use. True
   // when the pool overflowed and grew: build again next frame.
   bool frameFinished(VoxelStats& stats);
@@ -61,7 +62,7 @@ class SvoBuilder {
   bool rebuildStaticOccupancy_ = true;
   render::Buffer markChunks_;                     // uvec2 (first slot, end slot) per mark workgroup
   uint32_t staticChunks_ = 0, movingChunks_ = 0;  // this frame's: the static ones first
-  render::Pipeline mark_, level_, expand_, leafAttributes_;
+  render::Pipeline mark_, level_, expand_, leafAttributes_[2];  // [1]: with the emission sums
 };
 
 }  // namespace dyngi::gi

@@ -140,6 +140,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     ranges_.clear();
     rangesToEmpty_.clear();
     voxelBoxes_.clear();
+    emittingEntities_.clear();
     staleEverywhere_ = true;
     for (const auto& d : snapshot.draws) dirty_.insert(d.entity);
     allDirty_ = false;
@@ -151,6 +152,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     if (!r) continue;
     removedNow.push_back(e);
     rangesToEmpty_.push_back(*r);
+    emittingEntities_.erase(e);
     if (const auto box = voxelBoxes_.find(e); box != voxelBoxes_.end()) {
       staleBoxes_.push_back(box->second);
       voxelBoxes_.erase(box);
@@ -165,6 +167,8 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   for (size_t i = 0; i < snapshot.draws.size(); ++i) {
     const auto& d = snapshot.draws[i];
     if (!dirty_.count(d.entity)) continue;
+    if (!newBounds.count(d.entity)) emittingEntities_.erase(d.entity);
+    if (glm::any(glm::greaterThan(d.material.emissive, glm::vec3(0.0f)))) emittingEntities_.insert(d.entity);
     newBounds[d.entity].extend(snapshot.assets->mesh(d.mesh).bounds.transformed(toVoxel * d.model));
     const uint64_t estimate = FragmentRanges::estimateFragments(snapshot.assets->mesh(d.mesh), toVoxel * d.model);
     planned.push_back({d.entity, ranges_.plan(d.entity, estimate, newHighWater, rangesToEmpty_)});
@@ -278,7 +282,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
   }
   {
     const render::Buffer* attributes = settings_.leafAttributes ? &attributes_ : nullptr;
-    svo_->record(frame, fragments_, uint32_t(ranges_.highWater()), depth, attributes, attributeLeaves_);
+    svo_->record(frame, fragments_, uint32_t(ranges_.highWater()), depth, attributes, attributeLeaves_, fragmentsEmit());
   }
   stats_.rebuilt = true;
   return false;  // the voxel scene feeds other stages; it does not write indirect light

@@ -587,6 +587,45 @@ TEST_F(RenderTest, VctFollowsMovedLightsAndObjectsAndSwitchedLights) {
   EXPECT_LT(off, 0.01 * lit) << "within one frame";
 }
 
+// An emissive change re-injects: the tall box made emissive in a scene with no emitter glows in the
+// direct radiance the same frame (the leaf attributes then sum emission again: VoxelScene::fragmentsEmit),
+// and lights the room's indirect light; switched back, both return to what they were.
+TEST_F(RenderTest, VctEmissiveChangeReinjectsTheSameFrame) {
+  GiRun run(context(), vctSettings(), "cornell", kSize, kSize);
+  run.step(3);
+  gi::VoxelConeTracing& vct = vctOf(run);
+  const gi::VoxelVolume vol = run.gi->voxels()->volume();
+  ASSERT_FALSE(run.gi->voxels()->fragmentsEmit());
+  // The tall box's top face (y = 1.2 m), seen from above: the spot does not reach it at full strength.
+  const glm::ivec3 top(glm::floor(vol.toVoxel({-0.35f, 1.2f, -0.35f}) - glm::vec3(0, 0.01f, 0)));
+  auto topRadiance = [&] {
+    const gi::VolumeLevel l0 = readLevels(context(), vct.directVolume()).front();
+    double sum = 0.0;
+    int n = 0;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dx = -1; dx <= 1; ++dx)
+        if (const glm::vec4 t = l0.at(top.x + dx, top.y, top.z + dz); t.a > 0.5f) sum += lum(glm::dvec3(glm::vec3(t))), ++n;
+    return n > 0 ? sum / n : -1.0;
+  };
+  const double before = topRadiance(), indirectBefore = lum(render::meanOver(run.indirect()));
+  ASSERT_GE(before, 0.0) << "the box's top is voxelized";
+  const glm::vec3 glow(4.0f);
+  run.world.write<scene::Material>(run.named("tall_box")).emissive = glow;
+  run.step();
+  EXPECT_TRUE(run.gi->voxels()->fragmentsEmit());
+  const double glowing = topRadiance(), indirectGlowing = lum(render::meanOver(run.indirect()));
+  std::printf("tall box made emissive (4): its top's direct radiance %.3f -> %.3f the same frame; indirect light %.5f -> %.5f\n", before,
+              glowing, indirectBefore, indirectGlowing);
+  EXPECT_NEAR(glowing - before, lum(glm::dvec3(glow)), 0.1 * lum(glm::dvec3(glow))) << "its emission, taken at once (no blending)";
+  EXPECT_GT(indirectGlowing, 1.5 * indirectBefore) << "the glowing box lights the room";
+  run.world.write<scene::Material>(run.named("tall_box")).emissive = glm::vec3(0.0f);
+  run.step();
+  EXPECT_FALSE(run.gi->voxels()->fragmentsEmit());
+  const double after = topRadiance();
+  std::printf("and back: %.3f\n", after);
+  EXPECT_NEAR(after, before, 0.05 * lum(glm::dvec3(glow)));
+}
+
 // Temporal voxel blending: a light flickering by +-10 percent a frame (a candle, a damaged lamp) makes
 // the indirect light flicker with it; blending each voxel's radiance with its last smooths that, while a
 // change larger than temporalResponse (a light switched off) is taken at once. Voxels an object enters or

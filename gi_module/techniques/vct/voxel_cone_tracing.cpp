@@ -79,7 +79,10 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
                            {DYNGI_VCT_INJECT_BINDING_PREVIOUS, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_DIRECT, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_RADIANCE, kStorageImage, kCS}};
-  inject_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_inject_comp), leafB, sizeof(gpu::VctInjectPush), "vct_inject");
+  for (uint32_t emission : {0u, 1u}) {  // [1]: reads the leaves' emission (VoxelScene::fragmentsEmit)
+    const uint32_t spec[] = {emission};
+    inject_[emission] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_inject_comp), leafB, sizeof(gpu::VctInjectPush), "vct_inject", spec);
+  }
 
   const Binding mipsB[] = {{DYNGI_VCT_MIPS_BINDING_SOURCE, kStorageImage, kCS},     {DYNGI_VCT_MIPS_BINDING_DEST, kStorageImage, kCS},
                            {DYNGI_VCT_MIPS_BINDING_SEEN, kStorageImage, kCS},       {DYNGI_VCT_MIPS_BINDING_NODES, kSSBO, kCS},
@@ -397,7 +400,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
         .storageImage(DYNGI_VCT_INJECT_BINDING_PREVIOUS, direct_[previous].view())
         .storageImage(DYNGI_VCT_INJECT_BINDING_DIRECT, direct_[current_].view())
         .storageImage(DYNGI_VCT_INJECT_BINDING_RADIANCE, radiance_.mipView(0));
-    recordLeafPass(cmd, inject_, &pc, sizeof(pc), w);
+    recordLeafPass(cmd, inject_[voxels_.fragmentsEmit() ? 1 : 0], &pc, sizeof(pc), w);
     stats_.injected = true;
   }
   {

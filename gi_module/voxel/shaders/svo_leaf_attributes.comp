@@ -5,6 +5,9 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 64) in;
+// False when no fragment emits (VoxelScene::fragmentsEmit): the emission sums stay 0 without the
+// atomics, which lavapipe would run masked for every fragment.
+layout(constant_id = 0) const bool kEmission = true;
 layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS) readonly buffer Fragments { uvec4 fragments[]; };
 layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
@@ -38,7 +41,7 @@ void accumulate(uint i) {
   atomicAdd(attributes[base + DYNGI_LEAF_ALBEDO_RG], albedo.r | (albedo.g << 16));
   atomicAdd(attributes[base + DYNGI_LEAF_ALBEDO_B_NORMAL_X], albedo.b | (normal.x << 16));
   atomicAdd(attributes[base + DYNGI_LEAF_NORMAL_YZ], normal.y | (normal.z << 16));
-  if (f.w != 0u) {
+  if (kEmission && f.w != 0u) {
     vec3 e = min(unpackEmission(f.w) * DYNGI_LEAF_EMISSION_SCALE, vec3(8.0e6));
     for (uint c = 0u; c < 3u; ++c) atomicAdd(attributes[base + DYNGI_LEAF_EMISSION + c], uint(round(e[c])));
     atomicAdd(attributes[base + DYNGI_LEAF_EMITTERS], 1u);

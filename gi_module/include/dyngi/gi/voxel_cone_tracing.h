@@ -111,7 +111,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   bool traceHistory_ = false;      // traced_[last] holds last frame's pixels, valid to reproject
   glm::mat4 previousViewProj_{1.0f};
   VkSampler sampler_ = VK_NULL_HANDLE;
-  render::Pipeline inject_, mips_[5], bounce_[2], commit_, trace_[4], reproject_, filter_, upsample_, debug_[2], probe_[2];
+  render::Pipeline inject_[2], mips_[5], bounce_[2], commit_, trace_[4], reproject_, filter_, upsample_, debug_[2], probe_[2];
   VctFrameStats stats_;
 };
 

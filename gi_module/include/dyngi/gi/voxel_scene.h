@@ -107,6 +107,9 @@ class VoxelScene final : public render::RenderFeature {
   // state (VCT's radiance volumes) clears these instead of the whole volume.
   const std::vector<VoxelBox>& staleBoxes() const { return staleBoxes_; }
   bool staleEverywhere() const { return staleEverywhere_; }
+  // Some stored fragment emits (an entity voxelized with an emissive material): the passes over the
+  // leaf attributes leave emission out otherwise.
+  bool fragmentsEmit() const { return !emittingEntities_.empty(); }
 
  private:
   friend class VoxelProbe;  // tests' and tools' read-backs (gi_module/testing)
@@ -135,6 +138,7 @@ class VoxelScene final : public render::RenderFeature {
   std::vector<ecs::Entity> voxelizedThisFrame_;
   std::unordered_map<ecs::Entity, VoxelBox> voxelBoxes_;  // each entity's box at its last voxelization
   std::vector<VoxelBox> staleBoxes_;
+  std::unordered_set<ecs::Entity> emittingEntities_;  // voxelized with an emissive material
   bool staleEverywhere_ = false;
 
   render::Buffer fragments_, counters_, attributes_;

@@ -10,6 +10,9 @@
 #include "shared/gi_gpu_types.h"
 #include "shared/lighting.glsl"
 layout(local_size_x = 64) in;
+// False when no fragment emits (VoxelScene::fragmentsEmit): the leaves' emission is not read.
+layout(constant_id = 0) const bool kLeafEmission = true;
+#define DYNGI_LEAF_READ_EMISSION kLeafEmission
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_LEAF_LIST) readonly buffer LeafList { uint leafList[]; };
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
