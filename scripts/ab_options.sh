@@ -5,6 +5,8 @@
 #   scripts/ab_options.sh ROUNDS SIZE "LABEL|ARGS" ["LABEL|ARGS" ...]
 # e.g. the trace spread over frames against the temporal VPL technique at 768^2:
 #   scripts/ab_options.sh 3 768 "off|--gi off" "vct 1|--gi vct --trace-frames 1" "vct 4|--gi vct" "svo|--gi svo"
+# A set's arguments may start with @PATH: that set runs the dyngi_sample at PATH (another build), e.g.
+#   scripts/ab_options.sh 5 512 "old vct|@/tmp/base/build/bin/dyngi_sample --gi vct" "vct|--gi vct" "svo|--gi svo"
 # env: BIN (build/bin/dyngi_sample), FRAMES (24), WARMUP (6)
 set -euo pipefail
 if [ $# -lt 3 ]; then
@@ -20,8 +22,13 @@ trap 'rm -rf "$out"' EXIT
 for r in $(seq 1 "$rounds"); do
   i=0
   for set in "$@"; do
+    args=${set#*|} setBin=$bin
+    if [[ $args == @* ]]; then
+      setBin=${args%% *} args=${args#* }
+      setBin=${setBin#@}
+    fi
     # shellcheck disable=SC2086
-    "$bin" --headless --size "${size}x${size}" --frames "$frames" --warmup "$warmup" ${set#*|} --stats "$out/${i}_$r.json" >/dev/null 2>&1
+    "$setBin" --headless --size "${size}x${size}" --frames "$frames" --warmup "$warmup" $args --stats "$out/${i}_$r.json" >/dev/null 2>&1
     i=$((i + 1))
   done
 done
