@@ -65,30 +65,41 @@ DenseVoxelGrid VoxelProbe::readbackFragmentGrid() {
   return grid;
 }
 
-DenseVoxelGrid VoxelProbe::readbackLeafCells() {
+namespace {
+// The voxel of a leaf's cell (its Morton code, svo_morton.glsl: bit 3i + axis is bit i of that axis).
+glm::uvec3 voxelOfMortonCode(uint32_t code) {
+  glm::uvec3 v(0u);
+  for (uint32_t axis = 0; axis < 3; ++axis)
+    for (uint32_t i = 0; i < 10; ++i) v[axis] |= ((code >> (3 * i + axis)) & 1u) << i;
+  return v;
+}
+}  // namespace
+
+VoxelProbe::LeafLevel VoxelProbe::readbackLeafLevel(bool withCells) {
+  LeafLevel l;
   const uint32_t depth = voxels_.volume().depth();
-  const glm::uvec4 range = render::readbackBuffer<gpu::SvoLevel>(voxels_.ctx_, voxels_.levels().handle(), depth + 1)[depth].range;
-  const std::vector<uint32_t> nodes = readbackNodes();
-  const std::vector<uint32_t> cells = render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.nodeCells().handle(), nodes.size());
-  auto compact = [](uint32_t code, uint32_t axis) {  // bit 3i + axis of a Morton code to bit i
-    uint32_t v = 0;
-    for (uint32_t i = 0; i < 10; ++i) v |= ((code >> (3 * i + axis)) & 1u) << i;
-    return v;
-  };
+  l.range = render::readbackBuffer<gpu::SvoLevel>(voxels_.ctx_, voxels_.levels().handle(), depth + 1)[depth].range;
+  l.nodes = readbackNodes();
+  if (withCells) l.cells = render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.nodeCells().handle(), l.nodes.size());
+  return l;
+}
+
+DenseVoxelGrid VoxelProbe::readbackLeafCells() {
+  const LeafLevel l = readbackLeafLevel(true);
   DenseVoxelGrid grid(voxels_.volume().resolution);
-  for (uint32_t i = 0; i < range.y && range.x + i < nodes.size(); ++i)
-    if (nodes[range.x + i] != 0) {
-      const uint32_t code = cells[range.x + i];
-      grid.set(compact(code, 0), compact(code, 1), compact(code, 2));
+  for (uint32_t i = 0; i < l.range.y && l.range.x + i < l.nodes.size(); ++i)
+    if (l.nodes[l.range.x + i] != 0) {
+      const glm::uvec3 v = voxelOfMortonCode(l.cells[l.range.x + i]);
+      grid.set(v.x, v.y, v.z);
     }
   return grid;
 }
 
 VoxelProbe::LeafListCheck VoxelProbe::checkLeafList() {
   LeafListCheck check;
-  const uint32_t depth = voxels_.volume().depth();
-  const glm::uvec4 range = render::readbackBuffer<gpu::SvoLevel>(voxels_.ctx_, voxels_.levels().handle(), depth + 1)[depth].range;
-  const std::vector<uint32_t> nodes = readbackNodes();
+  const LeafLevel l = readbackLeafLevel(false);
+  const glm::uvec4& range = l.range;
+  const std::vector<uint32_t>& nodes = l.nodes;
   const std::vector<uint32_t> header = render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.leafList().handle(), DYNGI_SVO_LEAF_LIST_HEADER);
   const uint64_t room = voxels_.leafList().size() / 4 - DYNGI_SVO_LEAF_LIST_HEADER;
   check.countFits = header[3] <= room;
@@ -117,25 +128,19 @@ VoxelProbe::LeafListCheck VoxelProbe::checkLeafList() {
 
 VoxelProbe::LeafAttributesCheck VoxelProbe::checkLeafAttributes() {
   LeafAttributesCheck check;
-  const uint32_t depth = voxels_.volume().depth();
-  const glm::uvec4 range = render::readbackBuffer<gpu::SvoLevel>(voxels_.ctx_, voxels_.levels().handle(), depth + 1)[depth].range;
-  const std::vector<uint32_t> nodes = readbackNodes();
-  const std::vector<uint32_t> cells = render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.nodeCells().handle(), nodes.size());
+  const LeafLevel l = readbackLeafLevel(true);
+  const glm::uvec4& range = l.range;
   const uint64_t capacity = std::min<uint64_t>(voxels_.leafCapacity(), range.y);
   const std::vector<uint32_t> attributes =
       render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.leafAttributes().handle(), size_t(capacity * DYNGI_LEAF_ATTRIBUTE_INTS));
-  // The sums svo_leaf_attributes.comp makes, per Morton code of the voxel.
+  // The sums svo_leaf_attributes.comp makes, per voxel (x | y << 10 | z << 20).
   struct Sums {
     uint32_t count = 0, rg = 0, bx = 0, yz = 0;
   };
+  auto key = [](const glm::uvec3& v) { return v.x | (v.y << 10) | (v.z << 20); };
   std::unordered_map<uint32_t, Sums> expected;
-  auto spread = [](uint32_t v) {
-    uint32_t out = 0;
-    for (uint32_t i = 0; i < 10; ++i) out |= ((v >> i) & 1u) << (3 * i);
-    return out;
-  };
   for (const VoxelFragment& f : readbackFragments()) {
-    Sums& s = expected[spread(f.cell.x) | (spread(f.cell.y) << 1) | (spread(f.cell.z) << 2)];
+    Sums& s = expected[key(f.cell)];
     const glm::uvec3 albedo(glm::round(glm::vec3(f.albedo) * 255.0f));
     const glm::uvec3 normal(glm::round(glm::clamp(f.normal, -1.0f, 1.0f) * 127.0f) + 127.0f);
     ++s.count;
@@ -143,11 +148,11 @@ VoxelProbe::LeafAttributesCheck VoxelProbe::checkLeafAttributes() {
     s.bx += albedo.b | (normal.x << 16);
     s.yz += normal.y | (normal.z << 16);
   }
-  for (uint64_t i = 0; i < capacity && range.x + i < nodes.size(); ++i) {
-    if (nodes[range.x + i] == 0) continue;
+  for (uint64_t i = 0; i < capacity && range.x + i < l.nodes.size(); ++i) {
+    if (l.nodes[range.x + i] == 0) continue;
     ++check.leaves;
     const uint32_t* a = &attributes[i * DYNGI_LEAF_ATTRIBUTE_INTS];
-    const auto found = expected.find(cells[range.x + i]);
+    const auto found = expected.find(key(voxelOfMortonCode(l.cells[range.x + i])));
     const Sums s = found == expected.end() ? Sums{} : found->second;
     if (a[DYNGI_LEAF_COUNT] != s.count) {
       ++check.wrongCount;

@@ -56,6 +56,12 @@ class VoxelProbe {
   double lastMarchWallMs() const { return lastMarchWallMs_; }
 
  private:
+  // The SVO's leaf level: its node range, the nodes, and (withCells) every node's cell.
+  struct LeafLevel {
+    glm::uvec4 range{0u};
+    std::vector<uint32_t> nodes, cells;
+  };
+  LeafLevel readbackLeafLevel(bool withCells);
   const render::Pipeline& marchPipeline(bool march);
   double dispatchMarch(const render::Pipeline& pipeline, const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels);
   VoxelScene& voxels_;
