@@ -200,6 +200,10 @@ TEST(SampleVct, TimesEveryStageAndReportsItsSettings) {
   // (192 x 32 x 32 and 5 levels below, 224694), two direct images and the bounce's (64^3 each):
   // 10485752 bytes, 10 MiB.
   EXPECT_NEAR(o.stats["vct"].value("volume_mib", 0.0), 10485752.0 / 1048576.0, 1e-3);
+  // The main job's two moving boxes: the voxels they left are zeroed in their boxes, not the whole volume.
+  const double cleared = o.stats["vct"].value("cleared_voxels", -1.0);
+  EXPECT_GT(cleared, 0.0);
+  EXPECT_LT(cleared, 0.5 * 64 * 64 * 64);
   // A value out of its range is one clear error line and exit 2.
   TempDir bad;
   SampleRun b = runSample("--headless --frames 1 --size 32x32 --gi vct --cones 0" + withOutputs(bad), bad);

@@ -120,7 +120,8 @@ class VctTechnique final : public Technique {
               {"trace_scale", feature_.traceScale()},
               {"trace_fraction", 1.0 / double(feature_.budgetScaleFactor() * feature_.budgetScaleFactor())},
               {"traced_this_frame", s.tracedFraction},
-              {"trace_history_drops", double(historyDrops_)}}}};
+              {"trace_history_drops", double(historyDrops_)},
+              {"cleared_voxels", double(s.clearedVoxels)}}}};
   }
 
  private:

@@ -20,8 +20,7 @@ namespace dyngi::gi {
 
 struct VctFrameStats {
   bool injected = false;    // radiance injected this frame (every frame while the technique runs)
-  bool clearedWhole = false;     // level 0 was cleared whole (the volume voxelized afresh, or most of it stale)
-  uint64_t clearedBoxVoxels = 0;  // otherwise, the voxels of level 0 cleared in boxes (VoxelScene::staleBoxes)
+  uint64_t clearedVoxels = 0;  // of level 0, zeroed first: the stale boxes' voxels, or all of them (res^3)
   uint32_t traceWidth = 0, traceHeight = 0;  // the resolution cones were traced at
   double tracedFraction = 1.0;  // of those, the share traced this frame (the rest reprojected)
   uint64_t volumeBytes = 0;  // radiance volumes, all levels
@@ -74,8 +73,8 @@ class VoxelConeTracing final : public render::RenderFeature {
   };
   // Zeroes level `mip` of `img` where `stale` says (texels 2^shift voxels wide, `slabs` slabs side by
   // side along x): box by box (copies from a buffer of zeros), or the whole level when the boxes hold
-  // half the volume or more. Returns true for the whole level.
-  bool clearStale(VkCommandBuffer cmd, render::Image& img, uint32_t mip, const StaleVoxels& stale, uint32_t shift, uint32_t slabs);
+  // half the volume or more. Returns the texels zeroed.
+  uint64_t clearStale(VkCommandBuffer cmd, render::Image& img, uint32_t mip, const StaleVoxels& stale, uint32_t shift, uint32_t slabs);
   void recordLeafPass(VkCommandBuffer cmd, const render::Pipeline& pipeline, const void* push, uint32_t pushBytes,
                       render::DescriptorWrites& writes);
   template <class Push>
