@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <unordered_map>
 
@@ -97,16 +98,21 @@ DenseVoxelGrid VoxelProbe::readbackLeafCells() {
 
 VoxelProbe::LeafListCheck VoxelProbe::checkLeafList() {
   LeafListCheck check;
-  const LeafLevel l = readbackLeafLevel(false);
+  const LeafLevel l = readbackLeafLevel(true);
   const glm::uvec4& range = l.range;
   const std::vector<uint32_t>& nodes = l.nodes;
   const std::vector<uint32_t> header = render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.leafList().handle(), DYNGI_SVO_LEAF_LIST_HEADER);
-  const uint64_t room = voxels_.leafList().size() / 4 - DYNGI_SVO_LEAF_LIST_HEADER;
+  const uint64_t room = (voxels_.leafList().size() / 4 - DYNGI_SVO_LEAF_LIST_HEADER) / DYNGI_SVO_LEAF_ENTRY_UINTS;
   check.countFits = header[3] <= room;
   const uint32_t count = uint32_t(std::min<uint64_t>(header[3], room));
-  const std::vector<uint32_t> list =
-      render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.leafList().handle(), DYNGI_SVO_LEAF_LIST_HEADER + size_t(count));
-  check.entries.assign(list.begin() + DYNGI_SVO_LEAF_LIST_HEADER, list.end());
+  const std::vector<uint32_t> list = render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.leafList().handle(),
+                                                                      DYNGI_SVO_LEAF_LIST_HEADER + size_t(count) * DYNGI_SVO_LEAF_ENTRY_UINTS);
+  for (uint32_t k = 0; k < count; ++k) {
+    const uint32_t node = list[DYNGI_SVO_LEAF_LIST_HEADER + DYNGI_SVO_LEAF_ENTRY_UINTS * k];
+    check.entries.push_back(node);
+    // The entry's cell is the node's.
+    check.wrongCells += node >= l.cells.size() || l.cells[node] != list[DYNGI_SVO_LEAF_LIST_HEADER + DYNGI_SVO_LEAF_ENTRY_UINTS * k + 1];
+  }
   const uint32_t perGroup = 64 * DYNGI_SVO_ITEMS_PER_INVOCATION;
   check.dispatchCovers = uint64_t(header[0]) * perGroup >= count && header[1] == 1 && header[2] == 1 && (count == 0 || header[0] > 0);
   std::vector<uint8_t> seen(nodes.size(), 0);
@@ -130,37 +136,49 @@ VoxelProbe::LeafAttributesCheck VoxelProbe::checkLeafAttributes() {
   LeafAttributesCheck check;
   const LeafLevel l = readbackLeafLevel(true);
   const glm::uvec4& range = l.range;
-  const uint64_t capacity = std::min<uint64_t>(voxels_.leafCapacity(), range.y);
-  const std::vector<uint32_t> attributes =
-      render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.leafAttributes().handle(), size_t(capacity * DYNGI_LEAF_ATTRIBUTE_INTS));
-  // The sums svo_leaf_attributes.comp makes, per voxel (x | y << 10 | z << 20).
+  // The leaf sums are scratch: every build leaves them zero.
+  for (uint32_t word : render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.attributes_.handle(),
+                                                           size_t(voxels_.leafCapacity() * DYNGI_LEAF_ATTRIBUTE_INTS)))
+    check.sumsLeft += word != 0;
+  const uint64_t res = voxels_.volume().resolution;
+  Image& image = voxels_.voxelAttributes_;
+  const std::vector<uint8_t> bytes = render::readbackImageBytes(voxels_.ctx_, image);
+  voxels_.ctx_.immediate([&](VkCommandBuffer cmd) {  // back to where the passes expect it
+    image.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  });
+  std::vector<glm::uvec4> texels(bytes.size() / sizeof(glm::uvec4));
+  std::memcpy(texels.data(), bytes.data(), texels.size() * sizeof(glm::uvec4));
+  // The fragments' quantized values as the attribute pass sums them, per voxel (x | y << 10 | z << 20).
   struct Sums {
-    uint32_t count = 0, rg = 0, bx = 0, yz = 0;
+    uint32_t count = 0;
+    glm::dvec3 albedo{0.0}, normal{0.0};
   };
   auto key = [](const glm::uvec3& v) { return v.x | (v.y << 10) | (v.z << 20); };
   std::unordered_map<uint32_t, Sums> expected;
   for (const VoxelFragment& f : readbackFragments()) {
     Sums& s = expected[key(f.cell)];
-    const glm::uvec3 albedo(glm::round(glm::vec3(f.albedo) * 255.0f));
-    const glm::uvec3 normal(glm::round(glm::clamp(f.normal, -1.0f, 1.0f) * 127.0f) + 127.0f);
     ++s.count;
-    s.rg += albedo.r | (albedo.g << 16);
-    s.bx += albedo.b | (normal.x << 16);
-    s.yz += normal.y | (normal.z << 16);
+    s.albedo += glm::dvec3(glm::round(glm::vec3(f.albedo) * 255.0f)) / 255.0;
+    s.normal += glm::dvec3(glm::round(glm::clamp(f.normal, -1.0f, 1.0f) * 127.0f)) / 127.0;
   }
-  for (uint64_t i = 0; i < capacity && range.x + i < l.nodes.size(); ++i) {
+  for (uint64_t i = 0; i < range.y && range.x + i < l.nodes.size(); ++i) {
     if (l.nodes[range.x + i] == 0) continue;
     ++check.leaves;
-    const uint32_t* a = &attributes[i * DYNGI_LEAF_ATTRIBUTE_INTS];
-    const auto found = expected.find(key(voxelOfMortonCode(l.cells[range.x + i])));
+    // leaf_attributes.glsl's voxelAttributesAt(voxel).
+    const glm::uvec3 cell = voxelOfMortonCode(l.cells[range.x + i]);
+    const uint64_t texel = cell.x + res * (cell.y + res * cell.z);
+    const glm::uvec4 t = texel < texels.size() ? texels[texel] : glm::uvec4(0u);
+    const glm::dvec3 albedo(glm::unpackUnorm4x8(t.x)), normal(glm::unpackSnorm4x8(t.y));
+    const auto found = expected.find(key(cell));
     const Sums s = found == expected.end() ? Sums{} : found->second;
-    if (a[DYNGI_LEAF_COUNT] != s.count) {
+    if ((t.x >> 24) != std::min(s.count, 255u)) {
       ++check.wrongCount;
       continue;
     }
-    if (s.count > DYNGI_LEAF_MAX_FRAGMENTS) continue;  // which fragments were summed is the GPU's order
-    check.wrongAlbedo += a[DYNGI_LEAF_ALBEDO_RG] != s.rg || (a[DYNGI_LEAF_ALBEDO_B_NORMAL_X] & 0xFFFFu) != (s.bx & 0xFFFFu);
-    check.wrongNormal += (a[DYNGI_LEAF_ALBEDO_B_NORMAL_X] >> 16) != (s.bx >> 16) || a[DYNGI_LEAF_NORMAL_YZ] != s.yz;
+    if (s.count > 255) continue;  // which fragments were summed is the GPU's order
+    auto off = [](const glm::dvec3& d) { return std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}); };
+    check.wrongAlbedo += off(albedo - s.albedo / double(s.count)) > 1.01 / 255.0;
+    check.wrongNormal += off(normal - s.normal / double(s.count)) > 1.01 / 127.0;
   }
   return check;
 }

@@ -36,14 +36,17 @@ class VoxelProbe {
   // must cover its count (`dispatchCovers`).
   struct LeafListCheck {
     std::vector<uint32_t> entries;
-    uint64_t occupied = 0, stray = 0, missed = 0, duplicates = 0;
+    uint64_t occupied = 0, stray = 0, missed = 0, duplicates = 0, wrongCells = 0;  // wrongCells: an entry's cell is not its node's
     bool dispatchCovers = false, countFits = false;  // countFits: the header's count fits the buffer
   };
   LeafListCheck checkLeafList();
-  // Every occupied leaf's attribute sums (svo_leaf_attributes.comp) against the fragments in its voxel,
-  // summed here: fragment count, albedo and normal sums (cells of up to DYNGI_LEAF_MAX_FRAGMENTS).
+  // Every occupied leaf's voxel attributes as the passes over leaves read them (leaf_attributes.glsl,
+  // decoded here the same way) against the fragments in its voxel, averaged here: the fragment count, the
+  // mean albedo within 1 / 255 and the mean normal within 1 / 127 (means in bytes, the moving fragments'
+  // added to the static ones' kept mean), for voxels of up to 255 fragments; and the leaf sums a build
+  // must leave zero.
   struct LeafAttributesCheck {
-    uint64_t leaves = 0, wrongCount = 0, wrongAlbedo = 0, wrongNormal = 0;
+    uint64_t leaves = 0, wrongCount = 0, wrongAlbedo = 0, wrongNormal = 0, sumsLeft = 0;
   };
   LeafAttributesCheck checkLeafAttributes();
   // Visibility of world-space segments through the SVO on the GPU (svo_march.comp); out[i] = 1 when

@@ -10,6 +10,7 @@
 #include "spirv/svo_leaf_attributes.comp.spv.h"
 #include "spirv/svo_level.comp.spv.h"
 #include "spirv/svo_mark.comp.spv.h"
+#include "spirv/svo_voxel_attributes.comp.spv.h"
 
 #include "gpu_aliases.h"
 
@@ -18,7 +19,7 @@ namespace dyngi::gi {
 namespace {
 constexpr uint32_t kMinNodeGroups = 1u << 12;  // the node pool never shrinks below this (128 KB)
 // The leaf list holds at most one entry per node of the pool, after its header.
-VkDeviceSize leafListBytes(uint32_t groups) { return (VkDeviceSize(groups) * 8 + DYNGI_SVO_LEAF_LIST_HEADER) * 4; }
+VkDeviceSize leafListBytes(uint32_t groups) { return (VkDeviceSize(groups) * 8 * DYNGI_SVO_LEAF_ENTRY_UINTS + DYNGI_SVO_LEAF_LIST_HEADER) * 4; }
 }  // namespace
 
 SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t maxNodeGroups) : ctx_(ctx), maxNodeGroups_(maxNodeGroups) {
@@ -43,12 +44,25 @@ SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t
   const Binding attrB[] = {{DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS, kSSBO, kCS},
                            {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES, kSSBO, kCS},
                            {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS, kSSBO, kCS},
-                           {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES, kSSBO, kCS}};
+                           {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES, kSSBO, kCS},
+                           {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_CHUNKS, kSSBO, kCS},
+                           {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_MOVING, kSSBO, kCS}};
   for (uint32_t emission : {0u, 1u}) {
     const uint32_t spec[] = {emission};
     leafAttributes_[emission] = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, sizeof(gpu::SvoLeafAttributesPush),
                                                   "svo_leaf_attributes", spec);
   }
+  const Binding voxelB[] = {{DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_LEAF_LIST, kSSBO, kCS},
+                            {DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_LEVELS, kSSBO, kCS},
+                            {DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_SUMS, kSSBO, kCS},
+                            {DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_VOXELS, kStorageImage, kCS},
+                            {DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_MOVING, kSSBO, kCS}};
+  for (uint32_t step = 0; step < 4; ++step) {
+    const uint32_t spec[] = {step};
+    voxelAttributes_[step] = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_voxel_attributes_comp), voxelB, sizeof(gpu::SvoVoxelAttributesPush),
+                                               "svo_voxel_attributes", spec);
+  }
+  static_assert(DYNGI_VOXEL_ATTRIBUTES_STEP_STATIC == 0 && DYNGI_VOXEL_ATTRIBUTES_STEP_MERGE == 3, "voxelAttributes_ is indexed by step");
   // One bit per cell of every level 0..depth (DYNGI_SVO_LEVEL_BASE): level depth + 1 would start here.
   uint32_t depth = 0;
   while ((1u << depth) < resolution) ++depth;
@@ -99,7 +113,25 @@ void SvoBuilder::plan(const FragmentRanges& ranges, uint64_t frame, const std::v
     return n;
   };
   staticChunks_ = rebuildStaticOccupancy_ ? cut(true) : 0;
+  const uint64_t slotsBeforeMoving = stats.slotsMarked;
   movingChunks_ = cut(false);
+  // The moving leaves: at most one a slot of the moving ranges. Grown keeping the last build's (the next
+  // build restores their voxels); zero at first (no last build).
+  const VkDeviceSize movingBytes = (1 + 2 * std::max<uint64_t>(stats.slotsMarked - slotsBeforeMoving, 64)) * 16;
+  if (!movingLeaves_.valid() || movingLeaves_.size() < movingBytes) {
+    vkDeviceWaitIdle(ctx_.device());
+    Buffer grown(ctx_, movingBytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::GpuOnly, "svo moving leaves");
+    ctx_.immediate([&](VkCommandBuffer cmd) {
+      vkCmdFillBuffer(cmd, grown.handle(), 0, VK_WHOLE_SIZE, 0);
+      if (!movingLeaves_.valid()) return;
+      render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                            VK_ACCESS_2_TRANSFER_WRITE_BIT);
+      const VkBufferCopy keep{0, 0, movingLeaves_.size()};
+      vkCmdCopyBuffer(cmd, movingLeaves_.handle(), grown.handle(), 1, &keep);
+    });
+    movingLeaves_ = std::move(grown);
+  }
   const VkDeviceSize bytes = std::max<VkDeviceSize>(chunks.size() * sizeof(glm::uvec2), 16);
   if (!markChunks_.valid() || markChunks_.size() < bytes) {
     vkDeviceWaitIdle(ctx_.device());  // the last frame may still read the old list
@@ -122,9 +154,46 @@ void SvoBuilder::recordMark(VkCommandBuffer cmd, const render::Buffer& fragments
   vkCmdDispatch(cmd, chunkCount, 1, 1);
 }
 
-void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragments, uint32_t slots, uint32_t depth,
-                        const render::Buffer* attributes, uint64_t fragmentCapacity, bool emission) {
+void SvoBuilder::recordLeafSums(VkCommandBuffer cmd, const render::Buffer& fragments, uint32_t depth, const LeafAttributeTargets& attributes,
+                                uint32_t firstChunk, uint32_t chunkCount, bool listLeaves) {
+  if (chunkCount == 0) return;
+  const Pipeline& pipeline = leafAttributes_[attributes.emission ? 1 : 0];
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+  DescriptorWrites()
+      .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS, fragments.handle())
+      .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES, nodes_.handle())
+      .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS, levels_.handle())
+      .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES, attributes.sums.handle())
+      .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_CHUNKS, markChunks_.handle())
+      .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_MOVING, movingLeaves_.handle())
+      .push(ctx_, cmd, pipeline);
+  const gpu::SvoLeafAttributesPush ap{depth, uint32_t(attributes.leafCapacity), firstChunk, listLeaves ? 1u : 0u};
+  vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(ap), &ap);
+  vkCmdDispatch(cmd, chunkCount, 1, 1);
+  render::computeWriteBarrier(cmd);
+}
+
+void SvoBuilder::recordVoxelAttributes(VkCommandBuffer cmd, uint32_t step, uint32_t depth, const LeafAttributeTargets& attributes,
+                                       const render::Buffer& args, VkDeviceSize argsOffset) {
+  const Pipeline& pipeline = voxelAttributes_[step];
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+  DescriptorWrites()
+      .storageBuffer(DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_LEAF_LIST, leafList_.handle())
+      .storageBuffer(DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_LEVELS, levels_.handle())
+      .storageBuffer(DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_SUMS, attributes.sums.handle())
+      .storageImage(DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_VOXELS, attributes.voxels.view())
+      .storageBuffer(DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_MOVING, movingLeaves_.handle())
+      .push(ctx_, cmd, pipeline);
+  const gpu::SvoVoxelAttributesPush pc{depth, uint32_t(attributes.leafCapacity)};
+  vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(pc), &pc);
+  if (step == DYNGI_VOXEL_ATTRIBUTES_STEP_ARGS) vkCmdDispatch(cmd, 1, 1, 1);
+  else vkCmdDispatchIndirect(cmd, args.handle(), argsOffset);
+  render::computeWriteBarrier(cmd);
+}
+
+void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragments, uint32_t depth, const LeafAttributeTargets* attributes) {
   VkCommandBuffer cmd = frame.cmd;
+  const bool staticSetChanged = rebuildStaticOccupancy_;
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "svo_build");
     gpu::SvoCounters init{};
@@ -145,7 +214,6 @@ void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragm
     render::computeWriteBarrier(cmd);
     recordMark(cmd, fragments, occupancy_, depth, staticChunks_, movingChunks_);
     render::computeWriteBarrier(cmd);
-    const uint32_t perGroup = 64 * DYNGI_SVO_ITEMS_PER_INVOCATION;
     // 2. Top down, level by level: the occupied nodes get their children, flagged from the pyramid.
     for (uint32_t l = 0; l <= depth; ++l) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, level_.handle());
@@ -179,21 +247,26 @@ void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragm
       render::computeWriteBarrier(cmd);
     }
     if (attributes) {
-      // Leaf attributes, kept apart from the nodes.
-      vkCmdFillBuffer(cmd, attributes->handle(), 0, VK_WHOLE_SIZE, 0);
+      // 3. The voxel attributes (DYNGI_SVO_VOXEL_ATTRIBUTES in gi_gpu_types.h). The voxels the last
+      // build's moving leaves touched get back what they held before it; when the static set changed,
+      // the image holds the static entities' fragments alone; then the moving entities' (a third of the
+      // main job's slots, a tenth of its fragments) are summed and added to their voxels.
+      recordVoxelAttributes(cmd, DYNGI_VOXEL_ATTRIBUTES_STEP_RESTORE, depth, *attributes, movingLeaves_, 0);
+      render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                            VK_ACCESS_2_TRANSFER_WRITE_BIT);
+      vkCmdFillBuffer(cmd, movingLeaves_.handle(), 0, 16, 0);  // no moving leaves yet
+      if (staticSetChanged) {
+        const VkClearColorValue zero{};
+        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, attributes->voxels.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+        render::computeWriteBarrier(cmd);
+        recordLeafSums(cmd, fragments, depth, *attributes, 0, staticChunks_, false);
+        recordVoxelAttributes(cmd, DYNGI_VOXEL_ATTRIBUTES_STEP_STATIC, depth, *attributes, leafList_, 0);
+      }
       render::computeWriteBarrier(cmd);
-      const Pipeline& pipeline = leafAttributes_[emission ? 1 : 0];
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
-      DescriptorWrites()
-          .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS, fragments.handle())
-          .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES, nodes_.handle())
-          .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS, levels_.handle())
-          .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES, attributes->handle())
-          .push(ctx_, cmd, pipeline);
-      const gpu::SvoLeafAttributesPush ap{depth, uint32_t(fragmentCapacity), slots};
-      vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(ap), &ap);
-      vkCmdDispatch(cmd, std::max(dispatchGroups(slots, perGroup), 1u), 1, 1);
-      render::computeWriteBarrier(cmd);
+      recordLeafSums(cmd, fragments, depth, *attributes, staticChunks_, movingChunks_, true);
+      recordVoxelAttributes(cmd, DYNGI_VOXEL_ATTRIBUTES_STEP_ARGS, depth, *attributes, movingLeaves_, 0);
+      recordVoxelAttributes(cmd, DYNGI_VOXEL_ATTRIBUTES_STEP_MERGE, depth, *attributes, movingLeaves_, 0);
     }
   }
 }
@@ -206,6 +279,8 @@ bool SvoBuilder::frameFinished(VoxelStats& stats) {
   stats.leaves = c->groups.w;
   stats.poolOverflow = c->groups.z != 0;
   stats.svoBytes = stats.nodes * 4;
+  // The kept static attributes miss the leaves an overflowing build left out: made again next build.
+  if (stats.poolOverflow) rebuildStaticOccupancy_ = true;
   if (stats.poolOverflow && nodeGroupCapacity_ >= maxNodeGroups_)
     std::fprintf(stderr, "dyngi: warning: SVO node pool overflow (%u groups); raise maxNodeGroups\n", maxNodeGroups_);
   // Keep the pool between 4/3 and 8 times what the SVO uses: grow before it fills (an overflowing build

@@ -16,6 +16,14 @@
 
 namespace dyngi::gi {
 
+// Where a build puts the voxels' attributes (VoxelScene owns both).
+struct LeafAttributeTargets {
+  const render::Buffer& sums;    // per leaf slot: a build's sums (DYNGI_LEAF_* in gi_gpu_types.h), zero between builds
+  uint64_t leafCapacity;         // leaf slots `sums` holds
+  const render::Image& voxels;   // the voxel attributes image (DYNGI_SVO_VOXEL_ATTRIBUTES), layout GENERAL
+  bool emission;                 // some fragment emits: the emission sums too
+};
+
 class SvoBuilder {
  public:
   SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t maxNodeGroups);
@@ -25,10 +33,11 @@ class SvoBuilder {
             VoxelStats& stats);
   // Everything is voxelized again: the static pyramid is rebuilt at the next build.
   void invalidateStaticOccupancy() { rebuildStaticOccupancy_ = true; }
-  // Records the build over `fragments` (`slots` slots); with `attributes`, the leaf attributes too
-  // (their emission sums only when `emission`: some fragment emits).
-  void record(render::FrameContext& frame, const render::Buffer& fragments, uint32_t slots, uint32_t depth, const render::Buffer* attributes,
-              uint64_t fragmentCapacity, bool emission);
+  // Records the build over `fragments`; with `attributes`, the voxel attributes too: when the static set
+  // changed, the static entities' fragments summed and written to their voxels; in every build, the
+  // voxels the last build's moving leaves touched restored, and the moving entities' fragments summed
+  // and added to their voxels.
+  void record(render::FrameContext& frame, const render::Buffer& fragments, uint32_t depth, const LeafAttributeTargets* attributes);
   // After the build's frame: node and leaf counts into `stats`, the pool resized to follow use. True
   // when the pool overflowed and grew: build again next frame.
   bool frameFinished(VoxelStats& stats);
@@ -36,7 +45,7 @@ class SvoBuilder {
   const render::Buffer& nodes() const { return nodes_; }
   const render::Buffer& levels() const { return levels_; }
   const render::Buffer& nodeCells() const { return nodeCells_; }
-  // The occupied leaves' node indices, compacted (DYNGI_SVO_LEAF_LIST_HEADER in gi_gpu_types.h).
+  // The occupied leaves (node index, cell), compacted (DYNGI_SVO_LEAF_LIST_HEADER in gi_gpu_types.h).
   const render::Buffer& leafList() const { return leafList_; }
   render::Buffer& counters() { return svoCounters_; }
   uint64_t bytes() const;  // nodes, node cells, the leaf list and the occupancy pyramid
@@ -45,6 +54,14 @@ class SvoBuilder {
   // Records the mark pass over chunks [firstChunk, firstChunk + chunkCount) into `target`.
   void recordMark(VkCommandBuffer cmd, const render::Buffer& fragments, const render::Buffer& target, uint32_t depth, uint32_t firstChunk,
                   uint32_t chunkCount);
+  // Sums the fragments of chunks [firstChunk, firstChunk + chunkCount) into the leaf sums (zero before);
+  // `listLeaves`: each leaf into the moving leaves.
+  void recordLeafSums(VkCommandBuffer cmd, const render::Buffer& fragments, uint32_t depth, const LeafAttributeTargets& attributes,
+                      uint32_t firstChunk, uint32_t chunkCount, bool listLeaves);
+  // One step of svo_voxel_attributes.comp (DYNGI_VOXEL_ATTRIBUTES_STEP_*), dispatched indirectly from
+  // `args` at `argsOffset` (or one invocation for the args step).
+  void recordVoxelAttributes(VkCommandBuffer cmd, uint32_t step, uint32_t depth, const LeafAttributeTargets& attributes,
+                             const render::Buffer& args, VkDeviceSize argsOffset);
   void resizeNodePool(uint32_t groups, uint64_t keepGroups);
 
   render::VulkanContext& ctx_;
@@ -52,17 +69,21 @@ class SvoBuilder {
   uint32_t nodeGroupCapacity_ = 0;
   render::Buffer nodes_, levels_, svoCounters_;
   render::Buffer nodeCells_;  // per node, leaves included: its cell's Morton code (svo_expand.comp), sized like nodes_
-  render::Buffer leafList_;   // the occupied leaves' node indices after a header (svo_expand.comp, svo_level.comp)
+  render::Buffer leafList_;   // the occupied leaves (node index, cell) after a header (svo_expand.comp, svo_level.comp)
   render::Buffer occupancy_;  // occupancy pyramid of every level (svo_mark.comp)
   // The pyramid of the entities in staticEntities_ alone: a build starts from a copy of it and marks the
   // moving entities' fragments only. Rebuilt when one of them moves or is removed, or when a moving
-  // entity has settled and can join.
+  // entity has settled and can join; so are their voxel attributes.
   render::Buffer staticOccupancy_;
   std::unordered_set<ecs::Entity> staticEntities_;
   bool rebuildStaticOccupancy_ = true;
   render::Buffer markChunks_;                     // uvec2 (first slot, end slot) per mark workgroup
   uint32_t staticChunks_ = 0, movingChunks_ = 0;  // this frame's: the static ones first
-  render::Pipeline mark_, level_, expand_, leafAttributes_[2];  // [1]: with the emission sums
+  // The moving leaves of the last build (DYNGI_SVO_VOXEL_ATTRIBUTES in gi_gpu_types.h): room for one a
+  // slot of the moving entities' ranges.
+  render::Buffer movingLeaves_;
+  render::Pipeline mark_, level_, expand_, leafAttributes_[2];  // leafAttributes_[1]: with the emission sums
+  render::Pipeline voxelAttributes_[4];                         // by step (DYNGI_VOXEL_ATTRIBUTES_STEP_*)
 };
 
 }  // namespace dyngi::gi

@@ -12,8 +12,7 @@ namespace dyngi::gi {
 class VoxelDebugPass {
  public:
   explicit VoxelDebugPass(render::VulkanContext& ctx);
-  void record(render::FrameContext& frame, const VoxelVolume& volume, const render::Buffer& nodes, const render::Buffer& levels,
-              const render::Buffer& attributes, VoxelDebugView view);
+  void record(render::FrameContext& frame, const VoxelScene& voxels, VoxelDebugView view);
 
  private:
   render::VulkanContext& ctx_;

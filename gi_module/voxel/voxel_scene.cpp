@@ -97,9 +97,28 @@ void VoxelScene::reallocateFragments(uint64_t slots, const std::vector<SlotCopy>
 
 void VoxelScene::allocateAttributes(uint64_t leafSlots) {
   vkDeviceWaitIdle(ctx_.device());
-  attributes_ = Buffer(ctx_, std::max<uint64_t>(leafSlots * kAttributeInts * 4, 16), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                       MemoryUsage::GpuOnly, "voxel leaf attributes");
+  attributes_ = Buffer(ctx_, std::max<uint64_t>(leafSlots * kAttributeInts * 4, 16), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                       MemoryUsage::GpuOnly, "voxel leaf sums");
   attributeLeaves_ = leafSlots;
+  ctx_.immediate([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, attributes_.handle(), 0, VK_WHOLE_SIZE, 0); });  // builds leave it zero
+  // The voxel attributes: one texel (bound, never read) until the leaf attributes are on.
+  const uint32_t side = leafSlots > 0 ? settings_.resolution : 1u;
+  if (!voxelAttributes_.valid() || voxelAttributes_.desc().width != side) {
+    render::ImageDesc d;
+    d.width = d.height = d.depth = side;
+    d.format = VK_FORMAT_R32G32B32A32_UINT;
+    d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    d.viewType = VK_IMAGE_VIEW_TYPE_3D;
+    d.name = "voxel attributes";
+    voxelAttributes_ = Image(ctx_, d);
+    ctx_.immediate([&](VkCommandBuffer cmd) {
+      voxelAttributes_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+      const VkClearColorValue zero{};
+      const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      vkCmdClearColorImage(cmd, voxelAttributes_.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+    });
+    svo_->invalidateStaticOccupancy();  // the next build fills it
+  }
 }
 
 void VoxelScene::compactFragments() {
@@ -281,8 +300,8 @@ bool VoxelScene::record(render::FrameContext& frame) {
     render::computeWriteBarrier(cmd);
   }
   {
-    const render::Buffer* attributes = settings_.leafAttributes ? &attributes_ : nullptr;
-    svo_->record(frame, fragments_, uint32_t(ranges_.highWater()), depth, attributes, attributeLeaves_, fragmentsEmit());
+    const LeafAttributeTargets attributes{attributes_, attributeLeaves_, voxelAttributes_, fragmentsEmit()};
+    svo_->record(frame, fragments_, depth, settings_.leafAttributes ? &attributes : nullptr);
   }
   stats_.rebuilt = true;
   return false;  // the voxel scene feeds other stages; it does not write indirect light
@@ -290,7 +309,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
 
 void VoxelScene::recordAfterLighting(render::FrameContext& frame) {
   if (settings_.debugView == VoxelDebugView::None || !haveVolume_) return;
-  debugPass_->record(frame, volume_, svo_->nodes(), svo_->levels(), attributes_, settings_.debugView);
+  debugPass_->record(frame, *this, settings_.debugView);
 }
 
 void VoxelScene::frameFinished(render::VulkanContext&) {
@@ -312,9 +331,11 @@ void VoxelScene::frameFinished(render::VulkanContext&) {
   // the fragments: grow to the node count (a bound on them) and build again.
   if (settings_.leafAttributes && stats_.nodes > attributeLeaves_) {
     allocateAttributes(stats_.nodes + stats_.nodes / 2);
+    svo_->invalidateStaticOccupancy();  // the voxel attributes may miss the leaves that did not fit
     storageMoved_ = true;
   }
-  stats_.totalBytes = fragments_.size() + svo_->bytes() + attributes_.size();
+  const render::ImageDesc& kept = voxelAttributes_.desc();
+  stats_.totalBytes = fragments_.size() + svo_->bytes() + attributes_.size() + uint64_t(kept.width) * kept.height * kept.depth * 16;
 }
 
 void VoxelSyncSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {

@@ -252,11 +252,13 @@ TEST_F(RenderTest, VctMipChainEqualsCpuFilters) {
   }
 }
 
+// Both anisotropic and isotropic, at the unit step (its pipelines skip a pow() a step) and a half step.
 TEST_F(RenderTest, VctConeMarchEqualsCpuTwin) {
-  for (bool aniso : {false, true}) {
+  for (const auto& [aniso, step] : {std::pair{false, 1.0f}, {true, 1.0f}, {true, 0.5f}}) {
     gi::GiSettings s = vctSettings();
     s.voxels.resolution = 64;
     s.vct.anisotropic = aniso;
+    s.vct.stepScale = step;
     GiRun run(context(), s, "cornell", 64, 64);
     run.step(2);
     gi::VoxelConeTracing& vct = vctOf(run);
@@ -290,8 +292,8 @@ TEST_F(RenderTest, VctConeMarchEqualsCpuTwin) {
         sum += e;
         lit += glm::length(glm::vec3(cpu)) > 0.01 ? 1.0 : 0.0;
       }
-      std::printf("anisotropic %d tan %.1f: cone march GPU vs CPU twin: worst %.4f, mean %.5f over %zu rays (%.0f lit)\n", int(aniso),
-                  double(tanHalf), worst, sum / double(rays.size()), rays.size(), lit);
+      std::printf("anisotropic %d step %.1f tan %.1f: cone march GPU vs CPU twin: worst %.4f, mean %.5f over %zu rays (%.0f lit)\n",
+                  int(aniso), double(step), double(tanHalf), worst, sum / double(rays.size()), rays.size(), lit);
       EXPECT_GT(lit, 20.0);
       EXPECT_LT(sum / double(rays.size()), 0.01);
       EXPECT_LT(worst, 0.08);

@@ -208,6 +208,7 @@ static void expectLeafListIsTheOccupiedLeaves(gi::VoxelScene& voxels, const std:
   EXPECT_EQ(c.stray, 0u) << when << ": entries that are not occupied leaves";
   EXPECT_EQ(c.missed, 0u) << when << ": occupied leaves missing from the list";
   EXPECT_EQ(c.duplicates, 0u) << when;
+  EXPECT_EQ(c.wrongCells, 0u) << when << ": entries whose cell is not their node's";
   EXPECT_EQ(c.occupied, voxels.stats().leaves) << when;
   EXPECT_TRUE(c.dispatchCovers) << when << ": the header's dispatch covers the list";
 }
@@ -216,10 +217,12 @@ static void expectLeafListIsTheOccupiedLeaves(gi::VoxelScene& voxels, const std:
 // voxel, summed on the CPU; in a build that overflowed the node pool too, for the leaves it has.
 static void expectLeafAttributesSumTheirFragments(gi::VoxelScene& voxels, const std::string& when) {
   const gi::VoxelProbe::LeafAttributesCheck c = gi::VoxelProbe(voxels).checkLeafAttributes();
-  std::printf("%s: %llu leaves, attribute sums wrong: count %llu, albedo %llu, normal %llu\n", when.c_str(), (unsigned long long)c.leaves,
-              (unsigned long long)c.wrongCount, (unsigned long long)c.wrongAlbedo, (unsigned long long)c.wrongNormal);
+  std::printf("%s: %llu leaves, attributes wrong: count %llu, albedo %llu, normal %llu; leaf sum words left %llu\n", when.c_str(),
+              (unsigned long long)c.leaves, (unsigned long long)c.wrongCount, (unsigned long long)c.wrongAlbedo, (unsigned long long)c.wrongNormal,
+              (unsigned long long)c.sumsLeft);
   EXPECT_GT(c.leaves, 1000u) << when;
   EXPECT_EQ(c.wrongCount + c.wrongAlbedo + c.wrongNormal, 0u) << when;
+  EXPECT_EQ(c.sumsLeft, 0u) << when << ": the leaf sums must be zero for the next build";
 }
 
 TEST_F(VoxelTest, MovingObjectsReVoxelizeOnlyThemselvesAndMatchARebuild) {
@@ -283,9 +286,10 @@ TEST_F(VoxelTest, StaleBoxesHoldEveryVoxelThatEmptied) {
 }
 
 // The build keeps the occupancy of entities that have not moved lately and marks only the moving ones'
-// fragments on top. An entity of the kept occupancy that starts moving, one that stops and settles, one
-// that moves again: the SVO must equal a from-scratch build every time, and a build with one mover
-// must read that mover's fragments only.
+// fragments on top; their attributes too are kept per voxel and only the moving ones' summed. An entity
+// of the kept occupancy that starts moving, one that stops and settles, one that moves again: the SVO
+// must equal a from-scratch build every time, the attributes must average the fragments in each voxel,
+// and a build with one mover must read that mover's fragments only.
 TEST_F(VoxelTest, KeptStaticOccupancyFollowsEntitiesThatStartAndStopMoving) {
   sample::buildBuiltinScene("cornell", world, assets);
   attachVoxels(64, 16);
@@ -301,6 +305,7 @@ TEST_F(VoxelTest, KeptStaticOccupancyFollowsEntitiesThatStartAndStopMoving) {
   auto expectScratch = [&](const char* what) {
     GridDiff d = diff(leaves(), scratchLeaves());
     EXPECT_EQ(d.missing + d.extra, 0u) << what;
+    expectLeafAttributesSumTheirFragments(*voxels, what);
   };
   auto nudge = [&](ecs::Entity e, float dx) {
     world.write<scene::Transform>(e).translation.x += dx;
@@ -353,10 +358,12 @@ TEST_F(VoxelTest, FragmentRangesAreCompactedWithoutLosingVoxels) {
   EXPECT_EQ(same.missing + same.extra, 0u);
   // What is allocated follows what is held: fragments (the record, leaf attributes), the SVO's nodes
   // with their cells and the occupancy pyramid, within a factor of 3 (the first frame held more than 3
-  // times that).
+  // times that), besides the static attributes' fixed 16 bytes a voxel.
   const gi::VoxelStats& st = voxels->stats();
   const uint64_t pyramidBytes = ((((uint64_t(1) << 24) - 1) / 7) + 31) / 32 * 4;  // levels 0..7 of 128^3
-  EXPECT_LT(st.totalBytes, 3 * (st.fragments * (16 + 32) + 2 * st.svoBytes + pyramidBytes));
+  const uint64_t staticAttributeBytes = (uint64_t(1) << 21) * 16;               // 128^3 voxels
+  EXPECT_EQ(voxels->voxelAttributes().desc().width, 128u);
+  EXPECT_LT(st.totalBytes - staticAttributeBytes, 3 * (st.fragments * (16 + 32) + 2 * st.svoBytes + pyramidBytes));
   // One sphere starts moving (its exact-size range is too small for a new pose: it gets a new one).
   for (int f = 0; f < 4; ++f) {
     world.write<scene::Transform>(spheres[1]).rotation = glm::angleAxis(0.4f * float(f + 1), glm::vec3(0.3f, 1.0f, 0.2f));

@@ -145,8 +145,8 @@ struct RsmPush {
 // vpl_bounce
 #define DYNGI_VPL_BOUNCE_BINDING_VPLS 0
 #define DYNGI_VPL_BOUNCE_BINDING_NODES 1
-#define DYNGI_VPL_BOUNCE_BINDING_LEVELS 2
-#define DYNGI_VPL_BOUNCE_BINDING_ATTRIBUTES 3
+#define DYNGI_VPL_BOUNCE_BINDING_NODE_CELLS 2
+#define DYNGI_VPL_BOUNCE_BINDING_VOXEL_ATTRIBUTES 3
 // vpl_tail
 #define DYNGI_VPL_TAIL_BINDING_VPLS 0
 // vpl_cdf_rows
@@ -177,19 +177,23 @@ struct RsmPush {
 #define DYNGI_SVO_EXPAND_BINDING_LEVELS 3
 #define DYNGI_SVO_EXPAND_BINDING_COUNTERS 4
 #define DYNGI_SVO_EXPAND_BINDING_LEAF_LIST 5
-// The occupied leaves, compacted (svo_expand.comp appends each leaf's node index): a header of
+// The occupied leaves, compacted (svo_expand.comp appends each leaf): a header of
 // DYNGI_SVO_LEAF_LIST_HEADER uints (indirect dispatch args x, 1, 1 for passes taking
 // DYNGI_SVO_ITEMS_PER_INVOCATION leaves per invocation in 64-wide groups, then the count; written by
-// svo_level.comp at the leaf level), then the entries. Passes over leaves walk it instead of the leaf
-// level's slots, half of which are empty siblings on surfaces.
+// svo_level.comp at the leaf level), then DYNGI_SVO_LEAF_ENTRY_UINTS uints an entry: the leaf's node
+// index and its cell's Morton code (a reader needs no load from the node cells). Passes over leaves walk
+// it instead of the leaf level's slots, half of which are empty siblings on surfaces. Readers declare it
+// `{ uvec4 header; uvec2 entries[]; }`.
 #define DYNGI_SVO_LEAF_LIST_HEADER 4u
+#define DYNGI_SVO_LEAF_ENTRY_UINTS 2u
 // svo_leaf_attributes. A leaf's attributes are DYNGI_LEAF_ATTRIBUTE_INTS uints at leaf * that, sums over
 // its first DYNGI_LEAF_MAX_FRAGMENTS fragments (integer atomics; voxel/shaders/leaf_attributes.glsl
 // averages them): the fragment count (all of them), the albedo 0..255 per channel and the normal
 // x 127 + 127 per axis, two 16-bit sums to a uint (under 65536 for 256 fragments: four atomics a
 // fragment where there were eight), the emitted radiance x 256 per channel and the count of emitting
 // fragments (emission is their mean: a light panel on a ceiling shares its voxels with the ceiling, and a
-// mean over both would halve it), added by emitting fragments only.
+// mean over both would halve it), added by emitting fragments only. Only the moving entities' fragments
+// are summed in most builds: the static ones' are kept per voxel (DYNGI_SVO_VOXEL_ATTRIBUTES below).
 #define DYNGI_LEAF_ATTRIBUTE_INTS 8u
 #define DYNGI_LEAF_COUNT 0u
 #define DYNGI_LEAF_ALBEDO_RG 1u
@@ -203,6 +207,30 @@ struct RsmPush {
 #define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES 1
 #define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS 2
 #define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES 3
+#define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_CHUNKS 4  /* the mark pass' chunks: one per workgroup */
+#define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_MOVING 5  /* the moving leaves' list (DYNGI_SVO_VOXEL_ATTRIBUTES) */
+// The voxel attributes: each occupied voxel's mean albedo, normal and emission, an rgba32ui 3D image over
+// the volume (an image load costs lavapipe less than storage-buffer ones; the passes over leaves read
+// one texel a leaf). x: the mean albedo in unorm bytes 0-2 and the fragments it averages (up to 255) in
+// byte 3; y: the mean of the unit normals in snorm bytes 0-2 and the emitting fragments (up to 255) in
+// byte 3; z, w: their mean emission as halves (r, g) (b, 0). svo_voxel_attributes.comp writes it from the
+// leaf sums (above), in steps (DYNGI_VOXEL_ATTRIBUTES_STEP_*): the static entities' (SvoBuilder's static
+// set, as for the kept occupancy pyramid) when that set changes; then in every build the moving
+// entities' sums added to their voxels, after the voxels the last build's moving leaves touched got
+// back what they held before it. So a build sums only the moving entities' fragments, and the leaf sums
+// are scratch: zero again once read.
+#define DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_LEAF_LIST 0
+#define DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_LEVELS 1
+#define DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_SUMS 2
+#define DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_VOXELS 3
+#define DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_MOVING 4
+#define DYNGI_VOXEL_ATTRIBUTES_STEP_STATIC 0   /* over the SVO's leaf list: the static entities' sums into their voxels */
+#define DYNGI_VOXEL_ATTRIBUTES_STEP_RESTORE 1  /* over the last build's moving leaves: their voxels as before it */
+#define DYNGI_VOXEL_ATTRIBUTES_STEP_ARGS 2     /* one invocation: the moving leaves' dispatch from their count */
+#define DYNGI_VOXEL_ATTRIBUTES_STEP_MERGE 3    /* over this build's moving leaves: their sums added to their voxels */
+// The moving leaves (svo_leaf_attributes.comp appends a leaf at its first fragment): a header uvec4
+// (indirect dispatch x, 1, 1 for 64 entries a group; count), then 2 uvec4 an entry: (leaf slot, its cell's
+// Morton code, 0, 0) and the voxel's texel before the merge.
 // svo_level
 #define DYNGI_SVO_LEVEL_BINDING_LEVELS 0
 #define DYNGI_SVO_LEVEL_BINDING_COUNTERS 1
@@ -221,9 +249,9 @@ struct RsmPush {
 // voxel_debug
 #define DYNGI_VOXEL_DEBUG_BINDING_FRAME 0
 #define DYNGI_VOXEL_DEBUG_BINDING_NODES 1
-#define DYNGI_VOXEL_DEBUG_BINDING_LEVELS 2
-#define DYNGI_VOXEL_DEBUG_BINDING_ATTRIBUTES 3
-#define DYNGI_VOXEL_DEBUG_BINDING_OUT_HDR 4
+#define DYNGI_VOXEL_DEBUG_BINDING_OUT_HDR 2
+#define DYNGI_VOXEL_DEBUG_BINDING_NODE_CELLS 3
+#define DYNGI_VOXEL_DEBUG_BINDING_VOXEL_ATTRIBUTES 4
 // voxelize
 #define DYNGI_VOXELIZE_BINDING_FRAGMENTS 0
 #define DYNGI_VOXELIZE_BINDING_COUNTERS 1
@@ -235,32 +263,27 @@ struct RsmPush {
 // Voxel cone tracing (techniques/vct/): the passes over the occupied voxels (SVO leaves) and the screen.
 // vct_inject: direct light and emission of each occupied voxel into the radiance volume
 #define DYNGI_VCT_INJECT_BINDING_LEAF_LIST 0  /* the SVO's compacted leaf list */
-#define DYNGI_VCT_INJECT_BINDING_NODE_CELLS 1
-#define DYNGI_VCT_INJECT_BINDING_LEVELS 2
-#define DYNGI_VCT_INJECT_BINDING_ATTRIBUTES 3
-#define DYNGI_VCT_INJECT_BINDING_LIGHTS 4
-#define DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES 5
-#define DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS 6
-#define DYNGI_VCT_INJECT_BINDING_PREVIOUS 7
-#define DYNGI_VCT_INJECT_BINDING_DIRECT 8
-#define DYNGI_VCT_INJECT_BINDING_RADIANCE 9
+#define DYNGI_VCT_INJECT_BINDING_VOXEL_ATTRIBUTES 1
+#define DYNGI_VCT_INJECT_BINDING_LIGHTS 2
+#define DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES 3
+#define DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS 4
+#define DYNGI_VCT_INJECT_BINDING_PREVIOUS 5
+#define DYNGI_VCT_INJECT_BINDING_DIRECT 6
+#define DYNGI_VCT_INJECT_BINDING_RADIANCE 7
 // vct_bounce: one more bounce per occupied voxel (cones over the radiance volume), then vct_commit
 #define DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST 0  /* the SVO's compacted leaf list */
-#define DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS 1
-#define DYNGI_VCT_BOUNCE_BINDING_LEVELS 2
-#define DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES 3
-#define DYNGI_VCT_BOUNCE_BINDING_DIRECT 4
-#define DYNGI_VCT_BOUNCE_BINDING_RADIANCE 5
-#define DYNGI_VCT_BOUNCE_BINDING_ANISO 6
-#define DYNGI_VCT_BOUNCE_BINDING_OUT 7
+#define DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES 1
+#define DYNGI_VCT_BOUNCE_BINDING_DIRECT 2
+#define DYNGI_VCT_BOUNCE_BINDING_RADIANCE 3
+#define DYNGI_VCT_BOUNCE_BINDING_ANISO 4
+#define DYNGI_VCT_BOUNCE_BINDING_OUT 5
 // vct_mips: one level of the radiance mip chain (isotropic) or of the six-direction atlas
 #define DYNGI_VCT_MIPS_BINDING_SOURCE 0
 #define DYNGI_VCT_MIPS_BINDING_DEST 1
 #define DYNGI_VCT_MIPS_BINDING_SEEN 2
 // The anisotropic atlas is built over the SVO's occupied nodes only (the rest of it is cleared):
-#define DYNGI_VCT_MIPS_BINDING_NODES 3
-#define DYNGI_VCT_MIPS_BINDING_NODE_CELLS 4
-#define DYNGI_VCT_MIPS_BINDING_LEVELS 5
+#define DYNGI_VCT_MIPS_BINDING_NODE_CELLS 3
+#define DYNGI_VCT_MIPS_BINDING_LEVELS 4
 // vct_trace: the screen's cones; vct_upsample: to full resolution
 #define DYNGI_VCT_TRACE_BINDING_FRAME 0
 #define DYNGI_VCT_TRACE_BINDING_G_POSITION 1
@@ -436,7 +459,8 @@ struct TemporalQueue {
 #define DYNGI_SVO_MARK_PUSH uint firstChunk; uint depth;
 #define DYNGI_SVO_LEVEL_PUSH uint level; uint depth; /* the leaf level */
 #define DYNGI_SVO_EXPAND_PUSH uint level; uint depth; uint writeLeafList; /* 0: leaves counted, not listed (nothing walks the list) */
-#define DYNGI_SVO_LEAF_ATTRIBUTES_PUSH uint depth; uint leafCapacity; uint slots;
+#define DYNGI_SVO_LEAF_ATTRIBUTES_PUSH uint depth; uint leafCapacity; uint firstChunk; uint listLeaves; /* 1: append each leaf to the moving leaves */
+#define DYNGI_SVO_VOXEL_ATTRIBUTES_PUSH uint depth; uint leafCapacity;
 #define DYNGI_SVO_MARCH_PUSH                                                         \
   vec4 worldToVoxel; /* xyz origin, w 1 / voxel size */                            \
   uint count;                                                                      \
@@ -482,13 +506,11 @@ struct TemporalQueue {
   uint cones;        /* diffuse cones */
 #define DYNGI_VCT_INJECT_PUSH                                                        \
   vec4 volume;       /* xyz world origin, w voxel size */                          \
-  uint depth;                                                                      \
-  uint leafCapacity;                                                               \
   uint lightCount;                                                                 \
   uint history;      /* 1: PREVIOUS holds last frame's radiance */                \
   float temporalBlend;                                                             \
   float temporalResponse;
-#define DYNGI_VCT_BOUNCE_PUSH DYNGI_VCT_CONE_PARAMS uint depth; uint leafCapacity; uint commit; /* 0 trace, 1 copy OUT to RADIANCE */
+#define DYNGI_VCT_BOUNCE_PUSH DYNGI_VCT_CONE_PARAMS uint commit; /* 0 trace, 1 copy OUT to RADIANCE */
 #define DYNGI_VCT_MIPS_PUSH uint destSlabWidth; /* texels; the isotropic chain has one slab */ uint sourceSlabWidth; /* 0: one source slab */ \
   uint nodeLevel; /* anisotropic: the SVO level whose cells are this atlas level's texels */
 #define DYNGI_VCT_TRACE_PUSH DYNGI_VCT_CONE_PARAMS uint traceScale; uint specular; uint turnCones; /* 1: each traced pixel turns its cone set */ \
@@ -511,6 +533,7 @@ struct SvoMarkPush { DYNGI_SVO_MARK_PUSH };
 struct SvoLevelPush { DYNGI_SVO_LEVEL_PUSH };
 struct SvoExpandPush { DYNGI_SVO_EXPAND_PUSH };
 struct SvoLeafAttributesPush { DYNGI_SVO_LEAF_ATTRIBUTES_PUSH };
+struct SvoVoxelAttributesPush { DYNGI_SVO_VOXEL_ATTRIBUTES_PUSH };
 struct SvoMarchPush { DYNGI_SVO_MARCH_PUSH };
 struct VoxelDebugPush { DYNGI_VOXEL_DEBUG_PUSH };
 struct VplCdfRowsPush { DYNGI_VPL_CDF_ROWS_PUSH };
@@ -546,11 +569,11 @@ static_assert(sizeof(TemporalQueue) == 16);
 static_assert(sizeof(SvoLevel) == 32);
 static_assert(sizeof(SvoCounters) == 16);
 static_assert(sizeof(SvoMarkPush) == 8 && sizeof(SvoLevelPush) == 8 && sizeof(SvoExpandPush) == 12);
-static_assert(sizeof(SvoLeafAttributesPush) == 12 && sizeof(SvoMarchPush) == 32 && sizeof(VoxelDebugPush) == 28);
+static_assert(sizeof(SvoLeafAttributesPush) == 16 && sizeof(SvoVoxelAttributesPush) == 8 && sizeof(SvoMarchPush) == 32 && sizeof(VoxelDebugPush) == 28);
 static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && sizeof(VplSamplePush) == 16);
 static_assert(sizeof(VplTailPush) == 8 && sizeof(CompensatePush) == 20);
 static_assert(sizeof(VplBouncePush) == 44 && sizeof(ManyLightsDebugPush) == 12 && sizeof(IndirectFilterPush) == 4);
-static_assert(sizeof(VctInjectPush) == 40 && sizeof(VctBouncePush) == 52 && sizeof(VctMipsPush) == 12);
+static_assert(sizeof(VctInjectPush) == 32 && sizeof(VctBouncePush) == 44 && sizeof(VctMipsPush) == 12);
 static_assert(sizeof(VctTracePush) == 60 && sizeof(VctReprojectPush) == 84 && sizeof(VctUpsamplePush) == 4 && sizeof(VctFilterPush) == 16 && sizeof(VctDebugPush) == 48 && sizeof(VctProbePush) == 48);
 }  // namespace dyngi::gi::gpu
 #endif

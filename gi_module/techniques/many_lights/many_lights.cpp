@@ -47,8 +47,8 @@ ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const Man
   sample_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_sample_comp), sampleB, sizeof(gpu::VplSamplePush), "vpl_sample");
   const Binding bounceB[] = {{DYNGI_VPL_BOUNCE_BINDING_VPLS, kSSBO, kCS},
                              {DYNGI_VPL_BOUNCE_BINDING_NODES, kSSBO, kCS},
-                             {DYNGI_VPL_BOUNCE_BINDING_LEVELS, kSSBO, kCS},
-                             {DYNGI_VPL_BOUNCE_BINDING_ATTRIBUTES, kSSBO, kCS}};
+                             {DYNGI_VPL_BOUNCE_BINDING_NODE_CELLS, kSSBO, kCS},
+                             {DYNGI_VPL_BOUNCE_BINDING_VOXEL_ATTRIBUTES, kStorageImage, kCS}};
   bounce_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_bounce_comp), bounceB, sizeof(gpu::VplBouncePush), "vpl_bounce");
   const Binding tailB[] = {{DYNGI_VPL_TAIL_BINDING_VPLS, kSSBO, kCS}};
   tail_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_tail_comp), tailB, sizeof(gpu::VplTailPush), "vpl_tail");
@@ -296,8 +296,8 @@ bool ManyLights::record(render::FrameContext& frame) {
       DescriptorWrites()
           .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_VPLS, vpls_.handle())
           .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_NODES, voxels_.nodes().handle())
-          .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_LEVELS, voxels_.levels().handle())
-          .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_ATTRIBUTES, voxels_.leafAttributes().handle())
+          .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_NODE_CELLS, voxels_.nodeCells().handle())
+          .storageImage(DYNGI_VPL_BOUNCE_BINDING_VOXEL_ATTRIBUTES, voxels_.voxelAttributes().view())
           .push(ctx_, cmd, bounce_);
       const gpu::VplBouncePush pc{glm::vec4(vol.origin, 1.0f / vol.voxelSize), (b - 1) * perBounce_, perBounce_, b, vol.depth(),
                                   float(vol.resolution), settings_.vpl.liftVoxels, settings_.vpl.seed};

@@ -70,31 +70,24 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
   voxels_.enableLeafAttributes();  // albedo, normal and emission per voxel: what injection lights
 
   const Binding leafB[] = {{DYNGI_VCT_INJECT_BINDING_LEAF_LIST, kSSBO, kCS},
-                           {DYNGI_VCT_INJECT_BINDING_NODE_CELLS, kSSBO, kCS},
-                           {DYNGI_VCT_INJECT_BINDING_LEVELS, kSSBO, kCS},
-                           {DYNGI_VCT_INJECT_BINDING_ATTRIBUTES, kSSBO, kCS},
+                           {DYNGI_VCT_INJECT_BINDING_VOXEL_ATTRIBUTES, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_LIGHTS, kSSBO, kCS},
                            {DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES, kSSBO, kCS},
                            {DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_PREVIOUS, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_DIRECT, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_RADIANCE, kStorageImage, kCS}};
-  for (uint32_t emission : {0u, 1u}) {  // [1]: reads the leaves' emission (VoxelScene::fragmentsEmit)
-    const uint32_t spec[] = {emission};
-    inject_[emission] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_inject_comp), leafB, sizeof(gpu::VctInjectPush), "vct_inject", spec);
-  }
+  inject_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_inject_comp), leafB, sizeof(gpu::VctInjectPush), "vct_inject");
 
   const Binding mipsB[] = {{DYNGI_VCT_MIPS_BINDING_SOURCE, kStorageImage, kCS},     {DYNGI_VCT_MIPS_BINDING_DEST, kStorageImage, kCS},
-                           {DYNGI_VCT_MIPS_BINDING_SEEN, kStorageImage, kCS},       {DYNGI_VCT_MIPS_BINDING_NODES, kSSBO, kCS},
+                           {DYNGI_VCT_MIPS_BINDING_SEEN, kStorageImage, kCS},
                            {DYNGI_VCT_MIPS_BINDING_NODE_CELLS, kSSBO, kCS},         {DYNGI_VCT_MIPS_BINDING_LEVELS, kSSBO, kCS}};
-  const Binding bounceB[] = {{DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST, kSSBO, kCS},       {DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS, kSSBO, kCS},
-                             {DYNGI_VCT_BOUNCE_BINDING_LEVELS, kSSBO, kCS},      {DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES, kSSBO, kCS},
+  const Binding bounceB[] = {{DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST, kSSBO, kCS},
+                             {DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES, kStorageImage, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_DIRECT, kStorageImage, kCS}, {DYNGI_VCT_BOUNCE_BINDING_RADIANCE, kSampled, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_ANISO, kSampled, kCS},    {DYNGI_VCT_BOUNCE_BINDING_OUT, kStorageImage, kCS}};
   const Binding commitB[] = {{DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST, kSSBO, kCS},
-                             {DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS, kSSBO, kCS},
-                             {DYNGI_VCT_BOUNCE_BINDING_LEVELS, kSSBO, kCS},
-                             {DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES, kSSBO, kCS},
+                             {DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES, kStorageImage, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_DIRECT, kStorageImage, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_OUT, kStorageImage, kCS}};
   commit_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_commit_comp), commitB, sizeof(gpu::VctBouncePush), "vct_commit");
@@ -112,20 +105,27 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
                             {DYNGI_VCT_PROBE_BINDING_RADIANCE, kSampled, kCS},
                             {DYNGI_VCT_PROBE_BINDING_ANISO, kSampled, kCS},
                             {DYNGI_VCT_PROBE_BINDING_RESULTS, kSSBO, kCS}};
-  // Variants by specialization constant (lavapipe runs both sides of a branch): anisotropic or not, and
-  // for the trace, with the specular cone or without.
+  // Variants by specialization constant (lavapipe runs both sides of a branch): anisotropic or not; for
+  // the passes that march cones in a frame (and the probe that tests them), with the unit step or
+  // another; for the trace, with the specular cone or without.
   for (uint32_t aniso : {0u, 1u}) {
     const uint32_t spec[] = {aniso};
     const uint32_t mipsSpec[] = {aniso, 0u, 0u, 0u};
     mips_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", mipsSpec);
-    bounce_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_bounce_comp), bounceB, sizeof(gpu::VctBouncePush), "vct_bounce", spec);
     debug_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_debug_comp), debugB, sizeof(gpu::VctDebugPush), "vct_debug", spec);
-    probe_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_cone_probe_comp), probeB, sizeof(gpu::VctProbePush), "vct_cone_probe", spec);
-    for (uint32_t specular : {0u, 1u}) {
-      const uint32_t traceSpec[] = {aniso, specular};
-      trace_[aniso + 2 * specular] =
-          Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_trace_comp), traceB, sizeof(gpu::VctTracePush), "vct_trace", traceSpec);
+    for (uint32_t unitStep : {0u, 1u}) {
+      const uint32_t coneSpec[] = {aniso, 0u, unitStep};  // constant 1 is not theirs; 2 is vct_cone.glsl's kVctUnitStep
+      bounce_[aniso + 2 * unitStep] =
+          Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_bounce_comp), bounceB, sizeof(gpu::VctBouncePush), "vct_bounce", coneSpec);
+      probe_[aniso + 2 * unitStep] =
+          Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_cone_probe_comp), probeB, sizeof(gpu::VctProbePush), "vct_cone_probe", coneSpec);
     }
+    for (uint32_t specular : {0u, 1u})
+      for (uint32_t unitStep : {0u, 1u}) {
+        const uint32_t traceSpec[] = {aniso, specular, unitStep};  // vct_trace.comp's, then vct_cone.glsl's kVctUnitStep
+        trace_[aniso + 2 * specular + 4 * unitStep] =
+            Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_trace_comp), traceB, sizeof(gpu::VctTracePush), "vct_trace", traceSpec);
+      }
   }
   // The atlas' first level: from the direct radiance alone (before a bounce is added to level 0), or from
   // level 0 with the direct radiance's alpha (after).
@@ -254,19 +254,15 @@ void VoxelConeTracing::recordLeafPass(VkCommandBuffer cmd, const Pipeline& pipel
                                       DescriptorWrites& writes) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
   writes.storageBuffer(DYNGI_VCT_INJECT_BINDING_LEAF_LIST, voxels_.leafList().handle())
-      .storageBuffer(DYNGI_VCT_INJECT_BINDING_NODE_CELLS, voxels_.nodeCells().handle())
-      .storageBuffer(DYNGI_VCT_INJECT_BINDING_LEVELS, voxels_.levels().handle())
-      .storageBuffer(DYNGI_VCT_INJECT_BINDING_ATTRIBUTES, voxels_.leafAttributes().handle())
+      .storageImage(DYNGI_VCT_INJECT_BINDING_VOXEL_ATTRIBUTES, voxels_.voxelAttributes().view())
       .push(ctx_, cmd, pipeline);
   vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, pushBytes, push);
   vkCmdDispatchIndirect(cmd, voxels_.leafList().handle(), 0);  // the list's header: its dispatch
   render::computeWriteBarrier(cmd);
 }
 static_assert(DYNGI_VCT_INJECT_BINDING_LEAF_LIST == DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST &&
-                  DYNGI_VCT_INJECT_BINDING_NODE_CELLS == DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS &&
-                  DYNGI_VCT_INJECT_BINDING_LEVELS == DYNGI_VCT_BOUNCE_BINDING_LEVELS &&
-                  DYNGI_VCT_INJECT_BINDING_ATTRIBUTES == DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES,
-              "the passes over leaves share their first four bindings (recordLeafPass)");
+                  DYNGI_VCT_INJECT_BINDING_VOXEL_ATTRIBUTES == DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES,
+              "the passes over leaves share their first two bindings (recordLeafPass)");
 
 uint64_t VoxelConeTracing::clearStale(VkCommandBuffer cmd, Image& img, uint32_t mip, const StaleVoxels& stale, uint32_t shift, uint32_t slabs) {
   // Zeros copied into a box cost lavapipe about what clearing as many texels does (session 23: a box of
@@ -313,7 +309,6 @@ void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect) {
         .storageImage(DYNGI_VCT_MIPS_BINDING_SOURCE, source)
         .storageImage(DYNGI_VCT_MIPS_BINDING_DEST, dest)
         .storageImage(DYNGI_VCT_MIPS_BINDING_SEEN, direct_[current_].view())
-        .storageBuffer(DYNGI_VCT_MIPS_BINDING_NODES, voxels_.nodes().handle())
         .storageBuffer(DYNGI_VCT_MIPS_BINDING_NODE_CELLS, voxels_.nodeCells().handle())
         .storageBuffer(DYNGI_VCT_MIPS_BINDING_LEVELS, voxels_.levels().handle())
         .push(ctx_, cmd, p);
@@ -339,7 +334,7 @@ void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect) {
     const uint32_t slab = std::max((res_ / 2) >> m, 1u), nodeLevel = depth - 1 - m;
     const VkImageView source = m > 0 ? aniso_.mipView(m - 1) : (levelZeroIsDirect ? direct_[current_].view() : radiance_.mipView(0));
     bind(mips_[m > 0 ? 1 : (levelZeroIsDirect ? 4 : 3)], source, aniso_.mipView(m), {slab, m == 0 ? 0u : 2 * slab, nodeLevel});
-    vkCmdDispatchIndirect(cmd, voxels_.levels().handle(), levelDispatchOffset(nodeLevel));
+    vkCmdDispatchIndirect(cmd, voxels_.levels().handle(), levelDispatchOffset(nodeLevel + 1));  // its nodes' child groups
     render::computeWriteBarrier(cmd);
   }
 }
@@ -363,7 +358,6 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   for (Image* out : {&t.indirect, &t.specular})
     out->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 
-  const uint32_t depth = voxels_.volume().depth();
   const bool aniso = options_.anisotropic;
   const VoxelVolume& vol = voxels_.volume();
   // A volume moved or resized (VoxelScene::setVolume) makes last frame's radiance belong elsewhere: no
@@ -384,11 +378,13 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "inject");
     stats_.clearedVoxels = clearStale(cmd, radiance_, 0, staleNow, 0, 1);
     clearStale(cmd, direct_[current_], 0, staleForDirect, 0, 1);
+    // The atlas' boxes too (level m's texels are 2^(m + 1) voxels wide): nothing reads it before the
+    // mips, and one barrier serves all the clears.
+    if (aniso)
+      for (uint32_t m = 0; m < aniso_.desc().mips; ++m) clearStale(cmd, aniso_, m, staleNow, m + 1, DYNGI_VCT_SLABS);
     render::computeWriteBarrier(cmd);
     gpu::VctInjectPush pc{};
     pc.volume = glm::vec4(vol.origin, vol.voxelSize);
-    pc.depth = depth;
-    pc.leafCapacity = uint32_t(voxels_.leafCapacity());
     pc.lightCount = frame.lights.count;
     pc.history = frames_ > 0 && options_.temporalBlend > 0.0f ? 1u : 0u;
     pc.temporalBlend = options_.temporalBlend;
@@ -400,16 +396,11 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
         .storageImage(DYNGI_VCT_INJECT_BINDING_PREVIOUS, direct_[previous].view())
         .storageImage(DYNGI_VCT_INJECT_BINDING_DIRECT, direct_[current_].view())
         .storageImage(DYNGI_VCT_INJECT_BINDING_RADIANCE, radiance_.mipView(0));
-    recordLeafPass(cmd, inject_[voxels_.fragmentsEmit() ? 1 : 0], &pc, sizeof(pc), w);
+    recordLeafPass(cmd, inject_, &pc, sizeof(pc), w);
     stats_.injected = true;
   }
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "mips");
-    if (aniso) {
-      // Level m's texels are 2^(m+1) voxels wide.
-      for (uint32_t m = 0; m < aniso_.desc().mips; ++m) clearStale(cmd, aniso_, m, staleNow, m + 1, DYNGI_VCT_SLABS);
-      render::computeWriteBarrier(cmd);
-    }
     recordMips(cmd, /*levelZeroIsDirect=*/true);
   }
   const VkImageView anisoView = aniso ? aniso_.view() : radiance_.view();  // bound either way; read when anisotropic
@@ -418,14 +409,12 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
     for (uint32_t b = 1; b < options_.bounces; ++b) {
       gpu::VctBouncePush pc{};
       fillConeParams(pc);
-      pc.depth = depth;
-      pc.leafCapacity = uint32_t(voxels_.leafCapacity());
       DescriptorWrites w;
       w.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, direct_[current_].view())
           .sampledImage(DYNGI_VCT_BOUNCE_BINDING_RADIANCE, radiance_.view(), sampler_)
           .sampledImage(DYNGI_VCT_BOUNCE_BINDING_ANISO, anisoView, sampler_)
           .storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, bounced_.view());
-      recordLeafPass(cmd, bounce_[aniso ? 1 : 0], &pc, sizeof(pc), w);
+      recordLeafPass(cmd, bounce_[(aniso ? 1 : 0) + 2 * unitStep()], &pc, sizeof(pc), w);
       DescriptorWrites c;
       c.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, bounced_.view()).storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, radiance_.mipView(0));
       recordLeafPass(cmd, commit_, &pc, sizeof(pc), c);
@@ -447,7 +436,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   stats_.traceHeight = traced.diffuse.desc().height;
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "trace");
-    const Pipeline& p = trace_[(aniso ? 1 : 0) + (options_.specular ? 2 : 0)];
+    const Pipeline& p = trace_[(aniso ? 1 : 0) + (options_.specular ? 2 : 0) + 4 * unitStep()];
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
     DescriptorWrites()
         .uniformBuffer(DYNGI_VCT_TRACE_BINDING_FRAME, frame.frameUniforms.handle())
@@ -537,7 +526,9 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
         .push(ctx_, cmd, upsample_);
     const gpu::VctUpsamplePush pc{scale};
     vkCmdPushConstants(cmd, upsample_.layout(), kCS, 0, sizeof(pc), &pc);
-    vkCmdDispatch(cmd, dispatchGroups(t.width, 8), dispatchGroups(t.height, 8), 1);
+    // One invocation per block of scale x scale pixels sharing their traced neighbours: a block left of
+    // and above the first traced pixel, then one per traced pixel.
+    vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth + 1, 8), dispatchGroups(stats_.traceHeight + 1, 8), 1);
     render::computeWriteBarrier(cmd);
   }
   ++frames_;
@@ -579,7 +570,7 @@ std::vector<glm::vec4> VoxelConeTracing::probeCones(const std::vector<std::pair<
   rayBuf.upload(packed.data(), packed.size() * sizeof(glm::vec4));
   Buffer out(ctx_, rays.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "vct probe results");
   const bool aniso = options_.anisotropic;
-  const Pipeline& p = probe_[aniso ? 1 : 0];
+  const Pipeline& p = probe_[(aniso ? 1 : 0) + 2 * unitStep()];  // the trace's variant
   ctx_.immediate([&](VkCommandBuffer cmd) {
     for (Image* img : {&radiance_, &aniso_})
       if (img->valid()) img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);

@@ -1,35 +1,84 @@
-// A leaf's averaged attributes from svo_leaf_attributes.comp's sums (DYNGI_LEAF_* in gi_gpu_types.h):
-// the one decoder every reader of the attribute buffer uses. The includer declares `uint attributes[]`,
-// and may define DYNGI_LEAF_READ_EMISSION to a specialization constant that is false when no fragment emits
-// (VoxelScene::fragmentsEmit): the emission words are then not read (lavapipe reads what a branch skips).
+// Voxel attributes: the leaf sums svo_leaf_attributes.comp makes (DYNGI_LEAF_* in gi_gpu_types.h) and the
+// voxel attributes image they end in (DYNGI_SVO_VOXEL_ATTRIBUTES in gi_gpu_types.h): the one encoder and
+// decoder of both (C++ twin for the tests: VoxelProbe::checkLeafAttributes). Readers of an occupied
+// voxel's attributes declare `uimage3D voxelAttributes` (rgba32ui) and call voxelAttributesAt(voxel); the
+// passes that write the image declare `uvec4 sums[]` (the leaf sums) too.
 #ifndef DYNGI_LEAF_ATTRIBUTES_GLSL
 #define DYNGI_LEAF_ATTRIBUTES_GLSL
-#ifndef DYNGI_LEAF_READ_EMISSION
-#define DYNGI_LEAF_READ_EMISSION true
-#endif
 
 struct LeafAttributes {
-  uint count;        // fragments in the leaf; 0: none (an empty slot)
+  uint count;        // fragments in the voxel (up to 255); 0: none
   vec3 albedo;
   vec3 normalSum;    // mean of the fragments' unit normals: short where they disagree (both sides of a thin wall)
   vec3 emission;     // mean over the emitting fragments
 };
 
-LeafAttributes leafAttributes(uint leaf) {
-  uint base = leaf * DYNGI_LEAF_ATTRIBUTE_INTS;
+// Sums over some of a voxel's fragments: `summed` of them for the albedo and the normal, `emitters` for
+// the emission.
+struct LeafSums {
+  uint count;
+  float summed;
+  vec3 albedo;
+  vec3 normal;
+  float emitters;
+  vec3 emission;
+};
+
+// Sums as a texel of the voxel attributes image holds them (means and counts).
+LeafSums unpackSums(uvec4 t) {
+  LeafSums s;
+  s.count = t.x >> 24;
+  s.summed = float(s.count);
+  s.albedo = unpackUnorm4x8(t.x).rgb * s.summed;
+  s.normal = unpackSnorm4x8(t.y).xyz * s.summed;
+  s.emitters = float(t.y >> 24);
+  s.emission = vec3(unpackHalf2x16(t.z), unpackHalf2x16(t.w).x) * s.emitters;
+  return s;
+}
+
+uvec4 packSums(LeafSums s) {
+  float n = max(s.summed, 1.0);
+  vec3 e = min(s.emission / max(s.emitters, 1.0), vec3(65000.0));
+  return uvec4((packUnorm4x8(vec4(s.albedo / n, 0.0)) & 0xFFFFFFu) | (uint(min(s.summed, 255.0)) << 24),
+               (packSnorm4x8(vec4(s.normal / n, 0.0)) & 0xFFFFFFu) | (uint(min(s.emitters, 255.0)) << 24), packHalf2x16(e.rg),
+               packHalf2x16(vec2(e.b, 0.0)));
+}
+
+// The attributes of the occupied voxel at `voxel` (count 0: none there).
+LeafAttributes voxelAttributesAt(ivec3 voxel) {
+  LeafSums s = unpackSums(imageLoad(voxelAttributes, voxel));
   LeafAttributes a;
-  a.count = attributes[base + DYNGI_LEAF_COUNT];
-  float summed = float(clamp(a.count, 1u, DYNGI_LEAF_MAX_FRAGMENTS));
-  uint rg = attributes[base + DYNGI_LEAF_ALBEDO_RG], bx = attributes[base + DYNGI_LEAF_ALBEDO_B_NORMAL_X],
-       yz = attributes[base + DYNGI_LEAF_NORMAL_YZ];
-  a.albedo = vec3(rg & 0xFFFFu, rg >> 16, bx & 0xFFFFu) / (255.0 * summed);
-  a.normalSum = (vec3(bx >> 16, yz & 0xFFFFu, yz >> 16) / summed - 127.0) / 127.0;
-  a.emission = vec3(0.0);
-  if (DYNGI_LEAF_READ_EMISSION) {
-    uint e = base + DYNGI_LEAF_EMISSION;
-    a.emission = vec3(attributes[e], attributes[e + 1u], attributes[e + 2u]) /
-                 (DYNGI_LEAF_EMISSION_SCALE * max(float(attributes[base + DYNGI_LEAF_EMITTERS]), 1.0));
-  }
+  a.count = s.count;
+  a.albedo = s.albedo / max(s.summed, 1.0);
+  a.normalSum = s.normal / max(s.summed, 1.0);
+  a.emission = s.emission / max(s.emitters, 1.0);
+  return a;
+}
+
+#ifdef DYNGI_LEAF_SUMS
+// Leaf `leaf`'s sums from the attribute pass (two uvec4s: lavapipe pays per load, not per byte).
+LeafSums leafSums(uint leaf) {
+  uvec4 w = sums[2u * leaf];  // count, albedo rg, albedo b | normal x, normal yz
+  uvec4 e = sums[2u * leaf + 1u];  // emission rgb, emitters
+  LeafSums s;
+  s.count = w[DYNGI_LEAF_COUNT];
+  s.summed = float(min(s.count, DYNGI_LEAF_MAX_FRAGMENTS));
+  uint rg = w[DYNGI_LEAF_ALBEDO_RG], bx = w[DYNGI_LEAF_ALBEDO_B_NORMAL_X], yz = w[DYNGI_LEAF_NORMAL_YZ];
+  s.albedo = vec3(rg & 0xFFFFu, rg >> 16, bx & 0xFFFFu) / 255.0;
+  s.normal = (vec3(bx >> 16, yz & 0xFFFFu, yz >> 16) - 127.0 * s.summed) / 127.0;
+  s.emission = vec3(e[DYNGI_LEAF_EMISSION - 4u], e[DYNGI_LEAF_EMISSION - 3u], e[DYNGI_LEAF_EMISSION - 2u]) / DYNGI_LEAF_EMISSION_SCALE;
+  s.emitters = float(e[DYNGI_LEAF_EMITTERS - 4u]);
+  return s;
+}
+#endif
+
+LeafSums addSums(LeafSums a, LeafSums b) {
+  a.count += b.count;
+  a.summed += b.summed;
+  a.albedo += b.albedo;
+  a.normal += b.normal;
+  a.emitters += b.emitters;
+  a.emission += b.emission;
   return a;
 }
 

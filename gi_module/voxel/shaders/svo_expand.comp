@@ -14,7 +14,7 @@ layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_NODE_CELLS) buffer NodeCells 
 layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_OCCUPANCY) readonly buffer Occupancy { uint occupancy[]; };
 layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_COUNTERS) buffer Counters { SvoCounters counters; };
-// The occupied leaves' node indices after DYNGI_SVO_LEAF_LIST_HEADER uints (gi_gpu_types.h): appended by
+// The occupied leaves (node index, cell) after DYNGI_SVO_LEAF_LIST_HEADER uints (gi_gpu_types.h): appended by
 // the expand of the level above the leaves, as many as the leaf counter counts.
 layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_LEAF_LIST) writeonly buffer LeafList { uint leafList[]; };
 layout(push_constant) uniform Push { DYNGI_SVO_EXPAND_PUSH };
@@ -29,17 +29,17 @@ void expand(uint node) {
   bool want = nodes[node] == DYNGI_SVO_FLAG;  // occupied, not yet subdivided
   uint g;
   DYNGI_SUBGROUP_APPEND(counters.groups.x, want, g)
-  uint leaves = 0u, children = 0u;
+  uint leaves = 0u, children = 0u, code = 0u;
   if (want && g >= counters.groups.y) {
     counters.groups.z = 1u;  // overflow: the node stays flagged without children (treated as occupied)
   } else if (want) {
-    uint code = nodeCells[node];
+    code = nodeCells[node];
     children = childOccupancy(level, code);
     bool childrenAreLeaves = level + 1u == depth;
     for (uint c = 0u; c < 8u; ++c) {
       bool o = ((children >> c) & 1u) != 0u;
       nodes[8u * g + c] = o ? DYNGI_SVO_FLAG : 0u;
-      if (o) nodeCells[8u * g + c] = 8u * code + c;
+      nodeCells[8u * g + c] = 8u * code + c;  // empty siblings too: a group's first cell names its parent
     }
     if (childrenAreLeaves) leaves = bitCount(children);
     nodes[node] = DYNGI_SVO_FLAG | g;
@@ -47,9 +47,12 @@ void expand(uint node) {
   // The leaves into the list, one atomic per subgroup (as DYNGI_SUBGROUP_APPEND, for counts).
   uint subgroupLeaves = subgroupAdd(leaves), first = subgroupExclusiveAdd(leaves), base = 0u;
   if (subgroupLeaves > 0u && subgroupElect()) base = atomicAdd(counters.groups.w, subgroupLeaves);
-  base = subgroupBroadcastFirst(base) + first + DYNGI_SVO_LEAF_LIST_HEADER;
+  base = DYNGI_SVO_LEAF_LIST_HEADER + DYNGI_SVO_LEAF_ENTRY_UINTS * (subgroupBroadcastFirst(base) + first);
   for (uint c = 0u; c < 8u && leaves > 0u && writeLeafList != 0u; ++c)
-    if (((children >> c) & 1u) != 0u && base < uint(leafList.length())) leafList[base++] = 8u * g + c;
+    if (((children >> c) & 1u) != 0u && base + 1u < uint(leafList.length())) {
+      leafList[base++] = 8u * g + c;
+      leafList[base++] = 8u * code + c;
+    }
 }
 
 void main() {

@@ -27,7 +27,7 @@ void main() {
   levels[level].dispatch = uvec4((levels[level].range.y + perGroup - 1u) / perGroup, 1u, 1u, 0u);
   if (level == depth) {
     // The leaf level: the list of occupied leaves is complete (the level above appended them).
-    uint count = min(counters.groups.w, uint(leafList.length()) - DYNGI_SVO_LEAF_LIST_HEADER);
+    uint count = min(counters.groups.w, (uint(leafList.length()) - DYNGI_SVO_LEAF_LIST_HEADER) / DYNGI_SVO_LEAF_ENTRY_UINTS);
     leafList[0] = (count + perGroup - 1u) / perGroup;
     leafList[1] = 1u;
     leafList[2] = 1u;

@@ -8,11 +8,12 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
-layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_ATTRIBUTES) readonly buffer Attributes { uint attributes[]; };
+layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
+layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_VOXEL_ATTRIBUTES, rgba32ui) uniform readonly uimage3D voxelAttributes;
 layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_OUT_HDR, rgba32f) uniform writeonly image2D outHdr;
 #include "svo_traverse.glsl"
 #include "leaf_attributes.glsl"
+#include "svo_morton.glsl"
 layout(push_constant) uniform Push { DYNGI_VOXEL_DEBUG_PUSH };
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
@@ -29,8 +30,7 @@ void main() {
     float s = clamp(float(steps) / 64.0, 0.0, 1.0);
     color = vec3(s, 0.2 * (1.0 - abs(2.0 * s - 1.0)), 1.0 - s) * 0.6;
   } else if (node != 0xFFFFFFFFu) {
-    uint leaf = node - levels[depth].range.x;
-    LeafAttributes attr = leafAttributes(leaf);
+    LeafAttributes attr = voxelAttributesAt(svoCellOfMortonCode(nodeCells[node]));
     vec3 n = attr.normalSum;
     float lambert = length(n) > 0.0 ? abs(dot(normalize(n), dirWorld)) : 1.0;
     color = attr.albedo * (0.25 + 0.75 * lambert) * 0.8 + attr.emission;

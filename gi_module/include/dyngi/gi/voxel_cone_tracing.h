@@ -42,6 +42,9 @@ class VoxelConeTracing final : public render::RenderFeature {
   // The trace resolution divisor in use: the options' (or the automatic one for the render size) times a
   // GI budget's factor, at most kMaxTraceScale.
   uint32_t traceScale() const;
+  // 1 at the unit step (the default): the cone passes' variant without a pow() a step (vct_cone.glsl's
+  // kVctUnitStep); 0 at any other step. Their pipeline arrays put the unit-step variants in the upper half.
+  uint32_t unitStep() const { return options_.stepScale == 1.0f ? 1u : 0u; }
   // Drops the traced pixels' values kept from earlier frames (traceFrames > 1): the next frame uses only
   // what it traces, every pixel. For changes that make them wrong at once: a light switched, an emission
   // changed, a jump (VctTechnique::update decides).
@@ -110,7 +113,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   bool traceHistory_ = false;      // traced_[last] holds last frame's pixels, valid to reproject
   glm::mat4 previousViewProj_{1.0f};
   VkSampler sampler_ = VK_NULL_HANDLE;
-  render::Pipeline inject_[2], mips_[5], bounce_[2], commit_, trace_[4], reproject_, filter_, upsample_, debug_[2], probe_[2];
+  render::Pipeline inject_, mips_[5], bounce_[4], commit_, trace_[8], reproject_, filter_, upsample_, debug_[2], probe_[4];
   VctFrameStats stats_;
 };
 

@@ -90,11 +90,14 @@ class VoxelScene final : public render::RenderFeature {
 
   // GPU buffers for other stages (visibility march, debug view, cone tracing later).
   const render::Buffer& nodes() const;
-  const render::Buffer& leafAttributes() const { return attributes_; }
+  // Each occupied voxel's mean albedo, normal and emission (DYNGI_SVO_VOXEL_ATTRIBUTES in gi_gpu_types.h,
+  // read through voxel/shaders/leaf_attributes.glsl): an rgba32ui 3D image over the volume, 16 bytes a
+  // voxel, in VK_IMAGE_LAYOUT_GENERAL; one texel while the leaf attributes are off.
+  const render::Image& voxelAttributes() const { return voxelAttributes_; }
   const render::Buffer& levels() const;
   // Per node, its cell's Morton code at its level (leaves included): where a leaf sits in the volume.
   const render::Buffer& nodeCells() const;
-  // The occupied leaves, compacted: their node indices after a header of DYNGI_SVO_LEAF_LIST_HEADER uints
+  // The occupied leaves, compacted: (node index, cell) pairs after a header of DYNGI_SVO_LEAF_LIST_HEADER uints
   // (indirect dispatch args, count). What passes over the leaves walk; built with the leaf attributes
   // (enableLeafAttributes), whose readers they are.
   const render::Buffer& leafList() const;
@@ -141,7 +144,9 @@ class VoxelScene final : public render::RenderFeature {
   std::unordered_set<ecs::Entity> emittingEntities_;  // voxelized with an emissive material
   bool staleEverywhere_ = false;
 
-  render::Buffer fragments_, counters_, attributes_;
+  render::Buffer fragments_, counters_;
+  render::Buffer attributes_;  // the leaf sums a build makes (scratch, zero between builds): DYNGI_LEAF_* in gi_gpu_types.h
+  render::Image voxelAttributes_;
   uint64_t attributeLeaves_ = 0;  // leaf slots the attribute buffer holds
   uint64_t frameIndex_ = 0;
   // One voxelize pipeline per material kind (base-colour / emissive texture or not), made on first use:

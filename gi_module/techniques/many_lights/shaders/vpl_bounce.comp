@@ -6,10 +6,11 @@
 layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_VPLS) buffer Vpls { GpuVpl vpls[]; };
 layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
-layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_ATTRIBUTES) readonly buffer Attributes { uint attributes[]; };
+layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
+layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_VOXEL_ATTRIBUTES, rgba32ui) uniform readonly uimage3D voxelAttributes;
 #include "svo_traverse.glsl"
 #include "leaf_attributes.glsl"
+#include "svo_morton.glsl"
 layout(push_constant) uniform Push { DYNGI_VPL_BOUNCE_PUSH };
 
 float halton(uint i, uint base) {
@@ -56,8 +57,7 @@ void main() {
   uint steps;
   uint node = svoFirstHit(o, dir, 0.0, 1e30, depth, res, tHit, steps);
   if (node != 0xFFFFFFFFu) {
-    uint leaf = node - levels[depth].range.x;
-    LeafAttributes attr = leafAttributes(leaf);
+    LeafAttributes attr = voxelAttributesAt(svoCellOfMortonCode(nodeCells[node]));
     vec3 albedo = attr.albedo;
     vec3 vn = attr.normalSum;
     vn = length(vn) > 0.0 ? normalize(vn) : -dir;

@@ -7,10 +7,8 @@
 #include "shared/gi_gpu_types.h"
 layout(local_size_x = 64) in;
 layout(constant_id = 0) const bool kAnisotropic = false;
-layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST) readonly buffer LeafList { uint leafList[]; };
-layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
-layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_ATTRIBUTES) readonly buffer Attributes { uint attributes[]; };
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST) readonly buffer LeafList { uvec4 header; uvec2 entries[]; } leafList;
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES, rgba32ui) uniform readonly uimage3D voxelAttributes;
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_DIRECT, rgba16f) uniform readonly image3D direct;
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_RADIANCE) uniform sampler3D vctRadiance;
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_ANISO) uniform sampler3D vctAniso;

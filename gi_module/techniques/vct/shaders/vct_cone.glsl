@@ -5,6 +5,7 @@
 // The includer declares, before including:
 //   the push members of DYNGI_VCT_CONE_PARAMS (res, maxDistance, aoDistance, coneOffset, stepScale, ...)
 //   layout(constant_id = 0) const bool kAnisotropic
+// and keeps specialization constant 2 free: it is kVctUnitStep below.
 //   uniform sampler3D vctRadiance;  level 0 and (isotropic) its mip chain: premultiplied radiance, opacity
 //   uniform sampler3D vctAniso;     (anisotropic) the six-direction atlas of half resolution, with mips
 #ifndef DYNGI_VCT_CONE_GLSL
@@ -39,7 +40,7 @@ vec4 vctSampleCoarse(vec3 p, float mip, vec3 dir) {
   vec3 uvw = p / res;
   if (!kAnisotropic) return textureLod(vctRadiance, uvw, mip);
   float lod = max(mip - 1.0, 0.0);
-  float clampHalf = exp2(ceil(lod)) / res;  // half a texel of the coarser level, in uvw of the slab
+  float clampHalf = ldexp(1.0, int(ceil(lod))) / res;  // half a texel of the coarser level, in uvw of the slab (a power of two: no exp2)
   vec3 w = dir * dir;
   vec4 sx = vctAnisoSlab(uvw, lod, 0u, dir.x < 0.0, clampHalf), sy = vctAnisoSlab(uvw, lod, 1u, dir.y < 0.0, clampHalf),
        sz = vctAnisoSlab(uvw, lod, 2u, dir.z < 0.0, clampHalf);
@@ -62,10 +63,15 @@ float vctInside(vec3 p, float diameter) {
   return clamp(1.0 - max(beyond.x, max(beyond.y, beyond.z)) / diameter, 0.0, 1.0);
 }
 
+// stepScale is 1 (the default step): a step's opacity is its sample's, without the pow() (a log2 and an
+// exp2, polynomials on lavapipe, in every step). Set by the trace, the bounce and the test probe
+// (VoxelConeTracing) at the unit step; false elsewhere.
+layout(constant_id = 2) const bool kVctUnitStep = false;
+
 // One step of the front-to-back accumulation with sample s over stepScale footprints: opacity
 // 1 - (1 - a)^stepScale, the colour scaled alike; occlusion (AO) weighted by 1 - t / aoDistance.
 void vctAccumulate(vec4 s, float t, inout vec3 colour, inout float alpha, inout float occlusion) {
-  float a = 1.0 - pow(max(1.0 - s.a, 0.0), stepScale);
+  float a = kVctUnitStep ? clamp(s.a, 0.0, 1.0) : 1.0 - pow(max(1.0 - s.a, 0.0), stepScale);
   vec3 c = s.a > 1e-6 ? s.rgb * (a / s.a) : vec3(0.0);
   colour += (1.0 - alpha) * c;
   occlusion += (1.0 - occlusion) * a * max(1.0 - t / aoDistance, 0.0);
@@ -89,9 +95,24 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, out 
   float t = coneOffset;
   bool done = false;
   int i = 0;
-  // Two loops, the first while the footprint is under 2 voxels (level 0 blended in), the second with the
-  // coarse levels only: lavapipe would pay for a level-0 fetch in every step of a single loop.
+  // Three loops: while the footprint is one voxel (level 0 alone), while it is under 2 voxels (level 0
+  // blended with the atlas), then with the coarse levels only: lavapipe pays for every fetch a step's
+  // code holds, whatever its weight (a single loop would fetch level 0 in every step, and the first steps'
+  // three atlas slabs would count for nothing). Every lane of a cone's loop takes the same footprints: a
+  // cone's width and rise do not depend on the pixel.
   for (; i < kVctMaxSteps; ++i) {
+    float diameter = max(1.0, min(2.0 * tanHalf * t, kVctSurfaceClearance * (coneOffset + rise * t)));
+    if (diameter > 1.0) break;
+    vec3 p = origin + t * dir;
+    float inside = vctInside(p, diameter);
+    vctAccumulate(inside * (kAnisotropic ? textureLod(vctRadiance, p / res, 0.0) : vctSampleCoarse(p, 0.0, dir)), t, colour, alpha, occlusion);
+    t += stepScale * diameter;
+    if (alpha >= 0.99 || t > reach || inside <= 0.0) {
+      done = true;
+      break;
+    }
+  }
+  for (; !done && i < kVctMaxSteps; ++i) {
     float diameter = max(1.0, min(2.0 * tanHalf * t, kVctSurfaceClearance * (coneOffset + rise * t)));
     if (diameter >= 2.0) break;
     vec3 p = origin + t * dir;

@@ -10,13 +10,8 @@
 #include "shared/gi_gpu_types.h"
 #include "shared/lighting.glsl"
 layout(local_size_x = 64) in;
-// False when no fragment emits (VoxelScene::fragmentsEmit): the leaves' emission is not read.
-layout(constant_id = 0) const bool kLeafEmission = true;
-#define DYNGI_LEAF_READ_EMISSION kLeafEmission
-layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_LEAF_LIST) readonly buffer LeafList { uint leafList[]; };
-layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
-layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
-layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_ATTRIBUTES) readonly buffer Attributes { uint attributes[]; };
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_LEAF_LIST) readonly buffer LeafList { uvec4 header; uvec2 entries[]; } leafList;
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_VOXEL_ATTRIBUTES, rgba32ui) uniform readonly uimage3D voxelAttributes;
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES) readonly buffer ShadowMatrices { mat4 shadowViewProj[]; };
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, r32f) uniform readonly image2DArray shadowMaps;

@@ -1,12 +1,12 @@
 // The occupied voxels (the SVO's leaves) as the VCT passes over them see them: a leaf's voxel from its
-// cell's Morton code, its averaged attributes (DYNGI_LEAF_* in gi_gpu_types.h). The includer declares
-// `leafList` (the SVO's compacted occupied leaves), `nodeCells`, `levels`, `attributes` and the push
-// members `depth`, `leafCapacity`.
+// cell's Morton code, its averaged attributes from the voxel attributes image (leaf_attributes.glsl). The
+// includer declares `leafList` (the SVO's compacted occupied leaves: `{ uvec4 header; uvec2 entries[]; }
+// leafList`) and `voxelAttributes`.
 #ifndef DYNGI_VCT_LEAVES_GLSL
 #define DYNGI_VCT_LEAVES_GLSL
 
 #include "leaf_attributes.glsl"
-#include "vct_cells.glsl"
+#include "svo_morton.glsl"
 
 struct VctLeaf {
   ivec3 voxel;
@@ -17,13 +17,10 @@ struct VctLeaf {
 
 // Entry k of the leaf list (0 .. its count); false past the count (or for a leaf without fragments).
 bool vctLeaf(uint k, out VctLeaf leaf) {
-  if (k >= leafList[3]) return false;
-  uint node = leafList[DYNGI_SVO_LEAF_LIST_HEADER + k];
-  uint i = node - levels[depth].range.x;  // its slot in the leaf level: the attributes' index
-  if (i >= leafCapacity) return false;
-  LeafAttributes a = leafAttributes(i);
+  if (k >= leafList.header.w) return false;
+  leaf.voxel = svoCellOfMortonCode(leafList.entries[k].y);
+  LeafAttributes a = voxelAttributesAt(leaf.voxel);
   if (a.count == 0u) return false;
-  leaf.voxel = vctCellOf(nodeCells[node]);
   leaf.albedo = a.albedo;
   leaf.normalSum = a.normalSum;
   leaf.emission = a.emission;

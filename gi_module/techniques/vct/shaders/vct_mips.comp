@@ -7,10 +7,12 @@
 // along its normal at every level instead of fading to 1/2, 1/4, ... (Crassin et al. 2011).
 // The atlas is written only at the texels of occupied SVO nodes (one invocation per node writes its
 // texel in all six slabs; the rest of the atlas is cleared). A dense pass over every texel took twice as
-// long at 512^2 on lavapipe (docs/BENCHMARKS.md, session 21).
+// long at 512^2 on lavapipe (docs/BENCHMARKS.md, session 21). The occupied nodes of a level are found
+// as the child groups of the level below it, one a node: walking the level's own slots, empty siblings
+// included, took lavapipe as long as if they were occupied.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
-#include "vct_cells.glsl"
+#include "svo_morton.glsl"
 #include "vct_seen.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(constant_id = 0) const bool kAnisotropic = false;
@@ -28,7 +30,6 @@ layout(constant_id = 3) const bool kSeenInSource = false;
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_SOURCE, rgba16f) uniform readonly image3D source;
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_DEST, rgba16f) uniform writeonly image3D dest;
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_SEEN, rgba16f) uniform readonly image3D seen;  // kSharedSource: the direct radiance, for its alpha
-layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
 layout(push_constant) uniform Push { DYNGI_VCT_MIPS_PUSH };
@@ -99,13 +100,15 @@ void atlasFromAtlas(ivec3 p) {
 
 void main() {
   if (kAnisotropic) {
-    // Grid-stride rounds over the occupied nodes of nodeLevel, dispatched with the level's indirect
-    // arguments (levels[nodeLevel].dispatch: DYNGI_SVO_ITEMS_PER_INVOCATION nodes per invocation).
-    uint stride = gl_NumWorkGroups.x * 64u, first = levels[nodeLevel].range.x, count = levels[nodeLevel].range.y;
+    // Grid-stride rounds over the child groups of level nodeLevel + 1, one for each occupied node of
+    // nodeLevel (its cell: the group's first cell's parent), dispatched with that level's indirect
+    // arguments (levels[nodeLevel + 1].dispatch: DYNGI_SVO_ITEMS_PER_INVOCATION slots per invocation, so
+    // 8 times the groups' rounds).
+    uint stride = gl_NumWorkGroups.x * 64u, first = levels[nodeLevel + 1u].range.x, groups = levels[nodeLevel + 1u].range.y / 8u;
     uint i = gl_WorkGroupID.x * 64u + gl_LocalInvocationIndex;
     for (uint r = 0u; r < DYNGI_SVO_ITEMS_PER_INVOCATION; ++r, i += stride) {
-      if (i >= count || nodes[first + i] == 0u) continue;  // an empty sibling: its texel stays cleared
-      ivec3 p = vctCellOf(nodeCells[first + i]);
+      if (i >= groups) break;
+      ivec3 p = svoCellOfMortonCode(nodeCells[first + 8u * i] >> 3u);
       if (kSharedSource) atlasFromLevel0(p);
       else atlasFromAtlas(p);
     }

@@ -22,45 +22,59 @@ layout(push_constant) uniform Push { DYNGI_VCT_UPSAMPLE_PUSH };
 #include "vct_surface.glsl"
 #include "vct_surface_match.glsl"
 
+// One invocation per block of traceScale x traceScale pixels that share their 4 nearest traced pixels:
+// those are read once for the block (a pixel's own reads were 14 loads, 12 of them its neighbours').
 void main() {
-  ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   ivec2 full = ivec2(frame.sizeAndCount.xy);
-  if (any(greaterThanEqual(px, full))) return;
-  vec4 pos = imageLoad(gPosition, px);
-  if (pos.w == 0.0) {
-    imageStore(outDiffuse, px, vec4(0.0, 0.0, 0.0, 1.0));
-    imageStore(outSpecular, px, vec4(0.0));
-    return;
-  }
-  vec3 n = normalize(imageLoad(gNormal, px).xyz);
   int s = int(traceScale), h = s / 2;
   ivec2 low = imageSize(lowDiffuse);
-  // Traced pixel q sits at full-resolution pixel q s + h.
-  vec2 t = vec2(px - h) / float(s);
-  ivec2 q0 = ivec2(floor(t));
-  vec2 f = t - vec2(q0);
-  // A plane distance of 1 percent of the view distance halves the weight.
-  float scale = 0.01 * max(length(pos.xyz - frame.cameraPos.xyz), 1e-4);
-  vec4 diffuse = vec4(0.0), specular = vec4(0.0);
-  float total = 0.0, best = -1.0, specularTotal = 0.0, bestSpecularMatch = -1.0;
-  vec4 bestDiffuse = vec4(0.0, 0.0, 0.0, 1.0), bestSpecular = vec4(0.0);
+  // Traced pixel q sits at full-resolution pixel q s + h: the block of q0 (its top-left neighbour, -1 left
+  // of and above the first traced pixel) holds the pixels q0 s + h .. q0 s + h + s - 1.
+  ivec2 q0 = ivec2(gl_GlobalInvocationID.xy) - 1;
+  ivec2 first = q0 * s + h;
+  if (any(greaterThanEqual(first, full)) || any(lessThan(first + s, ivec2(0)))) return;
+  vec3 qp[4], qn[4];
+  bool seen[4];
+  vec4 d[4], sp[4];
   for (int i = 0; i < 4; ++i) {
-    ivec2 o = ivec2(i & 1, i >> 1);
-    ivec2 q = clamp(q0 + o, ivec2(0), low - 1);
-    vec3 qp, qn;
-    float match = vctUnpackSurface(imageLoad(lowSurface, q), qp, qn) ? vctSurfaceMatch(pos.xyz, n, qp, qn, scale) : 0.0;
-    float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-    vec4 d = imageLoad(lowDiffuse, q), sp = imageLoad(lowSpecular, q);
-    float w = d.a < 0.0 ? 0.0 : bilinear * match, ws = sp.a < 0.0 ? 0.0 : bilinear * match;
-    diffuse += w * d;
-    specular += ws * sp;
-    total += w;
-    specularTotal += ws;
-    if (d.a >= 0.0 && match > best) best = match, bestDiffuse = d;
-    if (sp.a >= 0.0 && match > bestSpecularMatch) bestSpecularMatch = match, bestSpecular = sp;
+    ivec2 q = clamp(q0 + ivec2(i & 1, i >> 1), ivec2(0), low - 1);
+    seen[i] = vctUnpackSurface(imageLoad(lowSurface, q), qp[i], qn[i]);
+    d[i] = imageLoad(lowDiffuse, q);
+    sp[i] = imageLoad(lowSpecular, q);
   }
-  diffuse = total > 1e-4 ? diffuse / total : bestDiffuse;
-  specular = specularTotal > 1e-4 ? specular / specularTotal : bestSpecular;
-  imageStore(outDiffuse, px, diffuse);
-  imageStore(outSpecular, px, vec4(specular.rgb, 1.0));
+  for (int y = 0; y < s; ++y)
+    for (int x = 0; x < s; ++x) {
+      ivec2 px = first + ivec2(x, y);
+      if (any(lessThan(px, ivec2(0))) || any(greaterThanEqual(px, full))) continue;
+      vec4 pos = imageLoad(gPosition, px);
+      if (pos.w == 0.0) {
+        imageStore(outDiffuse, px, vec4(0.0, 0.0, 0.0, 1.0));
+        imageStore(outSpecular, px, vec4(0.0));
+        continue;
+      }
+      vec3 n = normalize(imageLoad(gNormal, px).xyz);
+      vec2 t = vec2(px - h) / float(s);
+      vec2 f = t - vec2(q0);
+      // A plane distance of 1 percent of the view distance halves the weight.
+      float scale = 0.01 * max(length(pos.xyz - frame.cameraPos.xyz), 1e-4);
+      vec4 diffuse = vec4(0.0), specular = vec4(0.0);
+      float total = 0.0, best = -1.0, specularTotal = 0.0, bestSpecularMatch = -1.0;
+      vec4 bestDiffuse = vec4(0.0, 0.0, 0.0, 1.0), bestSpecular = vec4(0.0);
+      for (int i = 0; i < 4; ++i) {
+        ivec2 o = ivec2(i & 1, i >> 1);
+        float match = seen[i] ? vctSurfaceMatch(pos.xyz, n, qp[i], qn[i], scale) : 0.0;
+        float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        float w = d[i].a < 0.0 ? 0.0 : bilinear * match, ws = sp[i].a < 0.0 ? 0.0 : bilinear * match;
+        diffuse += w * d[i];
+        specular += ws * sp[i];
+        total += w;
+        specularTotal += ws;
+        if (d[i].a >= 0.0 && match > best) best = match, bestDiffuse = d[i];
+        if (sp[i].a >= 0.0 && match > bestSpecularMatch) bestSpecularMatch = match, bestSpecular = sp[i];
+      }
+      diffuse = total > 1e-4 ? diffuse / total : bestDiffuse;
+      specular = specularTotal > 1e-4 ? specular / specularTotal : bestSpecular;
+      imageStore(outDiffuse, px, diffuse);
+      imageStore(outSpecular, px, vec4(specular.rgb, 1.0));
+    }
 }
