@@ -3,6 +3,7 @@
 #include "shaders/shared/gi_gpu_types.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace dyngi::gi {
@@ -123,18 +124,21 @@ glm::vec4 sampleCpu(const std::vector<VolumeLevel>& radiance, const std::vector<
   const float lod = std::max(mip - 1.0f, 0.0f);
   const float clampHalf = std::exp2(std::ceil(lod)) / p.res;
   const glm::vec3 w = dir * dir;
-  glm::vec3 premultiplied(0.0f);
-  float logTransmittance = 0.0f, weightedAlpha = 0.0f;
+  // Each slab's part of the step (its opacity over the fraction w of it), the most opaque in front.
+  std::array<glm::vec4, 3> parts;
   for (int axis = 0; axis < 3; ++axis) {
     const int slab = 2 * axis + (dir[axis] < 0.0f ? 1 : 0);
     const float x = std::clamp(uvw.x, clampHalf, 1.0f - clampHalf);
     const glm::vec4 s = sampleVolumeLod(aniso, glm::vec3((float(slab) + x) / float(kSlabs), uvw.y, uvw.z), lod);
-    premultiplied += w[axis] * glm::vec3(s);
-    weightedAlpha += w[axis] * s.a;
-    logTransmittance += w[axis] * std::log2(std::max(1.0f - s.a, 1e-6f));
+    const float a = 1.0f - std::exp2(w[axis] * std::log2(std::max(1.0f - s.a, 1e-6f)));
+    parts[axis] = glm::vec4(s.a > 1e-6f ? glm::vec3(s) * (a / s.a) : glm::vec3(0.0f), a);
   }
-  const float alpha = 1.0f - std::exp2(logTransmittance);
-  const glm::vec4 coarse(weightedAlpha > 1e-6f ? premultiplied * (alpha / weightedAlpha) : glm::vec3(0.0f), alpha);
+  // The order as vctCombineSlabs takes it, ties included.
+  const glm::vec4 hi = parts[0].a >= parts[1].a ? parts[0] : parts[1], lo = parts[0].a >= parts[1].a ? parts[1] : parts[0];
+  const glm::vec4 first = hi.a >= parts[2].a ? hi : parts[2], rest = hi.a >= parts[2].a ? parts[2] : hi;
+  const glm::vec4 second = rest.a >= lo.a ? rest : lo, third = rest.a >= lo.a ? lo : rest;
+  glm::vec4 coarse(0.0f);
+  for (const glm::vec4& part : {first, second, third}) coarse += (1.0f - coarse.a) * part;
   return glm::mix(fine, coarse, std::clamp(mip, 0.0f, 1.0f));
 }
 }  // namespace

@@ -23,19 +23,29 @@ vec4 vctAnisoSlab(vec3 uvw, float lod, uint axis, bool negative, float clampHalf
   return textureLod(vctAniso, vec3((float(slab) + x) / float(DYNGI_VCT_SLABS), uvw.y, uvw.z), lod);
 }
 
+// Three slabs as one sample: the step is taken as three parts, one a slab, each the slab's opacity over
+// the fraction w of the step (so the transmittance is their weighted geometric mean: a linear blend of
+// the opacities would let an oblique cone see a floor as half transparent, along x a thin floor covering
+// one column in 2^mip), composited front to back with the most opaque part in front. A wall opaque along
+// x then hides what the y and z slabs show of the texel behind it: a coarse texel straddling a thin wall
+// showed a cone from the dark room the lit floor under the wall through its y slab (the weighted mean of
+// the slabs' colours did). vct_cpu.cpp's sampleCpu takes the parts in the same order.
+vec4 vctSlabPart(vec4 s, float logT, float w) {
+  float a = 1.0 - exp2(w * logT);
+  return vec4(s.a > 1e-6 ? s.rgb * (a / s.a) : vec3(0.0), a);
+}
+vec4 vctOver(vec4 front, vec4 back) { return vec4(front.rgb + (1.0 - front.a) * back.rgb, front.a + (1.0 - front.a) * back.a); }
 vec4 vctCombineSlabs(vec4 sx, vec4 sy, vec4 sz, vec3 w) {
-  vec3 alphas = vec3(sx.a, sy.a, sz.a);
-  float transmittance = exp2(dot(w, log2(max(1.0 - alphas, vec3(1e-6)))));
-  vec3 premultiplied = w.x * sx.rgb + w.y * sy.rgb + w.z * sz.rgb;
-  float weightedAlpha = dot(w, alphas);
-  float alpha = 1.0 - transmittance;
-  return vec4(weightedAlpha > 1e-6 ? premultiplied * (alpha / weightedAlpha) : vec3(0.0), alpha);
+  vec3 logT = log2(max(1.0 - vec3(sx.a, sy.a, sz.a), vec3(1e-6)));
+  vec4 px = vctSlabPart(sx, logT.x, w.x), py = vctSlabPart(sy, logT.y, w.y), pz = vctSlabPart(sz, logT.z, w.z);
+  vec4 hi = px.a >= py.a ? px : py, lo = px.a >= py.a ? py : px;
+  vec4 first = hi.a >= pz.a ? hi : pz, rest = hi.a >= pz.a ? pz : hi;
+  vec4 second = rest.a >= lo.a ? rest : lo, third = rest.a >= lo.a ? lo : rest;
+  return vctOver(first, vctOver(second, third));
 }
 
 // From a footprint of 2 voxels on (mip >= 1), the three atlas slabs the direction faces, weighted by its
-// squared components: transmittance as their weighted geometric mean, radiance as the weighted mean of
-// theirs. (A linear blend of the opacities would let an oblique cone see a floor as half transparent:
-// along x a thin floor covers one column in 2^mip.)
+// squared components (vctCombineSlabs).
 vec4 vctSampleCoarse(vec3 p, float mip, vec3 dir) {
   vec3 uvw = p / res;
   if (!kAnisotropic) return textureLod(vctRadiance, uvw, mip);
