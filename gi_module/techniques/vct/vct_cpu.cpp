@@ -116,6 +116,13 @@ glm::vec4 sampleVolumeLod(const std::vector<VolumeLevel>& levels, const glm::vec
 }
 
 namespace {
+// Sample s (premultiplied, its opacity over one footprint) over `fraction` of a footprint (vct_cone.glsl's
+// vctOverFraction).
+glm::vec4 overFraction(const glm::vec4& s, float fraction) {
+  const float a = 1.0f - std::pow(std::max(1.0f - s.a, 1e-6f), fraction);
+  return glm::vec4(s.a > 1e-6f ? glm::vec3(s) * (a / s.a) : glm::vec3(0.0f), a);
+}
+
 glm::vec4 sampleCpu(const std::vector<VolumeLevel>& radiance, const std::vector<VolumeLevel>& aniso, const VctConeParams& p,
                     const glm::vec3& pos, float mip, const glm::vec3& dir) {
   const glm::vec3 uvw = pos / p.res;
@@ -130,8 +137,7 @@ glm::vec4 sampleCpu(const std::vector<VolumeLevel>& radiance, const std::vector<
     const int slab = 2 * axis + (dir[axis] < 0.0f ? 1 : 0);
     const float x = std::clamp(uvw.x, clampHalf, 1.0f - clampHalf);
     const glm::vec4 s = sampleVolumeLod(aniso, glm::vec3((float(slab) + x) / float(kSlabs), uvw.y, uvw.z), lod);
-    const float a = 1.0f - std::exp2(w[axis] * std::log2(std::max(1.0f - s.a, 1e-6f)));
-    parts[axis] = glm::vec4(s.a > 1e-6f ? glm::vec3(s) * (a / s.a) : glm::vec3(0.0f), a);
+    parts[axis] = overFraction(s, w[axis]);
   }
   // The order as vctCombineSlabs takes it, ties included.
   const glm::vec4 hi = parts[0].a >= parts[1].a ? parts[0] : parts[1], lo = parts[0].a >= parts[1].a ? parts[1] : parts[0];
@@ -154,8 +160,9 @@ glm::vec4 vctConeCpu(const std::vector<VolumeLevel>& radiance, const std::vector
     const glm::vec3 beyond = glm::max(glm::max(-pos, pos - glm::vec3(p.res)), glm::vec3(0.0f));
     const float inside = std::clamp(1.0f - std::max(beyond.x, std::max(beyond.y, beyond.z)) / diameter, 0.0f, 1.0f);
     const glm::vec4 s = inside * sampleCpu(radiance, aniso, p, pos, std::log2(diameter), dir);
-    const float a = 1.0f - std::pow(std::max(1.0f - s.a, 0.0f), p.stepScale);
-    const glm::vec3 c = s.a > 1e-6f ? glm::vec3(s) * (a / s.a) : glm::vec3(0.0f);
+    const glm::vec4 part = overFraction(s, p.stepScale);
+    const float a = part.a;
+    const glm::vec3 c(part);
     colour += (1.0f - alpha) * c;
     alpha += (1.0f - alpha) * a;
     t += p.stepScale * diameter;

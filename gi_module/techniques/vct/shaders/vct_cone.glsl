@@ -29,15 +29,18 @@ vec4 vctAnisoSlab(vec3 uvw, float lod, uint axis, bool negative, float clampHalf
 // one column in 2^mip), composited front to back with the most opaque part in front. A wall opaque along
 // x then hides what the y and z slabs show of the texel behind it: a coarse texel straddling a thin wall
 // showed a cone from the dark room the lit floor under the wall through its y slab (the weighted mean of
-// the slabs' colours did). vct_cpu.cpp's sampleCpu takes the parts in the same order.
-vec4 vctSlabPart(vec4 s, float logT, float w) {
-  float a = 1.0 - exp2(w * logT);
+// the slabs' colours did). vct_cpu.cpp's sampleCpu takes the parts in the same order. A part is the
+// correction a step longer or shorter than its footprint takes (vctAccumulate), over w of a footprint.
+//
+// Sample s (premultiplied, its opacity over one footprint) taken over `fraction` of a footprint: opacity
+// 1 - (1 - a)^fraction, the colour scaled alike. (1 - a is kept off 0: pow(0, 0) is undefined.)
+vec4 vctOverFraction(vec4 s, float fraction) {
+  float a = 1.0 - pow(max(1.0 - s.a, 1e-6), fraction);
   return vec4(s.a > 1e-6 ? s.rgb * (a / s.a) : vec3(0.0), a);
 }
 vec4 vctOver(vec4 front, vec4 back) { return vec4(front.rgb + (1.0 - front.a) * back.rgb, front.a + (1.0 - front.a) * back.a); }
 vec4 vctCombineSlabs(vec4 sx, vec4 sy, vec4 sz, vec3 w) {
-  vec3 logT = log2(max(1.0 - vec3(sx.a, sy.a, sz.a), vec3(1e-6)));
-  vec4 px = vctSlabPart(sx, logT.x, w.x), py = vctSlabPart(sy, logT.y, w.y), pz = vctSlabPart(sz, logT.z, w.z);
+  vec4 px = vctOverFraction(sx, w.x), py = vctOverFraction(sy, w.y), pz = vctOverFraction(sz, w.z);
   vec4 hi = px.a >= py.a ? px : py, lo = px.a >= py.a ? py : px;
   vec4 first = hi.a >= pz.a ? hi : pz, rest = hi.a >= pz.a ? pz : hi;
   vec4 second = rest.a >= lo.a ? rest : lo, third = rest.a >= lo.a ? lo : rest;
@@ -81,8 +84,9 @@ layout(constant_id = 2) const bool kVctUnitStep = false;
 // One step of the front-to-back accumulation with sample s over stepScale footprints: opacity
 // 1 - (1 - a)^stepScale, the colour scaled alike; occlusion (AO) weighted by 1 - t / aoDistance.
 void vctAccumulate(vec4 s, float t, inout vec3 colour, inout float alpha, inout float occlusion) {
-  float a = kVctUnitStep ? clamp(s.a, 0.0, 1.0) : 1.0 - pow(max(1.0 - s.a, 0.0), stepScale);
-  vec3 c = s.a > 1e-6 ? s.rgb * (a / s.a) : vec3(0.0);
+  vec4 part = kVctUnitStep ? vec4(s.rgb, clamp(s.a, 0.0, 1.0)) : vctOverFraction(s, stepScale);
+  float a = part.a;
+  vec3 c = part.rgb;
   colour += (1.0 - alpha) * c;
   occlusion += (1.0 - occlusion) * a * max(1.0 - t / aoDistance, 0.0);
   alpha += (1.0 - alpha) * a;
