@@ -9,7 +9,11 @@
 namespace dyngi::gi {
 
 SceneSurfaces::SceneSurfaces(const render::RenderSnapshot& s, const scene::AssetStore& assets) : snap_(s), assets_(assets) {
-  for (size_t i = 0; i < s.draws.size(); ++i) drawOf_[s.draws[i].entity] = i;
+  normalMatrices_.reserve(s.draws.size());
+  for (size_t i = 0; i < s.draws.size(); ++i) {
+    drawOf_[s.draws[i].entity] = i;
+    normalMatrices_.push_back(glm::transpose(glm::inverse(glm::mat3(s.draws[i].model))));
+  }
   float extent = s.sceneBounds.valid() ? glm::length(s.sceneBounds.extent()) : 1.0f;
   sceneScale_ = std::max(extent, 1e-3f);
 }
@@ -23,7 +27,7 @@ bool SceneSurfaces::at(const RayHit& h, const glm::vec3& origin, const glm::vec3
   if (t + 2 >= m.indices.size()) return false;
   uint32_t i0 = m.indices[t], i1 = m.indices[t + 1], i2 = m.indices[t + 2];
   float w0 = 1.0f - h.u - h.v;
-  glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(d.model)));
+  const glm::mat3& normalMatrix = normalMatrices_[it->second];
   glm::vec3 p0 = m.positions[i0], p1 = m.positions[i1], p2 = m.positions[i2];
   out.position = origin + dir * h.t;
   out.entity = h.entity;
