@@ -252,9 +252,10 @@ TEST_F(RenderTest, VctMipChainEqualsCpuFilters) {
   }
 }
 
-// Both anisotropic and isotropic, at the unit step (its pipelines skip a pow() a step) and a half step.
+// Both anisotropic and isotropic, at the unit step (its pipelines skip a pow() a step), a half step and
+// the default (1.15 footprints, folded into the slab fractions).
 TEST_F(RenderTest, VctConeMarchEqualsCpuTwin) {
-  for (const auto& [aniso, step] : {std::pair{false, 1.0f}, {true, 1.0f}, {true, 0.5f}}) {
+  for (const auto& [aniso, step] : {std::pair{false, 1.0f}, {true, 1.0f}, {true, 0.5f}, {true, 1.15f}, {false, 1.15f}}) {
     gi::GiSettings s = vctSettings();
     s.voxels.resolution = 64;
     s.vct.anisotropic = aniso;

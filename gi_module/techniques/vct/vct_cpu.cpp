@@ -123,14 +123,15 @@ glm::vec4 overFraction(const glm::vec4& s, float fraction) {
   return glm::vec4(s.a > 1e-6f ? glm::vec3(s) * (a / s.a) : glm::vec3(0.0f), a);
 }
 
+// The part a step `steps` footprints long takes from the volume at pos (vct_cone.glsl's vctSample).
 glm::vec4 sampleCpu(const std::vector<VolumeLevel>& radiance, const std::vector<VolumeLevel>& aniso, const VctConeParams& p,
-                    const glm::vec3& pos, float mip, const glm::vec3& dir) {
+                    const glm::vec3& pos, float mip, const glm::vec3& dir, float steps) {
   const glm::vec3 uvw = pos / p.res;
-  if (!p.anisotropic) return sampleVolumeLod(radiance, uvw, mip);
-  const glm::vec4 fine = sampleVolumeLod(radiance, uvw, 0.0f);
+  if (!p.anisotropic) return overFraction(sampleVolumeLod(radiance, uvw, mip), steps);
+  const glm::vec4 fine = overFraction(sampleVolumeLod(radiance, uvw, 0.0f), steps);
   const float lod = std::max(mip - 1.0f, 0.0f);
   const float clampHalf = std::exp2(std::ceil(lod)) / p.res;
-  const glm::vec3 w = dir * dir;
+  const glm::vec3 w = dir * dir * steps;
   // Each slab's part of the step (its opacity over the fraction w of it), the most opaque in front.
   std::array<glm::vec4, 3> parts;
   for (int axis = 0; axis < 3; ++axis) {
@@ -159,8 +160,7 @@ glm::vec4 vctConeCpu(const std::vector<VolumeLevel>& radiance, const std::vector
     const glm::vec3 pos = origin + t * dir;
     const glm::vec3 beyond = glm::max(glm::max(-pos, pos - glm::vec3(p.res)), glm::vec3(0.0f));
     const float inside = std::clamp(1.0f - std::max(beyond.x, std::max(beyond.y, beyond.z)) / diameter, 0.0f, 1.0f);
-    const glm::vec4 s = inside * sampleCpu(radiance, aniso, p, pos, std::log2(diameter), dir);
-    const glm::vec4 part = overFraction(s, p.stepScale);
+    const glm::vec4 part = inside * sampleCpu(radiance, aniso, p, pos, std::log2(diameter), dir, p.stepScale);
     const float a = part.a;
     const glm::vec3 c(part);
     colour += (1.0f - alpha) * c;

@@ -34,7 +34,7 @@ const OptionTable<VctOptions>& VctOptions::table() {
           .add({"max-distance", "cone reach, in volume sides", 0.05, 2}, &VctOptions::maxDistance)
           .add({"ao-distance", "reach of ambient occlusion, in volume sides", 0.01, 1}, &VctOptions::aoDistance)
           .add({"cone-offset", "voxels off the surface a cone starts", 0, 4}, &VctOptions::coneOffset)
-          .add({"cone-step", "step along a cone, in cone diameters", 0.1, 1}, &VctOptions::stepScale)
+          .add({"cone-step", "step along a cone, in cone diameters", 0.1, 2}, &VctOptions::stepScale)
           .add({"view-mip", "mip level the radiance and opacity views show", 0, 9}, &VctOptions::viewMip);
   return t;
 }

@@ -62,8 +62,12 @@ struct VctOptions {
   float aoDistance = 0.15f;
   // Where a cone starts: this many voxels off the surface along the normal (and as far along the cone).
   float coneOffset = 1.0f;
-  // Step along a cone as a fraction of its diameter; opacity is corrected for it.
-  float stepScale = 1.0f;
+  // Step along a cone in multiples of its diameter; opacity is corrected for it. A little over one
+  // footprint: every diffuse cone grows by a fixed factor a step (its surface clearance holds it), so
+  // 1.15 takes about a ninth of the steps off while the region errors against the path tracer stay
+  // where they were at 1 (docs/QUALITY.md, session 26); from 1.2 the tall box's shadowed face falls
+  // to the edge of its band.
+  float stepScale = 1.15f;
   // The mip the `radiance` and `opacity` debug views show.
   uint32_t viewMip = 0;
   VctView view = VctView::Final;  // set by name through the technique, not a table row

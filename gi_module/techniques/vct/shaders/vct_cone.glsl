@@ -38,7 +38,14 @@ vec4 vctOverFraction(vec4 s, float fraction) {
   float a = 1.0 - pow(max(1.0 - s.a, 1e-6), fraction);
   return vec4(s.a > 1e-6 ? s.rgb * (a / s.a) : vec3(0.0), a);
 }
+// stepScale is 1: a step's part is its sample, without the pow() (a log2 and an exp2, polynomials on
+// lavapipe). Set by the trace, the bounce and the test probe (VoxelConeTracing) at a step of one
+// footprint; false elsewhere (the debug view's half steps).
+layout(constant_id = 2) const bool kVctUnitStep = false;
+// The part of a step `steps` footprints long that sample s (its opacity over one footprint) contributes.
+vec4 vctPart(vec4 s, float steps) { return kVctUnitStep ? vec4(s.rgb, clamp(s.a, 0.0, 1.0)) : vctOverFraction(s, steps); }
 vec4 vctOver(vec4 front, vec4 back) { return vec4(front.rgb + (1.0 - front.a) * back.rgb, front.a + (1.0 - front.a) * back.a); }
+// w: the slabs' fractions of the step, in footprints (the direction's squared components times the step).
 vec4 vctCombineSlabs(vec4 sx, vec4 sy, vec4 sz, vec3 w) {
   vec4 px = vctOverFraction(sx, w.x), py = vctOverFraction(sy, w.y), pz = vctOverFraction(sz, w.z);
   vec4 hi = px.a >= py.a ? px : py, lo = px.a >= py.a ? py : px;
@@ -48,24 +55,26 @@ vec4 vctCombineSlabs(vec4 sx, vec4 sy, vec4 sz, vec3 w) {
 }
 
 // From a footprint of 2 voxels on (mip >= 1), the three atlas slabs the direction faces, weighted by its
-// squared components (vctCombineSlabs).
-vec4 vctSampleCoarse(vec3 p, float mip, vec3 dir) {
+// squared components (vctCombineSlabs): the part a step `steps` footprints long takes from them (each
+// slab's fraction of it times the step: the step's length costs no pow() of its own).
+vec4 vctSampleCoarse(vec3 p, float mip, vec3 dir, float steps) {
   vec3 uvw = p / res;
-  if (!kAnisotropic) return textureLod(vctRadiance, uvw, mip);
+  if (!kAnisotropic) return vctPart(textureLod(vctRadiance, uvw, mip), steps);
   float lod = max(mip - 1.0, 0.0);
   float clampHalf = ldexp(1.0, int(ceil(lod))) / res;  // half a texel of the coarser level, in uvw of the slab (a power of two: no exp2)
-  vec3 w = dir * dir;
+  vec3 w = dir * dir * steps;
   vec4 sx = vctAnisoSlab(uvw, lod, 0u, dir.x < 0.0, clampHalf), sy = vctAnisoSlab(uvw, lod, 1u, dir.y < 0.0, clampHalf),
        sz = vctAnisoSlab(uvw, lod, 2u, dir.z < 0.0, clampHalf);
   return vctCombineSlabs(sx, sy, sz, w);
 }
 
-// The volume at p (voxel units) filtered to a footprint of 2^mip voxels, as seen along `dir`. Level 0 is
-// isotropic: below mip 1 the anisotropic volume blends it with the atlas.
-vec4 vctSample(vec3 p, float mip, vec3 dir) {
-  if (!kAnisotropic) return vctSampleCoarse(p, mip, dir);
-  vec4 fine = textureLod(vctRadiance, p / res, 0.0);
-  return mix(fine, vctSampleCoarse(p, mip, dir), clamp(mip, 0.0, 1.0));
+// The volume at p (voxel units) filtered to a footprint of 2^mip voxels, as seen along `dir`: the part a
+// step `steps` footprints long takes from it. Level 0 is isotropic: below mip 1 the anisotropic volume
+// blends it with the atlas.
+vec4 vctSample(vec3 p, float mip, vec3 dir, float steps) {
+  if (!kAnisotropic) return vctSampleCoarse(p, mip, dir, steps);
+  vec4 fine = vctPart(textureLod(vctRadiance, p / res, 0.0), steps);
+  return mix(fine, vctSampleCoarse(p, mip, dir, steps), clamp(mip, 0.0, 1.0));
 }
 
 // How much of a sample at p (footprint `diameter`) counts: 1 inside the volume, fading to 0 a footprint
@@ -76,15 +85,9 @@ float vctInside(vec3 p, float diameter) {
   return clamp(1.0 - max(beyond.x, max(beyond.y, beyond.z)) / diameter, 0.0, 1.0);
 }
 
-// stepScale is 1 (the default step): a step's opacity is its sample's, without the pow() (a log2 and an
-// exp2, polynomials on lavapipe, in every step). Set by the trace, the bounce and the test probe
-// (VoxelConeTracing) at the unit step; false elsewhere.
-layout(constant_id = 2) const bool kVctUnitStep = false;
-
-// One step of the front-to-back accumulation with sample s over stepScale footprints: opacity
-// 1 - (1 - a)^stepScale, the colour scaled alike; occlusion (AO) weighted by 1 - t / aoDistance.
-void vctAccumulate(vec4 s, float t, inout vec3 colour, inout float alpha, inout float occlusion) {
-  vec4 part = kVctUnitStep ? vec4(s.rgb, clamp(s.a, 0.0, 1.0)) : vctOverFraction(s, stepScale);
+// One step of the front-to-back accumulation with its part (vctPart: the sample over the step's length);
+// occlusion (AO) weighted by 1 - t / aoDistance.
+void vctAccumulate(vec4 part, float t, inout vec3 colour, inout float alpha, inout float occlusion) {
   float a = part.a;
   vec3 c = part.rgb;
   colour += (1.0 - alpha) * c;
@@ -119,7 +122,8 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, out 
     if (diameter > 1.0) break;
     vec3 p = origin + t * dir;
     float inside = vctInside(p, diameter);
-    vctAccumulate(inside * (kAnisotropic ? textureLod(vctRadiance, p / res, 0.0) : vctSampleCoarse(p, 0.0, dir)), t, colour, alpha, occlusion);
+    vctAccumulate(inside * (kAnisotropic ? vctPart(textureLod(vctRadiance, p / res, 0.0), stepScale) : vctSampleCoarse(p, 0.0, dir, stepScale)), t,
+                  colour, alpha, occlusion);
     t += stepScale * diameter;
     if (alpha >= 0.99 || t > reach || inside <= 0.0) {
       done = true;
@@ -131,7 +135,7 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, out 
     if (diameter >= 2.0) break;
     vec3 p = origin + t * dir;
     float inside = vctInside(p, diameter);
-    vctAccumulate(inside * vctSample(p, log2(diameter), dir), t, colour, alpha, occlusion);
+    vctAccumulate(inside * vctSample(p, log2(diameter), dir, stepScale), t, colour, alpha, occlusion);
     t += stepScale * diameter;
     if (alpha >= 0.99 || t > reach || inside <= 0.0) {
       done = true;
@@ -142,7 +146,7 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, out 
     float diameter = min(2.0 * tanHalf * t, kVctSurfaceClearance * (coneOffset + rise * t));
     vec3 p = origin + t * dir;
     float inside = vctInside(p, diameter);
-    vctAccumulate(inside * vctSampleCoarse(p, log2(diameter), dir), t, colour, alpha, occlusion);
+    vctAccumulate(inside * vctSampleCoarse(p, log2(diameter), dir, stepScale), t, colour, alpha, occlusion);
     t += stepScale * diameter;
     if (alpha >= 0.99 || t > reach || inside <= 0.0) break;
   }

@@ -42,10 +42,8 @@ void main() {
       for (int i = 0; i < 4 * int(res) && acc.a < 0.99; ++i) {
         vec3 p = o + (t + 0.5 * footprint) * d;
         if (any(lessThan(p, vec3(-1e-3))) || any(greaterThan(p, vec3(res + 1e-3)))) break;
-        vec4 s = vctSample(p, mip, d);
-        float a = 1.0 - pow(max(1.0 - s.a, 0.0), 0.5);
-        acc.rgb += (1.0 - acc.a) * (s.a > 1e-6 ? s.rgb * (a / s.a) : vec3(0.0));
-        acc.a += (1.0 - acc.a) * a;
+        vec4 part = vctSample(p, mip, d, 0.5);  // half-footprint steps
+        acc += (1.0 - acc.a) * part;
         t += 0.5 * footprint;
       }
     }
