@@ -55,7 +55,7 @@ uint64_t volumeBytes(const Image& img) {
 void clearLevel(VkCommandBuffer cmd, Image& img, uint32_t mip) {
   const VkClearColorValue zero{};
   const VkImageSubresourceRange level{VK_IMAGE_ASPECT_COLOR_BIT, mip, 1, 0, 1};
-  vkCmdClearColorImage(cmd, img.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &level);
+  vkCmdClearColorImage(cmd, img.handle(), img.layout(), &zero, 1, &level);
 }
 
 // The nodes of an SVO level (its leaves at level depth) are visited by an indirect dispatch sized by the
@@ -297,7 +297,7 @@ uint64_t VoxelConeTracing::clearStale(VkCommandBuffer cmd, Image& img, uint32_t 
       regions.push_back(r);
     }
   }
-  vkCmdCopyBufferToImage(cmd, zeros_.handle(), img.handle(), VK_IMAGE_LAYOUT_GENERAL, uint32_t(regions.size()), regions.data());
+  vkCmdCopyBufferToImage(cmd, zeros_.handle(), img.handle(), img.layout(), uint32_t(regions.size()), regions.data());
   return texels;
 }
 
@@ -376,12 +376,22 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   lastStale_ = staleNow;
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "inject");
+    // The zeroing runs in TRANSFER_DST_OPTIMAL (copies into a GENERAL image are a performance warning of
+    // the validation layer), the passes after it in GENERAL again.
+    const bool zeroing = staleForDirect.everywhere || !staleForDirect.boxes.empty();
+    Image* const zeroed[] = {&radiance_, &direct_[current_], aniso ? &aniso_ : nullptr};
+    if (zeroing)
+      for (Image* img : zeroed)
+        if (img) img->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     stats_.clearedVoxels = clearStale(cmd, radiance_, 0, staleNow, 0, 1);
     clearStale(cmd, direct_[current_], 0, staleForDirect, 0, 1);
     // The atlas' boxes too (level m's texels are 2^(m + 1) voxels wide): nothing reads it before the
     // mips, and one barrier serves all the clears.
     if (aniso)
       for (uint32_t m = 0; m < aniso_.desc().mips; ++m) clearStale(cmd, aniso_, m, staleNow, m + 1, DYNGI_VCT_SLABS);
+    if (zeroing)
+      for (Image* img : zeroed)
+        if (img) img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, kComputeAndTransfer, kReadWrite);
     render::computeWriteBarrier(cmd);
     gpu::VctInjectPush pc{};
     pc.volume = glm::vec4(vol.origin, vol.voxelSize);
