@@ -30,7 +30,7 @@ vec4 vctAnisoSlab(vec3 uvw, float lod, uint axis, bool negative, float clampHalf
 // x then hides what the y and z slabs show of the texel behind it: a coarse texel straddling a thin wall
 // showed a cone from the dark room the lit floor under the wall through its y slab (the weighted mean of
 // the slabs' colours did). vct_cpu.cpp's sampleCpu takes the parts in the same order. A part is the
-// correction a step longer or shorter than its footprint takes (vctAccumulate), over w of a footprint.
+// correction a step longer or shorter than its footprint takes (vctPart), over w of a footprint.
 //
 // Sample s (premultiplied, its opacity over one footprint) taken over `fraction` of a footprint: opacity
 // 1 - (1 - a)^fraction, the colour scaled alike. (1 - a is kept off 0: pow(0, 0) is undefined.)
