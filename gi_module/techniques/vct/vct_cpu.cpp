@@ -127,9 +127,11 @@ glm::vec4 overFraction(const glm::vec4& s, float fraction) {
 glm::vec4 sampleCpu(const std::vector<VolumeLevel>& radiance, const std::vector<VolumeLevel>& aniso, const VctConeParams& p,
                     const glm::vec3& pos, float mip, const glm::vec3& dir, float steps) {
   const glm::vec3 uvw = pos / p.res;
-  if (!p.anisotropic) return overFraction(sampleVolumeLod(radiance, uvw, mip), steps);
+  // The level read (vct_cone.glsl's vctReadLevel): small footprints read the nearest whole one.
+  const float level = mip < float(DYNGI_VCT_WHOLE_LEVELS_BELOW) ? std::floor(mip + 0.5f) : mip;
+  if (!p.anisotropic) return overFraction(sampleVolumeLod(radiance, uvw, level), steps);
   const glm::vec4 fine = overFraction(sampleVolumeLod(radiance, uvw, 0.0f), steps);
-  const float lod = std::max(mip - 1.0f, 0.0f);
+  const float lod = std::max(level - 1.0f, 0.0f);
   const float clampHalf = std::exp2(std::ceil(lod)) / p.res;
   const glm::vec3 w = dir * dir * steps;
   // Each slab's part of the step (its opacity over the fraction w of it), the most opaque in front.

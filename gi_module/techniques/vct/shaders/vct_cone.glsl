@@ -54,13 +54,23 @@ vec4 vctCombineSlabs(vec4 sx, vec4 sy, vec4 sz, vec3 w) {
   return vctOver(first, vctOver(second, third));
 }
 
+// The mip level a sample of footprint 2^mip voxels reads: under DYNGI_VCT_WHOLE_LEVELS_BELOW (footprints
+// up to 8 voxels) the nearest whole level, else the footprint's own. lavapipe skips the second level of
+// a fetch only where every lane's lod is whole; a diffuse cone's footprints are the same in every lane,
+// and most of its steps are near the surface it leaves (its footprint grows by 1.2-1.5 a step there),
+// so whole levels there save a third of the trace (docs/BENCHMARKS.md, session 27). The step's part is
+// taken as before, as the cone's footprint. Farther out the exact footprint is kept: whole levels at
+// 11-22 voxels took the Cornell tall box's face to the red wall from 0.81 to 0.66 of the path tracer.
+float vctReadLevel(float mip) { return mip < DYNGI_VCT_WHOLE_LEVELS_BELOW ? floor(mip + 0.5) : mip; }
+
 // From a footprint of 2 voxels on (mip >= 1), the three atlas slabs the direction faces, weighted by its
 // squared components (vctCombineSlabs): the part a step `steps` footprints long takes from them (each
 // slab's fraction of it times the step: the step's length costs no pow() of its own).
 vec4 vctSampleCoarse(vec3 p, float mip, vec3 dir, float steps) {
   vec3 uvw = p / res;
-  if (!kAnisotropic) return vctPart(textureLod(vctRadiance, uvw, mip), steps);
-  float lod = max(mip - 1.0, 0.0);
+  float level = vctReadLevel(mip);
+  if (!kAnisotropic) return vctPart(textureLod(vctRadiance, uvw, level), steps);
+  float lod = max(level - 1.0, 0.0);  // the atlas is half the resolution: its level 0 is a footprint of 2
   float clampHalf = ldexp(1.0, int(ceil(lod))) / res;  // half a texel of the coarser level, in uvw of the slab (a power of two: no exp2)
   vec3 w = dir * dir * steps;
   vec4 sx = vctAnisoSlab(uvw, lod, 0u, dir.x < 0.0, clampHalf), sy = vctAnisoSlab(uvw, lod, 1u, dir.y < 0.0, clampHalf),
