@@ -82,8 +82,10 @@ TEST_F(RenderTest, VctCornellMatchesPathTracerPerRegionWithColourBleeding) {
     const double a = lum(render::meanOver(f.hdr, &mask)), b = lum(render::meanOver(ref, &mask));
     std::printf("%-16s vct %.4f  path %.4f  ratio %.3f  (%zu px)\n", name.c_str(), a, b, a / b, n);
     // The goal: 20 percent for every region. The tight one is the tall box's face to the red wall
-    // (96 pixels in its own shadow): 0.81, where six cones the same on every pixel gave 0.53 (the light
-    // it gets comes between them; VctTurnedConesApproachADenseConeSet).
+    // (96 pixels in its own shadow): 0.86, where six cones the same on every pixel gave 0.53 (the light
+    // it gets comes between them; VctTurnedConesApproachADenseConeSet). It is the region most sensitive
+    // to the far samples' footprints: whole mip levels for footprints of 11-22 voxels took it to 0.66
+    // (vct_cone.glsl's vctReadLevel).
     EXPECT_NEAR(a / b, 1.0, 0.20) << name;
   }
   const double rel = render::relativeMse(f.hdr, ref);
@@ -371,15 +373,15 @@ TEST_F(RenderTest, VctLeakThroughAThinWallPerMipChain) {
   // The mean halves a thin wall's opacity at every level: light passes. The opaque axis keeps the wall
   // opaque for every direction: under the goal of 5 percent. The anisotropic atlas keeps it opaque along
   // its normal, but room A's lit floor runs under the wall and a texel straddling the wall shows it to a
-  // room-B cone travelling down and towards the wall through the -y slab: 11 percent at 128^3, 12 at
-  // 256^3 (13 at 128^3 before the atlas showed one-sided voxels' backs black: the wall's room-A face,
-  // seen from room B, now shows black to the cones filtered across the wall). Bounds hold today's figures.
+  // room-B cone travelling down and towards the wall through the -y slab: 8.3 percent at 128^3, 10.5 at
+  // 256^3 (9.5 at 128^3 before footprints under 11 voxels read whole mip levels, session 27; 13 before
+  // the atlas showed one-sided voxels' backs black). Bounds hold today's figures.
   for (uint32_t res : resolutions) {
     const double mean = leak[{res, 0}], opaqueAxis = leak[{res, 1}], aniso = leak[{res, 2}];
     EXPECT_LT(opaqueAxis, 0.05) << res;
     EXPECT_LT(opaqueAxis, mean) << res;
     EXPECT_LT(aniso, mean) << res;
-    EXPECT_LT(aniso, res == 128u ? 0.12 : 0.13) << res;
+    EXPECT_LT(aniso, res == 128u ? 0.09 : 0.12) << res;
   }
 }
 
