@@ -332,7 +332,7 @@ struct RsmPush {
 // footprint's largest fraction of its distance from the surface it left.
 #define DYNGI_VCT_MAX_STEPS 160
 #define DYNGI_VCT_SURFACE_CLEARANCE 0.5
-// Footprints under 2^this voxels read the nearest whole mip level (vctReadLevel): up to 8 voxels.
+// Footprints under 2^this voxels (11) read the nearest whole mip level (vctReadLevel): levels up to 8 voxels.
 #define DYNGI_VCT_WHOLE_LEVELS_BELOW 3.5
 // The atlas' first level (vct_mips.comp and vctAnisoDownsample): a one-sided voxel whose normal's
 // component along an axis is under this in size is parallel to that axis, seen from both of its sides

@@ -55,10 +55,10 @@ vec4 vctCombineSlabs(vec4 sx, vec4 sy, vec4 sz, vec3 w) {
 }
 
 // The mip level a sample of footprint 2^mip voxels reads: under DYNGI_VCT_WHOLE_LEVELS_BELOW (footprints
-// up to 8 voxels) the nearest whole level, else the footprint's own. lavapipe skips the second level of
+// under 11 voxels: levels up to 8) the nearest whole level, else the footprint's own. lavapipe skips the second level of
 // a fetch only where every lane's lod is whole; a diffuse cone's footprints are the same in every lane,
 // and most of its steps are near the surface it leaves (its footprint grows by 1.2-1.5 a step there),
-// so whole levels there save a third of the trace (docs/BENCHMARKS.md, session 27). The step's part is
+// so whole levels there save a fifth of the trace (docs/BENCHMARKS.md, session 27). The step's part is
 // taken as before, as the cone's footprint. Farther out the exact footprint is kept: whole levels at
 // 11-22 voxels took the Cornell tall box's face to the red wall from 0.81 to 0.66 of the path tracer.
 float vctReadLevel(float mip) { return mip < DYNGI_VCT_WHOLE_LEVELS_BELOW ? floor(mip + 0.5) : mip; }
