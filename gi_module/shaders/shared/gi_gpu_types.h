@@ -505,7 +505,8 @@ struct TemporalQueue {
   float aoDistance;  /* voxels over which occlusion counts towards AO */          \
   float coneOffset;  /* voxels off the surface a cone starts */                   \
   float stepScale;   /* step = this x the cone's diameter */                       \
-  uint cones;        /* diffuse cones */
+  uint cones;        /* diffuse cones */                                           \
+  float farNarrowing; /* footprints over 2^DYNGI_VCT_WHOLE_LEVELS_BELOW read 2^-this of theirs */
 #define DYNGI_VCT_INJECT_PUSH                                                        \
   vec4 volume;       /* xyz world origin, w voxel size */                          \
   uint lightCount;                                                                 \
@@ -575,8 +576,8 @@ static_assert(sizeof(SvoLeafAttributesPush) == 16 && sizeof(SvoVoxelAttributesPu
 static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && sizeof(VplSamplePush) == 16);
 static_assert(sizeof(VplTailPush) == 8 && sizeof(CompensatePush) == 20);
 static_assert(sizeof(VplBouncePush) == 44 && sizeof(ManyLightsDebugPush) == 12 && sizeof(IndirectFilterPush) == 4);
-static_assert(sizeof(VctInjectPush) == 32 && sizeof(VctBouncePush) == 44 && sizeof(VctMipsPush) == 12);
-static_assert(sizeof(VctTracePush) == 60 && sizeof(VctReprojectPush) == 84 && sizeof(VctUpsamplePush) == 4 && sizeof(VctFilterPush) == 16 && sizeof(VctDebugPush) == 48 && sizeof(VctProbePush) == 48);
+static_assert(sizeof(VctInjectPush) == 32 && sizeof(VctBouncePush) == 48 && sizeof(VctMipsPush) == 12);
+static_assert(sizeof(VctTracePush) == 64 && sizeof(VctReprojectPush) == 84 && sizeof(VctUpsamplePush) == 4 && sizeof(VctFilterPush) == 16 && sizeof(VctDebugPush) == 52 && sizeof(VctProbePush) == 52);
 }  // namespace dyngi::gi::gpu
 #endif
 

@@ -128,7 +128,9 @@ glm::vec4 sampleCpu(const std::vector<VolumeLevel>& radiance, const std::vector<
                     const glm::vec3& pos, float mip, const glm::vec3& dir, float steps) {
   const glm::vec3 uvw = pos / p.res;
   // The level read (vct_cone.glsl's vctReadLevel): small footprints read the nearest whole one.
-  const float level = mip < float(DYNGI_VCT_WHOLE_LEVELS_BELOW) ? std::floor(mip + 0.5f) : mip;
+  const bool far = mip >= float(DYNGI_VCT_WHOLE_LEVELS_BELOW);
+  const float level = far ? mip - p.farNarrowing : std::floor(mip + 0.5f);
+  if (far) steps *= std::exp2(p.farNarrowing);  // the step in footprints of the level read
   if (!p.anisotropic) return overFraction(sampleVolumeLod(radiance, uvw, level), steps);
   const glm::vec4 fine = overFraction(sampleVolumeLod(radiance, uvw, 0.0f), steps);
   const float lod = std::max(level - 1.0f, 0.0f);

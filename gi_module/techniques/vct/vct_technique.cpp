@@ -35,6 +35,8 @@ const OptionTable<VctOptions>& VctOptions::table() {
           .add({"ao-distance", "reach of ambient occlusion, in volume sides", 0.01, 1}, &VctOptions::aoDistance)
           .add({"cone-offset", "voxels off the surface a cone starts", 0, 4}, &VctOptions::coneOffset)
           .add({"cone-step", "step along a cone, in cone diameters", 0.1, 2}, &VctOptions::stepScale)
+          .add({"far-narrowing", "samples of footprints over 11 voxels read a footprint 2^-B of the cone's (less light through thin walls; use with more --cones)", 0, 1},
+               &VctOptions::farNarrowing)
           .add({"view-mip", "mip level the radiance and opacity views show", 0, 9}, &VctOptions::viewMip);
   return t;
 }

@@ -248,6 +248,7 @@ void VoxelConeTracing::fillConeParams(Push& p) const {
   p.coneOffset = options_.coneOffset;
   p.stepScale = options_.stepScale;
   p.cones = options_.diffuseCones;
+  p.farNarrowing = options_.farNarrowing;
 }
 
 void VoxelConeTracing::recordLeafPass(VkCommandBuffer cmd, const Pipeline& pipeline, const void* push, uint32_t pushBytes,

@@ -68,6 +68,13 @@ struct VctOptions {
   // where they were at 1 (docs/QUALITY.md, session 26); from 1.2 the tall box's shadowed face falls
   // to the edge of its band.
   float stepScale = 1.15f;
+  // Samples of footprints over 11 voxels (vct_cone.glsl's vctReadLevel) read a level this much under
+  // the cone's footprint (2^-this of it wide), the step's part taken over that footprint. A narrower far
+  // sample straddles a thin wall less: at 0.75 with 12 diffuse cones the two-room leak is 4.3 percent
+  // (8.3 at 0 with 6) with every Cornell region within its band; with 6 cones the light that arrives
+  // between them is missed (the tall box's shadowed face 0.68). Off by default: 12 cones double the
+  // diffuse trace (docs/QUALITY.md, session 27).
+  float farNarrowing = 0.0f;
   // The mip the `radiance` and `opacity` debug views show.
   uint32_t viewMip = 0;
   VctView view = VctView::Final;  // set by name through the technique, not a table row

@@ -59,9 +59,10 @@ vec4 vctCombineSlabs(vec4 sx, vec4 sy, vec4 sz, vec3 w) {
 // a fetch only where every lane's lod is whole; a diffuse cone's footprints are the same in every lane,
 // and most of its steps are near the surface it leaves (its footprint grows by 1.2-1.5 a step there),
 // so whole levels there save a fifth of the trace (docs/BENCHMARKS.md, session 27). The step's part is
-// taken as before, as the cone's footprint. Farther out the exact footprint is kept: whole levels at
-// 11-22 voxels took the Cornell tall box's face to the red wall from 0.81 to 0.66 of the path tracer.
-float vctReadLevel(float mip) { return mip < DYNGI_VCT_WHOLE_LEVELS_BELOW ? floor(mip + 0.5) : mip; }
+// taken as before, as the cone's footprint. Farther out the footprint is the cone's, narrowed by
+// farNarrowing (0 by default; VctOptions::farNarrowing): whole levels at 11-22 voxels took the Cornell
+// tall box's face to the red wall from 0.81 to 0.66 of the path tracer.
+float vctReadLevel(float mip) { return mip < DYNGI_VCT_WHOLE_LEVELS_BELOW ? floor(mip + 0.5) : mip - farNarrowing; }
 
 // From a footprint of 2 voxels on (mip >= 1), the three atlas slabs the direction faces, weighted by its
 // squared components (vctCombineSlabs): the part a step `steps` footprints long takes from them (each
@@ -69,6 +70,7 @@ float vctReadLevel(float mip) { return mip < DYNGI_VCT_WHOLE_LEVELS_BELOW ? floo
 vec4 vctSampleCoarse(vec3 p, float mip, vec3 dir, float steps) {
   vec3 uvw = p / res;
   float level = vctReadLevel(mip);
+  if (mip >= DYNGI_VCT_WHOLE_LEVELS_BELOW) steps *= exp2(farNarrowing);  // the step in footprints of the level read
   if (!kAnisotropic) return vctPart(textureLod(vctRadiance, uvw, level), steps);
   float lod = max(level - 1.0, 0.0);  // the atlas is half the resolution: its level 0 is a footprint of 2
   float clampHalf = ldexp(1.0, int(ceil(lod))) / res;  // half a texel of the coarser level, in uvw of the slab (a power of two: no exp2)
