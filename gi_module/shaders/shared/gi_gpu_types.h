@@ -517,7 +517,8 @@ struct TemporalQueue {
 #define DYNGI_VCT_MIPS_PUSH uint destSlabWidth; /* texels; the isotropic chain has one slab */ uint sourceSlabWidth; /* 0: one source slab */ \
   uint nodeLevel; /* anisotropic: the SVO level whose cells are this atlas level's texels */
 #define DYNGI_VCT_TRACE_PUSH DYNGI_VCT_CONE_PARAMS uint traceScale; uint specular; uint turnCones; /* 1: each traced pixel turns its cone set */ \
-  uint traceFrames; /* 1, 2 or 4: the frames over which every traced pixel is traced once */ uint tracePhase; /* frame index mod traceFrames */
+  uint traceFrames; /* 1, 2 or 4: the frames over which every traced pixel is traced once */ uint tracePhase; /* frame index mod traceFrames */ \
+  uint coneInterleave; /* rows of traced pixels take turns over the cone set: each traces every this-many-th cone */
 #define DYNGI_VCT_REPROJECT_PUSH                                                     \
   mat4 previousViewProj;                                                           \
   uint traceScale;                                                                 \
@@ -577,7 +578,7 @@ static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && siz
 static_assert(sizeof(VplTailPush) == 8 && sizeof(CompensatePush) == 20);
 static_assert(sizeof(VplBouncePush) == 44 && sizeof(ManyLightsDebugPush) == 12 && sizeof(IndirectFilterPush) == 4);
 static_assert(sizeof(VctInjectPush) == 32 && sizeof(VctBouncePush) == 48 && sizeof(VctMipsPush) == 12);
-static_assert(sizeof(VctTracePush) == 64 && sizeof(VctReprojectPush) == 84 && sizeof(VctUpsamplePush) == 4 && sizeof(VctFilterPush) == 16 && sizeof(VctDebugPush) == 52 && sizeof(VctProbePush) == 52);
+static_assert(sizeof(VctTracePush) == 68 && sizeof(VctReprojectPush) == 84 && sizeof(VctUpsamplePush) == 4 && sizeof(VctFilterPush) == 16 && sizeof(VctDebugPush) == 52 && sizeof(VctProbePush) == 52);
 }  // namespace dyngi::gi::gpu
 #endif
 

@@ -16,6 +16,8 @@ const OptionTable<VctOptions>& VctOptions::table() {
   static const OptionTable<VctOptions> t =
       OptionTable<VctOptions>()
           .add({"cones", "diffuse cones per pixel (cosine-spread over the hemisphere)", 1, 32}, &VctOptions::diffuseCones)
+          .add({"cone-interleave", "rows of traced pixels take turns over the diffuse cones, each marching every Nth (with --diffuse-filter 0: 1)", 1, 4},
+               &VctOptions::coneInterleave)
           .add({"bounces", "light bounces (each past the first: a cone pass over the occupied voxels)", 1, 3}, &VctOptions::bounces)
           .add({"trace-scale", "trace one pixel in NxN and upsample (1: every pixel; 0: at most 192^2 traced)", 0, 8},
                &VctOptions::traceScale)
@@ -35,7 +37,7 @@ const OptionTable<VctOptions>& VctOptions::table() {
           .add({"ao-distance", "reach of ambient occlusion, in volume sides", 0.01, 1}, &VctOptions::aoDistance)
           .add({"cone-offset", "voxels off the surface a cone starts", 0, 4}, &VctOptions::coneOffset)
           .add({"cone-step", "step along a cone, in cone diameters", 0.1, 2}, &VctOptions::stepScale)
-          .add({"far-narrowing", "samples of footprints over 11 voxels read a footprint 2^-B of the cone's (less light through thin walls; use with more --cones)", 0, 1},
+          .add({"far-narrowing", "samples of footprints over 11 voxels read a footprint 2^-B of the cone's (less light through thin walls; with few --cones, light between them is lost)", 0, 1},
                &VctOptions::farNarrowing)
           .add({"view-mip", "mip level the radiance and opacity views show", 0, 9}, &VctOptions::viewMip);
   return t;

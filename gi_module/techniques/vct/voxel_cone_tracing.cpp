@@ -251,6 +251,11 @@ void VoxelConeTracing::fillConeParams(Push& p) const {
   p.farNarrowing = options_.farNarrowing;
 }
 
+uint32_t VoxelConeTracing::effectiveConeInterleave() const {
+  // Without the filter nothing brings the rows' cone sets together: every pixel marches all of them.
+  return options_.diffuseFilterRadius > 0 ? std::clamp(options_.coneInterleave, 1u, options_.diffuseCones) : 1u;
+}
+
 void VoxelConeTracing::recordLeafPass(VkCommandBuffer cmd, const Pipeline& pipeline, const void* push, uint32_t pushBytes,
                                       DescriptorWrites& writes) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
@@ -420,6 +425,12 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
     for (uint32_t b = 1; b < options_.bounces; ++b) {
       gpu::VctBouncePush pc{};
       fillConeParams(pc);
+      // A voxel marches as many cones as a traced pixel (diffuseCones / coneInterleave), each covering
+      // its share of the hemisphere, without the far narrowing: no filter brings neighbours' cones in, and
+      // so few narrowed cones would lose the light between them. Every cone on every voxel doubled the
+      // bounce pass at the defaults (docs/BENCHMARKS.md, session 28).
+      pc.cones = (options_.diffuseCones + effectiveConeInterleave() - 1) / effectiveConeInterleave();
+      pc.farNarrowing = 0.0f;
       DescriptorWrites w;
       w.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, direct_[current_].view())
           .sampledImage(DYNGI_VCT_BOUNCE_BINDING_RADIANCE, radiance_.view(), sampler_)
@@ -465,6 +476,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
     pc.turnCones = options_.diffuseFilterRadius > 0 ? 1u : 0u;
     pc.traceFrames = traceFrames;
     pc.tracePhase = tracePhase;
+    pc.coneInterleave = effectiveConeInterleave();
     vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
     // With traceFrames > 1: the 2 x 2 lattice's cells, once per offset traced this frame (vct_trace_phase.glsl).
     const uint32_t step = traceFrames > 1 ? 2 : 1;

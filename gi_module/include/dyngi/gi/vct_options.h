@@ -10,9 +10,18 @@ namespace dyngi::gi {
 enum class VctView { Final, Radiance, Opacity, Ao, Indirect, Specular };
 
 struct VctOptions {
-  // Diffuse cones per pixel, spread over the hemisphere by cosine (equal weights); each cone's aperture
-  // covers its share of the hemisphere's solid angle (1/N of 2 pi).
-  uint32_t diffuseCones = 6;
+  // Diffuse cones, spread over the hemisphere by cosine (equal weights); each cone's aperture covers its
+  // share of the hemisphere's solid angle (1/N of 2 pi). A traced pixel marches 1 / coneInterleave of
+  // them. 12 (6 a pixel): with the far narrowing below, the Cornell box's tall box keeps the light that
+  // arrives between 6 wide cones (docs/QUALITY.md, session 28).
+  uint32_t diffuseCones = 12;
+  // Rows of traced pixels take turns over the diffuse cones: a pixel in row y marches cones y mod N,
+  // y mod N + N, ... (their sum scaled by all the cones' weight over theirs), and the diffuse filter's
+  // average over neighbouring rows sees every cone. Rows, not a checkerboard: lavapipe's 8 lanes run a
+  // row together, and lanes marching different cones take different footprints (and step counts). The
+  // filter's tent weighs the two halves 8 to 8 at radius 3, 13 to 12 at 4; with the filter off (radius
+  // 0) every pixel marches every cone.
+  uint32_t coneInterleave = 2;
   // Light bounces: 1 is direct light injected into the volume and gathered by the screen cones; each
   // more is a cone-tracing pass over the occupied voxels into a second volume.
   uint32_t bounces = 1;
@@ -34,8 +43,10 @@ struct VctOptions {
   // filter averages the neighbours' sets, so a few cones see the hemisphere through many directions
   // instead of missing the same ones on every pixel of a face (blotches on walls, a face lit by light
   // from between two cones gone dark). 3 is the smallest that leaves no trace of the dither's diagonal
-  // pattern; 0: the same cones everywhere and no filter.
-  uint32_t diffuseFilterRadius = 3;
+  // pattern; 4 also smooths the faint wisps the rows' halves of the cone set (coneInterleave) leave on
+  // a wall at 3 (p99 against every cone on every pixel 0.10 -> 0.07, at no measurable cost; its tent
+  // weighs the halves 13 to 12). 0: the same cones everywhere and no filter.
+  uint32_t diffuseFilterRadius = 4;
   static constexpr uint32_t kMaxDiffuseFilterRadius = 4;  // the filter's taps grow with it: 2 (2r + 1)
   // Opacity and radiance of the mip chain per direction (6 volumes of half resolution, composited front
   // to back along each axis): a thin wall stays opaque at coarse mips, so less light leaks through it,
@@ -70,11 +81,10 @@ struct VctOptions {
   float stepScale = 1.15f;
   // Samples of footprints over 11 voxels (vct_cone.glsl's vctReadLevel) read a level this much under
   // the cone's footprint (2^-this of it wide), the step's part taken over that footprint. A narrower far
-  // sample straddles a thin wall less: at 0.75 with 12 diffuse cones the two-room leak is 4.3 percent
-  // (8.3 at 0 with 6) with every Cornell region within its band; with 6 cones the light that arrives
-  // between them is missed (the tall box's shadowed face 0.68). Off by default: 12 cones double the
-  // diffuse trace (docs/QUALITY.md, session 27).
-  float farNarrowing = 0.0f;
+  // sample straddles a thin wall less: with 12 diffuse cones the two-room leak is 4.4 percent (8.3 at 0
+  // with 6) with every Cornell region within its band; with 6 cones the light that arrives between them
+  // is missed (the tall box's shadowed face 0.68; docs/QUALITY.md, session 27).
+  float farNarrowing = 0.75f;
   // The mip the `radiance` and `opacity` debug views show.
   uint32_t viewMip = 0;
   VctView view = VctView::Final;  // set by name through the technique, not a table row

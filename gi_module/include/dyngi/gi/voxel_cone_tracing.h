@@ -82,6 +82,7 @@ class VoxelConeTracing final : public render::RenderFeature {
                       render::DescriptorWrites& writes);
   template <class Push>
   void fillConeParams(Push& p) const;
+  uint32_t effectiveConeInterleave() const;  // coneInterleave, 1 with the diffuse filter off
 
   render::VulkanContext& ctx_;
   VoxelScene& voxels_;

@@ -25,7 +25,7 @@ void bounce(uint i) {
   if (nLen > 0.3) {  // a voxel whose fragments face both ways keeps its direct light only
     float ao;
     // From the voxel's centre: its surface is within half a voxel of it.
-    vec3 e = vctDiffuse(vec3(leaf.voxel) + 0.5, leaf.normalSum / nLen, 0.0, ao);
+    vec3 e = vctDiffuse(vec3(leaf.voxel) + 0.5, leaf.normalSum / nLen, 0.0, 0u, 1u, ao);
     L += leaf.albedo * e;
   }
   imageStore(outRadiance, leaf.voxel, vec4(L, 1.0));

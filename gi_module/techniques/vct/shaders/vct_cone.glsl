@@ -60,17 +60,21 @@ vec4 vctCombineSlabs(vec4 sx, vec4 sy, vec4 sz, vec3 w) {
 // and most of its steps are near the surface it leaves (its footprint grows by 1.2-1.5 a step there),
 // so whole levels there save a fifth of the trace (docs/BENCHMARKS.md, session 27). The step's part is
 // taken as before, as the cone's footprint. Farther out the footprint is the cone's, narrowed by
-// farNarrowing (0 by default; VctOptions::farNarrowing): whole levels at 11-22 voxels took the Cornell
-// tall box's face to the red wall from 0.81 to 0.66 of the path tracer.
-float vctReadLevel(float mip) { return mip < DYNGI_VCT_WHOLE_LEVELS_BELOW ? floor(mip + 0.5) : mip - farNarrowing; }
+// narrow.x levels (the diffuse cones' VctOptions::farNarrowing; narrow.y is 2^narrow.x): whole levels at
+// 11-22 voxels took the Cornell tall box's face to the red wall from 0.81 to 0.66 of the path tracer.
+// Returns the level; `steps` becomes the step in footprints of the level read.
+float vctReadLevel(float mip, vec2 narrow, inout float steps) {
+  bool far = mip >= DYNGI_VCT_WHOLE_LEVELS_BELOW;
+  steps *= far ? narrow.y : 1.0;
+  return far ? mip - narrow.x : floor(mip + 0.5);
+}
 
 // From a footprint of 2 voxels on (mip >= 1), the three atlas slabs the direction faces, weighted by its
 // squared components (vctCombineSlabs): the part a step `steps` footprints long takes from them (each
 // slab's fraction of it times the step: the step's length costs no pow() of its own).
-vec4 vctSampleCoarse(vec3 p, float mip, vec3 dir, float steps) {
+vec4 vctSampleCoarse(vec3 p, float mip, vec3 dir, float steps, vec2 narrow) {
   vec3 uvw = p / res;
-  float level = vctReadLevel(mip);
-  if (mip >= DYNGI_VCT_WHOLE_LEVELS_BELOW) steps *= exp2(farNarrowing);  // the step in footprints of the level read
+  float level = vctReadLevel(mip, narrow, steps);
   if (!kAnisotropic) return vctPart(textureLod(vctRadiance, uvw, level), steps);
   float lod = max(level - 1.0, 0.0);  // the atlas is half the resolution: its level 0 is a footprint of 2
   float clampHalf = ldexp(1.0, int(ceil(lod))) / res;  // half a texel of the coarser level, in uvw of the slab (a power of two: no exp2)
@@ -83,10 +87,10 @@ vec4 vctSampleCoarse(vec3 p, float mip, vec3 dir, float steps) {
 // The volume at p (voxel units) filtered to a footprint of 2^mip voxels, as seen along `dir`: the part a
 // step `steps` footprints long takes from it. Level 0 is isotropic: below mip 1 the anisotropic volume
 // blends it with the atlas.
-vec4 vctSample(vec3 p, float mip, vec3 dir, float steps) {
-  if (!kAnisotropic) return vctSampleCoarse(p, mip, dir, steps);
+vec4 vctSample(vec3 p, float mip, vec3 dir, float steps, vec2 narrow) {
+  if (!kAnisotropic) return vctSampleCoarse(p, mip, dir, steps, narrow);
   vec4 fine = vctPart(textureLod(vctRadiance, p / res, 0.0), steps);
-  return mix(fine, vctSampleCoarse(p, mip, dir, steps), clamp(mip, 0.0, 1.0));
+  return mix(fine, vctSampleCoarse(p, mip, dir, steps, narrow), clamp(mip, 0.0, 1.0));
 }
 
 // How much of a sample at p (footprint `diameter`) counts: 1 inside the volume, fading to 0 a footprint
@@ -117,7 +121,8 @@ void vctAccumulate(vec4 part, float t, inout vec3 colour, inout float alpha, ino
 // Returns the radiance arriving along the cone (rgb) and its opacity (a); `occlusion` is the opacity met
 // within aoDistance, each sample weighted by 1 - t / aoDistance.
 const float kVctSurfaceClearance = DYNGI_VCT_SURFACE_CLEARANCE;
-vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, out float occlusion) {
+vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, float narrowing, out float occlusion) {
+  vec2 narrow = vec2(narrowing, exp2(narrowing));
   vec3 colour = vec3(0.0);
   float alpha = 0.0;
   occlusion = 0.0;
@@ -134,7 +139,7 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, out 
     if (diameter > 1.0) break;
     vec3 p = origin + t * dir;
     float inside = vctInside(p, diameter);
-    vctAccumulate(inside * (kAnisotropic ? vctPart(textureLod(vctRadiance, p / res, 0.0), stepScale) : vctSampleCoarse(p, 0.0, dir, stepScale)), t,
+    vctAccumulate(inside * (kAnisotropic ? vctPart(textureLod(vctRadiance, p / res, 0.0), stepScale) : vctSampleCoarse(p, 0.0, dir, stepScale, narrow)), t,
                   colour, alpha, occlusion);
     t += stepScale * diameter;
     if (alpha >= 0.99 || t > reach || inside <= 0.0) {
@@ -147,7 +152,7 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, out 
     if (diameter >= 2.0) break;
     vec3 p = origin + t * dir;
     float inside = vctInside(p, diameter);
-    vctAccumulate(inside * vctSample(p, log2(diameter), dir, stepScale), t, colour, alpha, occlusion);
+    vctAccumulate(inside * vctSample(p, log2(diameter), dir, stepScale, narrow), t, colour, alpha, occlusion);
     t += stepScale * diameter;
     if (alpha >= 0.99 || t > reach || inside <= 0.0) {
       done = true;
@@ -158,36 +163,51 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, out 
     float diameter = min(2.0 * tanHalf * t, kVctSurfaceClearance * (coneOffset + rise * t));
     vec3 p = origin + t * dir;
     float inside = vctInside(p, diameter);
-    vctAccumulate(inside * vctSampleCoarse(p, log2(diameter), dir, stepScale), t, colour, alpha, occlusion);
+    vctAccumulate(inside * vctSampleCoarse(p, log2(diameter), dir, stepScale, narrow), t, colour, alpha, occlusion);
     t += stepScale * diameter;
     if (alpha >= 0.99 || t > reach || inside <= 0.0) break;
   }
   return vec4(colour, alpha);
 }
 
-// E / pi at a surface point (voxel units) with unit normal n from N diffuse cones, their spiral turned by
-// `turn` (a fraction of a turn) about n; `ao` the mean of the cones' unoccluded fraction within aoDistance.
-vec3 vctDiffuse(vec3 p, vec3 n, float turn, out float ao) {
+// Diffuse cone k of n: its direction about the normal (z) and its half-angle tangent; returns its
+// weight, its projected solid angle over pi. The elevations are the cosine spiral's over all n (the
+// apertures follow them); the azimuths step by the golden angle within each set of cones a pixel marches
+// (k, k + stride, ...: VctOptions::coneInterleave), turned by `turn`, so each set is a spiral of its
+// own (every other cone of the whole spiral would step 275 degrees, near a quarter turn back: the set's
+// cones bunched into a few azimuths, its holes drew streaks through the filter).
+float vctDiffuseCone(uint k, uint n, uint stride, float turn, out vec3 d, out float coneTan) {
+  float u = (float(k) + 0.5) / float(n);
+  float r = sqrt(u), phi = float(k / stride) * 2.39996323 + 6.28318531 * turn;
+  d = vec3(r * cos(phi), r * sin(phi), sqrt(max(1.0 - u, 0.0)));
+  float cosHalf = max(1.0 - 1.0 / (2.0 * float(n) * max(d.z, 1e-3)), 0.0);
+  coneTan = sqrt(1.0 - cosHalf * cosHalf) / max(cosHalf, 1e-3);
+  // A cone tilted by theta keeps its half-angle under 90 - theta degrees (tan <= 0.9 cot theta): wider,
+  // it would reach below the horizon and meet the surface it starts from. Its weight shrinks with it.
+  coneTan = min(coneTan, 0.9 * d.z / max(sqrt(1.0 - d.z * d.z), 1e-4));
+  return 2.0 * (1.0 - inversesqrt(1.0 + coneTan * coneTan)) * d.z;
+}
+
+// E / pi at a surface point (voxel units) with unit normal n from the diffuse cones first, first +
+// stride, ... of `cones`, their spiral turned by `turn` (a fraction of a turn) about n, scaled by the
+// weight of all the cones over theirs (VctOptions::coneInterleave: rows of pixels take turns over the
+// cones, the diffuse filter brings them together); `ao` the mean of the marched cones' unoccluded
+// fraction within aoDistance.
+vec3 vctDiffuse(vec3 p, vec3 n, float turn, uint first, uint stride, out float ao) {
   mat3 basis = basisAround(n);
   vec3 origin = p + n * coneOffset;
-  vec3 sum = vec3(0.0);
-  float occluded = 0.0, total = 0.0;
-  for (uint k = 0u; k < cones; ++k) {
+  vec3 sum = vec3(0.0), d;
+  float occluded = 0.0, marched = 0.0, all = 0.0, coneTan;
+  for (uint k = 0u; k < cones; ++k) all += vctDiffuseCone(k, cones, stride, 0.0, d, coneTan);
+  for (uint k = first; k < cones; k += stride) {
     float occ;
-    vec3 d = cosineSpiral(k, cones, turn);
-    float cosHalf = max(1.0 - 1.0 / (2.0 * float(cones) * max(d.z, 1e-3)), 0.0);
-    float coneTan = sqrt(1.0 - cosHalf * cosHalf) / max(cosHalf, 1e-3);
-    // A cone tilted by theta keeps its half-angle under 90 - theta degrees (tan <= 0.9 cot theta): wider,
-    // it would reach below the horizon and meet the surface it starts from. Its weight, its projected
-    // solid angle over pi, shrinks with it.
-    coneTan = min(coneTan, 0.9 * d.z / max(sqrt(1.0 - d.z * d.z), 1e-4));
-    float weight = 2.0 * (1.0 - inversesqrt(1.0 + coneTan * coneTan)) * d.z;
-    sum += weight * vctCone(origin, basis * d, coneTan, d.z, maxDistance, occ).rgb;
+    float weight = vctDiffuseCone(k, cones, stride, turn, d, coneTan);
+    sum += weight * vctCone(origin, basis * d, coneTan, d.z, maxDistance, farNarrowing, occ).rgb;
     occluded += weight * occ;
-    total += weight;
+    marched += weight;
   }
-  ao = 1.0 - occluded / max(total, 1e-6);
-  return sum;
+  ao = 1.0 - occluded / max(marched, 1e-6);
+  return sum * (all / max(marched, 1e-6));
 }
 
 #endif

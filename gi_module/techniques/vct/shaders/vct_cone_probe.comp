@@ -16,6 +16,6 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= count) return;
   float occ;
-  vec4 r = vctCone(rays[2u * i].xyz, normalize(rays[2u * i + 1u].xyz), tanHalf, 1.0, maxDistance, occ);
+  vec4 r = vctCone(rays[2u * i].xyz, normalize(rays[2u * i + 1u].xyz), tanHalf, 1.0, maxDistance, farNarrowing, occ);
   results[i] = r;
 }

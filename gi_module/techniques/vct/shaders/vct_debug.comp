@@ -42,7 +42,7 @@ void main() {
       for (int i = 0; i < 4 * int(res) && acc.a < 0.99; ++i) {
         vec3 p = o + (t + 0.5 * footprint) * d;
         if (any(lessThan(p, vec3(-1e-3))) || any(greaterThan(p, vec3(res + 1e-3)))) break;
-        vec4 part = vctSample(p, mip, d, 0.5);  // half-footprint steps
+        vec4 part = vctSample(p, mip, d, 0.5, vec2(0.0, 1.0));  // half-footprint steps, the mip asked for
         acc += (1.0 - acc.a) * part;
         t += 0.5 * footprint;
       }

@@ -45,8 +45,13 @@ void main() {
   // azimuth turns: jittering the elevations too (the widths follow them) cost lavapipe another 15 percent
   // of the frame at 768^2. Turning costs about 11 percent there (neighbours' cones read different texels;
   // a turn shared by a row of 8 pixels cost as much and filtered worse); `--diffuse-filter 0` saves it.
+  // Rows take turns over the cone set (VctOptions::coneInterleave): a row of the dispatch, a row of
+  // lanes, holds traced pixels of one row whether the trace is spread over frames or not, so every lane
+  // marches the same cones, with the same footprints and steps, and a pixel's cones do not depend on
+  // traceFrames (a still view converges to the every-frame image).
+  uint stride = max(coneInterleave, 1u);
   float turn = turnCones != 0u ? fract(0.7548776662 * float(q.x) + 0.5698402910 * float(q.y)) : 0.0;
-  vec3 diffuse = vctDiffuse(p, n, turn, ao);
+  vec3 diffuse = vctDiffuse(p, n, turn, uint(q.y) % stride, stride, ao);
   imageStore(outDiffuse, q, vec4(diffuse, ao));
   vec3 specular = vec3(0.0);
   if (kSpecular) {
@@ -58,7 +63,9 @@ void main() {
     vec3 r = normalize(mix(n, reflect(-v, n), (1.0 - rough) * (sqrt(1.0 - rough) + rough)));
     float tanHalf = clamp(rough * rough, kMinSpecularTan, 1.0);
     float occ;
-    specular = vctCone(p + n * coneOffset, r, tanHalf, max(dot(r, n), 0.0), maxDistance, occ).rgb;
+    // Its footprints are the lobe's own: the far narrowing is for the diffuse cones (a rough lobe read
+    // narrower reflected sharper than a smoother one).
+    specular = vctCone(p + n * coneOffset, r, tanHalf, max(dot(r, n), 0.0), maxDistance, 0.0, occ).rgb;
   }
   imageStore(outSpecular, q, vec4(specular, 0.0));
 }
