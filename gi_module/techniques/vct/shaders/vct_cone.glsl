@@ -170,39 +170,38 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, floa
   return vec4(colour, alpha);
 }
 
-// Diffuse cone k of n: its direction about the normal (z) and its half-angle tangent; returns its
-// weight, its projected solid angle over pi. The elevations are the cosine spiral's over all n (the
-// apertures follow them); the azimuths step by the golden angle within each set of cones a pixel marches
-// (k, k + stride, ...: VctOptions::coneInterleave), turned by `turn`, so each set is a spiral of its
-// own (every other cone of the whole spiral would step 275 degrees, near a quarter turn back: the set's
-// cones bunched into a few azimuths, its holes drew streaks through the filter).
-float vctDiffuseCone(uint k, uint n, uint stride, float turn, out vec3 d, out float coneTan) {
+// Diffuse cone k of n: its half-angle tangent from its elevation on the cosine spiral over all n (its
+// cosine z to the normal); returns its weight, its projected solid angle over pi.
+float vctDiffuseConeWeight(uint k, uint n, out float z, out float coneTan) {
   float u = (float(k) + 0.5) / float(n);
-  float r = sqrt(u), phi = float(k / stride) * 2.39996323 + 6.28318531 * turn;
-  d = vec3(r * cos(phi), r * sin(phi), sqrt(max(1.0 - u, 0.0)));
-  float cosHalf = max(1.0 - 1.0 / (2.0 * float(n) * max(d.z, 1e-3)), 0.0);
+  z = sqrt(max(1.0 - u, 0.0));
+  float cosHalf = max(1.0 - 1.0 / (2.0 * float(n) * max(z, 1e-3)), 0.0);
   coneTan = sqrt(1.0 - cosHalf * cosHalf) / max(cosHalf, 1e-3);
   // A cone tilted by theta keeps its half-angle under 90 - theta degrees (tan <= 0.9 cot theta): wider,
   // it would reach below the horizon and meet the surface it starts from. Its weight shrinks with it.
-  coneTan = min(coneTan, 0.9 * d.z / max(sqrt(1.0 - d.z * d.z), 1e-4));
-  return 2.0 * (1.0 - inversesqrt(1.0 + coneTan * coneTan)) * d.z;
+  coneTan = min(coneTan, 0.9 * z / max(sqrt(u), 1e-4));
+  return 2.0 * (1.0 - inversesqrt(1.0 + coneTan * coneTan)) * z;
 }
 
 // E / pi at a surface point (voxel units) with unit normal n from the diffuse cones first, first +
-// stride, ... of `cones`, their spiral turned by `turn` (a fraction of a turn) about n, scaled by the
-// weight of all the cones over theirs (VctOptions::coneInterleave: rows of pixels take turns over the
-// cones, the diffuse filter brings them together); `ao` the mean of the marched cones' unoccluded
-// fraction within aoDistance.
+// stride, ... of `cones`, scaled by the weight of all the cones over theirs (VctOptions::coneInterleave:
+// rows of pixels take turns over the cones, the diffuse filter brings them together); `ao` the mean of
+// the marched cones' unoccluded fraction within aoDistance. The elevations are the cosine spiral's over
+// all the cones (the apertures follow them); the azimuths step by the golden angle within each set a
+// pixel marches, turned by `turn` (a fraction of a turn) about n, so each set is a spiral of its own
+// (every other cone of the whole spiral would step 275 degrees, near a quarter turn back: a set's cones
+// bunched into a few azimuths, and the filter drew their holes as streaks).
 vec3 vctDiffuse(vec3 p, vec3 n, float turn, uint first, uint stride, out float ao) {
   mat3 basis = basisAround(n);
   vec3 origin = p + n * coneOffset;
-  vec3 sum = vec3(0.0), d;
-  float occluded = 0.0, marched = 0.0, all = 0.0, coneTan;
-  for (uint k = 0u; k < cones; ++k) all += vctDiffuseCone(k, cones, stride, 0.0, d, coneTan);
+  vec3 sum = vec3(0.0);
+  float occluded = 0.0, marched = 0.0, all = 0.0, z, coneTan;
+  for (uint k = 0u; k < cones; ++k) all += vctDiffuseConeWeight(k, cones, z, coneTan);
   for (uint k = first; k < cones; k += stride) {
     float occ;
-    float weight = vctDiffuseCone(k, cones, stride, turn, d, coneTan);
-    sum += weight * vctCone(origin, basis * d, coneTan, d.z, maxDistance, farNarrowing, occ).rgb;
+    float weight = vctDiffuseConeWeight(k, cones, z, coneTan);
+    float phi = float(k / stride) * 2.39996323 + 6.28318531 * turn, r = sqrt(max(1.0 - z * z, 0.0));
+    sum += weight * vctCone(origin, basis * vec3(r * cos(phi), r * sin(phi), z), coneTan, z, maxDistance, farNarrowing, occ).rgb;
     occluded += weight * occ;
     marched += weight;
   }
