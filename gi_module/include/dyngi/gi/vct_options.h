@@ -45,7 +45,8 @@ struct VctOptions {
   // from between two cones gone dark). 3 is the smallest that leaves no trace of the dither's diagonal
   // pattern; 4 also smooths the faint wisps the rows' halves of the cone set (coneInterleave) leave on
   // a wall at 3 (p99 against every cone on every pixel 0.10 -> 0.07, at no measurable cost; its tent
-  // weighs the halves 13 to 12). 0: the same cones everywhere and no filter.
+  // weighs the halves 13 to 12). 0: the same cones everywhere (every pixel marching all of them) and no
+  // filter.
   uint32_t diffuseFilterRadius = 4;
   static constexpr uint32_t kMaxDiffuseFilterRadius = 4;  // the filter's taps grow with it: 2 (2r + 1)
   // Opacity and radiance of the mip chain per direction (6 volumes of half resolution, composited front

@@ -44,7 +44,8 @@ void main() {
   // of them sees the hemisphere through many more directions than one pixel's few cones. Only the
   // azimuth turns: jittering the elevations too (the widths follow them) cost lavapipe another 15 percent
   // of the frame at 768^2. Turning costs about 11 percent there (neighbours' cones read different texels;
-  // a turn shared by a row of 8 pixels cost as much and filtered worse); `--diffuse-filter 0` saves it.
+  // a turn shared by a row of 8 pixels cost as much and filtered worse). `--diffuse-filter 0` leaves the
+  // turn out, and every pixel then marches every cone (nothing would bring the rows' halves together).
   // Rows take turns over the cone set (VctOptions::coneInterleave): a row of the dispatch, a row of
   // lanes, holds traced pixels of one row whether the trace is spread over frames or not, so every lane
   // marches the same cones, with the same footprints and steps, and a pixel's cones do not depend on
