@@ -68,11 +68,13 @@ TEST_F(RenderTest, VctCornellMatchesPathTracerPerRegionWithColourBleeding) {
   // add 2-5 percent to the walls that the reference cannot have.
   gi::GiSettings s = vctSettings();
   s.vct.specular = false;
-  // The defaults split 12 cones between pairs of rows (VctOptions::coneInterleave); the filter brings
-  // them together. Every pixel marching all 12 is the image the split must reproduce, region by region.
+  // The defaults split 12 cones between alternate rows of traced pixels (VctOptions::coneInterleave);
+  // the filter brings them together. Every pixel marching all 12 is the image the split must reproduce,
+  // region by region, without being that image (the rows do march different cones).
   gi::GiSettings everyCone = s;
   everyCone.vct.coneInterleave = 1;
   std::map<std::string, double> firstRatios;
+  std::vector<render::ImageRgba> images;
   for (const auto& [label, settings] : {std::pair<const char*, gi::GiSettings>{"default", s}, {"every cone on every pixel", everyCone}}) {
     SCOPED_TRACE(label);
     std::printf("%s\n", label);
@@ -80,6 +82,7 @@ TEST_F(RenderTest, VctCornellMatchesPathTracerPerRegionWithColourBleeding) {
     run.step(4);
     Frame f = run.readFrame();
     const render::ImageRgba& ref = cornellReference(run, 1);
+    images.push_back(f.hdr);
     if (settings.vct.coneInterleave == s.vct.coneInterleave) {
       dump("vct_cornell", f.hdr, kSize, kSize);
       dump("vct_cornell_path", ref, kSize, kSize);
@@ -122,6 +125,11 @@ TEST_F(RenderTest, VctCornellMatchesPathTracerPerRegionWithColourBleeding) {
     EXPECT_GT(ours, 1.2) << "the face turned to the red wall is redder";
     EXPECT_NEAR(ours / theirs, 1.0, 0.2);
   }
+  ASSERT_EQ(images.size(), 2u);
+  const double splitAgainstEvery = render::relativeMse(images[0], images[1]);
+  std::printf("rows' halves against every cone on every pixel: relMSE %.6f\n", splitAgainstEvery);
+  EXPECT_GT(splitAgainstEvery, 1e-7) << "the rows march half the cones each, not all of them";
+  EXPECT_LT(splitAgainstEvery, 0.001);
 }
 
 // Few cones, turned per pixel and filtered, against many: six cones the same on every pixel see the same

@@ -82,7 +82,7 @@ struct VctOptions {
   float stepScale = 1.15f;
   // Samples of footprints over 11 voxels (vct_cone.glsl's vctReadLevel) read a level this much under
   // the cone's footprint (2^-this of it wide), the step's part taken over that footprint. A narrower far
-  // sample straddles a thin wall less: with 12 diffuse cones the two-room leak is 4.4 percent (8.3 at 0
+  // sample straddles a thin wall less: with 12 diffuse cones the two-room leak is 4.9 percent (8.3 at 0
   // with 6) with every Cornell region within its band; with 6 cones the light that arrives between them
   // is missed (the tall box's shadowed face 0.68; docs/QUALITY.md, session 27).
   float farNarrowing = 0.75f;
