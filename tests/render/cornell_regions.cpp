@@ -45,11 +45,11 @@ Regions cornellRegions(const Frame& f, const scene::AssetStore& assets, uint32_t
   return r;
 }
 
-std::vector<uint8_t> surfaceFacing(const Frame& f, const glm::vec3& normal, size_t& count) {
+std::vector<uint8_t> surfaceFacing(const Frame& f, const render::ImageRgba& reference, const glm::vec3& normal, size_t& count) {
   std::vector<uint8_t> mask(f.hdr.size(), 0);
   count = 0;
   for (size_t i = 0; i < mask.size(); ++i) {
-    mask[i] = f.position[i].w > 0.5f && glm::dot(glm::vec3(f.normal[i]), normal) > 0.95f && f.hdr[i].r < 1.0f;
+    mask[i] = f.position[i].w > 0.5f && glm::dot(glm::vec3(f.normal[i]), normal) > 0.95f && reference[i].r < 1.0f;
     count += mask[i];
   }
   return mask;

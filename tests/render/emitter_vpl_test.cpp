@@ -109,7 +109,7 @@ TEST_F(RenderTest, SharedEmissiveCornellBoxLightsTheRoomThroughBothVplTechniques
     size_t checked = 0;
     for (const auto& [name, normal] : surfaces) {
       size_t n = 0;
-      const std::vector<uint8_t> mask = surfaceFacing(f, normal, n);
+      const std::vector<uint8_t> mask = surfaceFacing(f, reference, normal, n);
       const double a = luminance(render::meanOver(f.hdr, &mask)), b = luminance(render::meanOver(reference, &mask));
       if (n < 100 || b < 1e-3) continue;
       std::printf("shared CornellBox.glb %-11s %-10s %.4f / %.4f = %.3f (%zu px)\n", c.name, name, a, b, a / b, n);

@@ -452,7 +452,7 @@ TEST_F(RenderTest, VctEmissiveOnlySceneLightsTheRoom) {
   size_t checked = 0;
   for (const auto& [name, normal] : surfaces) {
     size_t n = 0;
-    const std::vector<uint8_t> mask = surfaceFacing(f, normal, n);
+    const std::vector<uint8_t> mask = surfaceFacing(f, ref, normal, n);
     if (n < 100) continue;
     const double a = lum(render::meanOver(f.hdr, &mask)), b = lum(render::meanOver(ref, &mask));
     std::printf("emissive-only %-11s vct %.4f  path %.4f  ratio %.3f  (%zu px)\n", name, a, b, a / b, n);
