@@ -81,7 +81,11 @@ VoxelProbe::LeafLevel VoxelProbe::readbackLeafLevel(bool withCells) {
   const uint32_t depth = voxels_.volume().depth();
   l.range = render::readbackBuffer<gpu::SvoLevel>(voxels_.ctx_, voxels_.levels().handle(), depth + 1)[depth].range;
   l.nodes = readbackNodes();
-  if (withCells) l.cells = render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.nodeCells().handle(), l.nodes.size());
+  if (withCells) {
+    // Only a group's first slot is written (svo_morton.glsl's SVO_NODE_CELL): its siblings' follow.
+    l.cells = render::readbackBuffer<uint32_t>(voxels_.ctx_, voxels_.nodeCells().handle(), l.nodes.size());
+    for (size_t i = 0; i < l.cells.size(); ++i) l.cells[i] = l.cells[i & ~size_t(7)] + uint32_t(i & 7);
+  }
   return l;
 }
 

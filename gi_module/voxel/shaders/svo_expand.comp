@@ -1,13 +1,14 @@
 #version 460
 // SVO build, step 2 of a level: every occupied node of `level` gets a group of 8 children, flagged from
-// one byte of the occupancy pyramid at level + 1 (DYNGI_SVO_LEVEL_BASE), each given its Morton code
-// (leaves too: radiance injection finds a leaf's voxel from it). One invocation writes a whole group, so no atomics touch the nodes; the groups come
-// from one counter (an append per subgroup). Nodes are visited in level order, which keeps a level's
+// one byte of the occupancy pyramid at level + 1 (DYNGI_SVO_LEVEL_BASE), the group its first child's
+// Morton code (its siblings' follow from it: SVO_NODE_CELL in svo_morton.glsl). One invocation writes a
+// whole group, so no atomics touch the nodes; the groups come from one counter (an append per subgroup). Nodes are visited in level order, which keeps a level's
 // groups contiguous (svo_level.comp relies on it).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "shared/gi_gpu_types.h"
 #include "subgroup_append.glsl"
+#include "svo_morton.glsl"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_NODES) buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = DYNGI_SVO_EXPAND_BINDING_NODE_CELLS) buffer NodeCells { uint nodeCells[]; };
@@ -33,14 +34,14 @@ void expand(uint node) {
   if (want && g >= counters.groups.y) {
     counters.groups.z = 1u;  // overflow: the node stays flagged without children (treated as occupied)
   } else if (want) {
-    code = nodeCells[node];
+    code = SVO_NODE_CELL(nodeCells, node);
     children = childOccupancy(level, code);
     bool childrenAreLeaves = level + 1u == depth;
     for (uint c = 0u; c < 8u; ++c) {
       bool o = ((children >> c) & 1u) != 0u;
       nodes[8u * g + c] = o ? DYNGI_SVO_FLAG : 0u;
-      nodeCells[8u * g + c] = 8u * code + c;  // empty siblings too: a group's first cell names its parent
     }
+    nodeCells[8u * g] = 8u * code;  // the group's first cell: its siblings' follow (SVO_NODE_CELL)
     if (childrenAreLeaves) leaves = bitCount(children);
     nodes[node] = DYNGI_SVO_FLAG | g;
   }

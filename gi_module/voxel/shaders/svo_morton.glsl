@@ -1,7 +1,8 @@
 // Morton code of a cell (10 bits per axis): its bits interleaved z y x from the top, so that a cell's
 // code at a coarser level is the code shifted right by 3 per level and a node's children are 8m + c
 // with c = x | y << 1 | z << 2, the SVO's child order (see DYNGI_SVO_LEVEL_BASE). svo_expand.comp
-// writes each node's code to the node cells; svoCellOfMortonCode reads a cell back from one.
+// writes the node cells once per group of 8 siblings (SVO_NODE_CELL below); svoCellOfMortonCode reads a
+// cell back from a code.
 #ifndef DYNGI_SVO_MORTON_GLSL
 #define DYNGI_SVO_MORTON_GLSL
 uint svoSpreadBits(uint v) {  // bit i of v (i < 10) to bit 3i
@@ -23,4 +24,10 @@ uint svoCompactBits(uint v) {  // bit 3i of v to bit i (the inverse of svoSpread
   return v;
 }
 ivec3 svoCellOfMortonCode(uint code) { return ivec3(svoCompactBits(code), svoCompactBits(code >> 1), svoCompactBits(code >> 2)); }
+
+// The Morton code of node `node`'s cell from the node cells (`cells`, a uint array). Only a group's first
+// slot is written (8 times the parent's code, which is its first child's code): sibling c of a group is
+// that plus c, and the root (node 0) is cell 0. One store per group instead of eight took the SVO build
+// about 0.9 ms less at 128^3 on lavapipe (docs/BENCHMARKS.md, session 29).
+#define SVO_NODE_CELL(cells, node) ((cells)[(node) & ~7u] + ((node) & 7u))
 #endif

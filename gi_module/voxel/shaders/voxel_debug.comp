@@ -30,7 +30,7 @@ void main() {
     float s = clamp(float(steps) / 64.0, 0.0, 1.0);
     color = vec3(s, 0.2 * (1.0 - abs(2.0 * s - 1.0)), 1.0 - s) * 0.6;
   } else if (node != 0xFFFFFFFFu) {
-    LeafAttributes attr = voxelAttributesAt(svoCellOfMortonCode(nodeCells[node]));
+    LeafAttributes attr = voxelAttributesAt(svoCellOfMortonCode(SVO_NODE_CELL(nodeCells, node)));
     vec3 n = attr.normalSum;
     float lambert = length(n) > 0.0 ? abs(dot(normalize(n), dirWorld)) : 1.0;
     color = attr.albedo * (0.25 + 0.75 * lambert) * 0.8 + attr.emission;

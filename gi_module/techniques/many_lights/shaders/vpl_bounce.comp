@@ -57,7 +57,7 @@ void main() {
   uint steps;
   uint node = svoFirstHit(o, dir, 0.0, 1e30, depth, res, tHit, steps);
   if (node != 0xFFFFFFFFu) {
-    LeafAttributes attr = voxelAttributesAt(svoCellOfMortonCode(nodeCells[node]));
+    LeafAttributes attr = voxelAttributesAt(svoCellOfMortonCode(SVO_NODE_CELL(nodeCells, node)));
     vec3 albedo = attr.albedo;
     vec3 vn = attr.normalSum;
     vn = length(vn) > 0.0 ? normalize(vn) : -dir;
