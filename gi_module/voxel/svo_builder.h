@@ -68,7 +68,8 @@ class SvoBuilder {
   uint32_t maxNodeGroups_;
   uint32_t nodeGroupCapacity_ = 0;
   render::Buffer nodes_, levels_, svoCounters_;
-  render::Buffer nodeCells_;  // per node, leaves included: its cell's Morton code (svo_expand.comp), sized like nodes_
+  render::Buffer nodeCells_;  // per group of 8 nodes (leaves included), at its first slot: the first child's Morton code
+                              // (svo_expand.comp; SVO_NODE_CELL derives the siblings'), sized like nodes_
   render::Buffer leafList_;   // the occupied leaves (node index, cell) after a header (svo_expand.comp, svo_level.comp)
   render::Buffer occupancy_;  // occupancy pyramid of every level (svo_mark.comp)
   // The pyramid of the entities in staticEntities_ alone: a build starts from a copy of it and marks the

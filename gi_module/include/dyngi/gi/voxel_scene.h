@@ -95,7 +95,8 @@ class VoxelScene final : public render::RenderFeature {
   // voxel, in VK_IMAGE_LAYOUT_GENERAL; one texel while the leaf attributes are off.
   const render::Image& voxelAttributes() const { return voxelAttributes_; }
   const render::Buffer& levels() const;
-  // Per node, its cell's Morton code at its level (leaves included): where a leaf sits in the volume.
+  // Per group of 8 sibling nodes (leaves included), at the group's first slot: its first child's cell's
+  // Morton code at its level; sibling c's is that plus c (SVO_NODE_CELL in svo_morton.glsl), the root's 0.
   const render::Buffer& nodeCells() const;
   // The occupied leaves, compacted: (node index, cell) pairs after a header of DYNGI_SVO_LEAF_LIST_HEADER uints
   // (indirect dispatch args, count). What passes over the leaves walk; built with the leaf attributes
