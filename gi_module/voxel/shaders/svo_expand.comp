@@ -2,8 +2,8 @@
 // SVO build, step 2 of a level: every occupied node of `level` gets a group of 8 children, flagged from
 // one byte of the occupancy pyramid at level + 1 (DYNGI_SVO_LEVEL_BASE), the group its first child's
 // Morton code (its siblings' follow from it: SVO_NODE_CELL in svo_morton.glsl). One invocation writes a
-// whole group, so no atomics touch the nodes; the groups come from one counter (an append per subgroup). Nodes are visited in level order, which keeps a level's
-// groups contiguous (svo_level.comp relies on it).
+// whole group, so no atomics touch the nodes; the groups come from one counter (an append per subgroup).
+// Nodes are visited in level order, which keeps a level's groups contiguous (svo_level.comp relies on it).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "shared/gi_gpu_types.h"
