@@ -545,6 +545,18 @@ TEST_F(RenderTest, VctSpecularReflectsTheRedWallAndBlursWithRoughness) {
     const glm::dvec3 c = render::meanOver(f.hdr, &nearRed), r = render::meanOver(specular, &nearRed);
     redness[roughness] = c.r / c.g;
     reflectionRedness[roughness] = r.r / r.g;
+    // Under VctOptions::specularConeBelow a cone is marched; at roughness 1 every draw is rougher than
+    // that: no cone anywhere, and every pixel's specular light is its diffuse light (E / pi).
+    const bool rough = roughness >= s.vct.specularConeBelow;
+    EXPECT_EQ(vctOf(run).stats().specularCones, !rough) << roughness;
+    if (rough) {
+      const render::ImageRgba indirect = run.renderer->readback(render::TargetId::Indirect);
+      double worst = 0;
+      for (size_t i = 0; i < indirect.size(); ++i)
+        if (f.position[i].w > 0.5f)
+          worst = std::max(worst, double(glm::length(glm::vec3(specular[i]) - glm::vec3(indirect[i])) / std::max(glm::length(glm::vec3(indirect[i])), 1e-3f)));
+      EXPECT_LT(worst, 1e-3) << "a rough pixel's specular light is its diffuse light";
+    }
     // Sharpness: the specular image's mean absolute step between horizontal neighbours on the floor,
     // relative to its mean, over the floor's interior (pixels at least 3 from anything else): where the
     // floor meets a box or a wall its reflection steps by the contact, not by how sharp it is. A rough

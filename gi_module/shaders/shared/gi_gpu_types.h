@@ -517,6 +517,7 @@ struct TemporalQueue {
 #define DYNGI_VCT_MIPS_PUSH uint destSlabWidth; /* texels; the isotropic chain has one slab */ uint sourceSlabWidth; /* 0: one source slab */ \
   uint nodeLevel; /* anisotropic: the SVO level whose cells are this atlas level's texels */
 #define DYNGI_VCT_TRACE_PUSH DYNGI_VCT_CONE_PARAMS uint traceScale; uint specular; uint turnCones; /* 1: each traced pixel turns its cone set */ \
+  float specularConeBelow; /* VctOptions::specularConeBelow: rougher pixels march no specular cone */ \
   uint traceFrames; /* 1, 2 or 4: the frames over which every traced pixel is traced once */ uint tracePhase; /* frame index mod traceFrames */ \
   uint coneInterleave; /* rows of traced pixels take turns over the cone set: each traces every this-many-th cone */
 #define DYNGI_VCT_REPROJECT_PUSH                                                     \
@@ -526,7 +527,10 @@ struct TemporalQueue {
   uint tracePhase;                                                                 \
   uint history;      /* 0: nothing from last frame counts (first frame, light switched) */ \
   uint maxAge;       /* frames a reprojected value may go untraced before it is dropped */
-#define DYNGI_VCT_UPSAMPLE_PUSH uint traceScale;
+#define DYNGI_VCT_UPSAMPLE_PUSH uint traceScale; float specularConeBelow; /* VctOptions::specularConeBelow */
+// The roughness range under VctOptions::specularConeBelow over which the specular light blends from the
+// cone's into the diffuse light's (vct_upsample.comp).
+#define DYNGI_VCT_SPECULAR_BLEND 0.2
 #define DYNGI_VCT_FILTER_PUSH uint traceScale; int radius; /* traced pixels */ int axisX; int axisY; /* (1, 0) or (0, 1) */
 #define DYNGI_VCT_DEBUG_PUSH DYNGI_VCT_CONE_PARAMS uint mode; float mip;
 #define DYNGI_VCT_PROBE_PUSH DYNGI_VCT_CONE_PARAMS uint count; float tanHalf;
@@ -578,7 +582,7 @@ static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && siz
 static_assert(sizeof(VplTailPush) == 8 && sizeof(CompensatePush) == 20);
 static_assert(sizeof(VplBouncePush) == 44 && sizeof(ManyLightsDebugPush) == 12 && sizeof(IndirectFilterPush) == 4);
 static_assert(sizeof(VctInjectPush) == 32 && sizeof(VctBouncePush) == 48 && sizeof(VctMipsPush) == 12);
-static_assert(sizeof(VctTracePush) == 68 && sizeof(VctReprojectPush) == 84 && sizeof(VctUpsamplePush) == 4 && sizeof(VctFilterPush) == 16 && sizeof(VctDebugPush) == 52 && sizeof(VctProbePush) == 52);
+static_assert(sizeof(VctTracePush) == 72 && sizeof(VctReprojectPush) == 84 && sizeof(VctUpsamplePush) == 8 && sizeof(VctFilterPush) == 16 && sizeof(VctDebugPush) == 52 && sizeof(VctProbePush) == 52);
 }  // namespace dyngi::gi::gpu
 #endif
 

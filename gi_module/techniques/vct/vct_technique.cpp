@@ -30,6 +30,8 @@ const OptionTable<VctOptions>& VctOptions::table() {
           .add({"opaque-axis-mips", "isotropic mips take their most opaque axis' opacity, not the mean (thin walls stay opaque)", 0, 1},
                &VctOptions::opaqueAxisMips)
           .add({"specular", "specular cone from the G-buffer roughness", 0, 1}, &VctOptions::specular)
+          .add({"specular-cone-below", "roughness under which the specular light is a cone's; rougher pixels take the diffuse light (E/pi), blended over the 0.2 under it (over 1: always a cone)", 0.2, 2},
+               &VctOptions::specularConeBelow)
           .add({"temporal-blend", "fraction of last frame's voxel radiance kept (0: none)", 0, 0.95}, &VctOptions::temporalBlend)
           .add({"temporal-response", "relative change above which a voxel takes the new radiance at once", 0.01, 10},
                &VctOptions::temporalResponse)
@@ -124,6 +126,7 @@ class VctTechnique final : public Technique {
               {"trace_scale", feature_.traceScale()},
               {"trace_fraction", 1.0 / double(feature_.budgetScaleFactor() * feature_.budgetScaleFactor())},
               {"traced_this_frame", s.tracedFraction},
+              {"specular_cones", s.specularCones ? 1.0 : 0.0},
               {"trace_history_drops", double(historyDrops_)},
               {"cleared_voxels", double(s.clearedVoxels)}}}};
   }

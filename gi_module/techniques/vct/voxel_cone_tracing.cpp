@@ -458,7 +458,13 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   stats_.traceHeight = traced.diffuse.desc().height;
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "trace");
-    const Pipeline& p = trace_[(aniso ? 1 : 0) + (options_.specular ? 2 : 0) + 4 * unitStep()];
+    // Without a draw smoother than specularConeBelow (a roughness texture may make any pixel so), no
+    // pixel marches a specular cone: the variant without its code, which lavapipe would run masked.
+    const bool glossy = options_.specular && std::any_of(frame.snapshot.draws.begin(), frame.snapshot.draws.end(), [&](const render::DrawItem& d) {
+                          return d.material.roughness < options_.specularConeBelow || d.material.metallicRoughnessTexture != scene::kNoTexture;
+                        });
+    stats_.specularCones = glossy;
+    const Pipeline& p = trace_[(aniso ? 1 : 0) + (glossy ? 2 : 0) + 4 * unitStep()];
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
     DescriptorWrites()
         .uniformBuffer(DYNGI_VCT_TRACE_BINDING_FRAME, frame.frameUniforms.handle())
@@ -472,7 +478,8 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
     gpu::VctTracePush pc{};
     fillConeParams(pc);
     pc.traceScale = scale;
-    pc.specular = options_.specular ? 1u : 0u;
+    pc.specular = glossy ? 1u : 0u;
+    pc.specularConeBelow = options_.specularConeBelow;
     pc.turnCones = options_.diffuseFilterRadius > 0 ? 1u : 0u;
     pc.traceFrames = traceFrames;
     pc.tracePhase = tracePhase;
@@ -547,7 +554,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
         .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, t.indirect.view())
         .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, t.specular.view())
         .push(ctx_, cmd, upsample_);
-    const gpu::VctUpsamplePush pc{scale};
+    const gpu::VctUpsamplePush pc{scale, options_.specularConeBelow};
     vkCmdPushConstants(cmd, upsample_.layout(), kCS, 0, sizeof(pc), &pc);
     // One invocation per block of scale x scale pixels sharing their traced neighbours: a block left of
     // and above the first traced pixel, then one per traced pixel.

@@ -59,6 +59,13 @@ struct VctOptions {
   // The specular cone (aperture from the G-buffer roughness), weighted by the lighting pass with the
   // specular colour (4 percent for dielectrics, the base colour for metals).
   bool specular = true;
+  // The roughness from which the specular light is the filtered diffuse light (E / pi) instead of a
+  // cone's, blended into it over the DYNGI_VCT_SPECULAR_BLEND (0.2) under it; pixels this rough march no
+  // specular cone. A lobe this wide gathers about what the cosine-weighted hemisphere does (a split-sum
+  // prefiltered radiance at roughness 1 is the irradiance's), and the diffuse cones have gathered that
+  // already; the cone marched at roughness 1 was a 45-degree cone about the normal, a tenth of the trace
+  // (docs/BENCHMARKS.md, session 30). Over 1: a cone at every roughness.
+  float specularConeBelow = 0.8f;
   // Blend of the injected radiance with the previous frame's, per voxel: the fraction of history kept.
   // A voxel whose radiance changed by more than `temporalResponse` (relative) takes the new value at once,
   // so a light switched off is gone in the frame it went.

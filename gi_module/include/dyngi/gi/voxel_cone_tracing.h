@@ -24,6 +24,7 @@ struct VctFrameStats {
   uint32_t traceWidth = 0, traceHeight = 0;  // the resolution cones were traced at
   double tracedFraction = 1.0;  // of those, the share traced this frame (the rest reprojected)
   uint64_t volumeBytes = 0;  // radiance volumes, all levels
+  bool specularCones = false;  // some draw is smoother than VctOptions::specularConeBelow: the trace marches specular cones
 };
 
 class VoxelConeTracing final : public render::RenderFeature {

@@ -54,8 +54,11 @@ void main() {
   float turn = turnCones != 0u ? fract(0.7548776662 * float(q.x) + 0.5698402910 * float(q.y)) : 0.0;
   vec3 diffuse = vctDiffuse(p, n, turn, uint(q.y) % stride, stride, ao);
   imageStore(outDiffuse, q, vec4(diffuse, ao));
-  vec3 specular = vec3(0.0);
-  if (kSpecular) {
+  // A pixel at least specularConeBelow rough takes the diffuse light as its specular (VctOptions::
+  // specularConeBelow; the upsample blends the filtered diffuse in): it marches no cone, and a row of
+  // lanes that all are skips the cone's loops. Stored here too for the smoother pixels next to it.
+  vec3 specular = diffuse;
+  if (kSpecular && nr.w < specularConeBelow) {
     vec3 v = normalize(frame.cameraPos.xyz - pos.xyz);
     // The GGX lobe's dominant direction leans from the mirror direction towards the normal as the
     // roughness grows (Lagarde and de Rousiers 2014, "Moving Frostbite to PBR"): a rough surface's wide

@@ -5,7 +5,8 @@
 // traced neighbour matches takes its best-matching one. Values vct_reproject.comp marked missing (alpha < 0)
 // are left out: with the trace spread over frames every 2 x 2 window still holds one traced this frame.
 // Writes the lighting pass's inputs:
-// targets.indirect (E / pi, AO in alpha) and targets.specular.
+// targets.indirect (E / pi, AO in alpha) and targets.specular (rough pixels': the diffuse light, blended
+// in under VctOptions::specularConeBelow).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 #include "shared/gi_gpu_types.h"
@@ -52,7 +53,8 @@ void main() {
         imageStore(outSpecular, px, vec4(0.0));
         continue;
       }
-      vec3 n = normalize(imageLoad(gNormal, px).xyz);
+      vec4 nr = imageLoad(gNormal, px);
+      vec3 n = normalize(nr.xyz);
       vec2 t = vec2(px - h) / float(s);
       vec2 f = t - vec2(q0);
       // A plane distance of 1 percent of the view distance halves the weight.
@@ -74,6 +76,8 @@ void main() {
       }
       diffuse = total > 1e-4 ? diffuse / total : bestDiffuse;
       specular = specularTotal > 1e-4 ? specular / specularTotal : bestSpecular;
+      // Rough pixels' specular light is the diffuse light's (VctOptions::specularConeBelow).
+      specular.rgb = mix(specular.rgb, diffuse.rgb, smoothstep(specularConeBelow - DYNGI_VCT_SPECULAR_BLEND, specularConeBelow, nr.w));
       imageStore(outDiffuse, px, diffuse);
       imageStore(outSpecular, px, vec4(specular.rgb, 1.0));
     }
