@@ -25,7 +25,8 @@ VkDeviceSize leafListBytes(uint32_t groups) { return (VkDeviceSize(groups) * 8 *
 SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t maxNodeGroups) : ctx_(ctx), maxNodeGroups_(maxNodeGroups) {
   const Binding markB[] = {{DYNGI_SVO_MARK_BINDING_FRAGMENTS, kSSBO, kCS},
                            {DYNGI_SVO_MARK_BINDING_OCCUPANCY, kSSBO, kCS},
-                           {DYNGI_SVO_MARK_BINDING_CHUNKS, kSSBO, kCS}};
+                           {DYNGI_SVO_MARK_BINDING_CHUNKS, kSSBO, kCS},
+                           {DYNGI_SVO_MARK_BINDING_COUNTERS, kSSBO, kCS}};
   mark_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_mark_comp), markB, sizeof(gpu::SvoMarkPush), "svo_mark");
   const Binding levelB[] = {{DYNGI_SVO_LEVEL_BINDING_LEVELS, kSSBO, kCS},
                             {DYNGI_SVO_LEVEL_BINDING_COUNTERS, kSSBO, kCS},
@@ -46,7 +47,8 @@ SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t
                            {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS, kSSBO, kCS},
                            {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES, kSSBO, kCS},
                            {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_CHUNKS, kSSBO, kCS},
-                           {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_MOVING, kSSBO, kCS}};
+                           {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_MOVING, kSSBO, kCS},
+                           {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_COUNTERS, kSSBO, kCS}};
   for (uint32_t emission : {0u, 1u}) {
     const uint32_t spec[] = {emission};
     leafAttributes_[emission] = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, sizeof(gpu::SvoLeafAttributesPush),
@@ -99,7 +101,7 @@ void SvoBuilder::plan(const FragmentRanges& ranges, uint64_t frame, const std::v
   // One chunk per mark workgroup (64 invocations x DYNGI_SVO_ITEMS_PER_INVOCATION slots), cut from the
   // ranges: the static entities' first (only when the static pyramid is rebuilt), then the moving ones'.
   const uint64_t chunkSlots = 64 * DYNGI_SVO_ITEMS_PER_INVOCATION;
-  std::vector<glm::uvec2> chunks;
+  std::vector<glm::uvec4> chunks;  // DYNGI_SVO_CHUNK
   stats.slotsMarked = 0;
   stats.staticEntities = uint32_t(staticEntities_.size());
   auto cut = [&](bool wantStatic) {
@@ -108,7 +110,7 @@ void SvoBuilder::plan(const FragmentRanges& ranges, uint64_t frame, const std::v
       if (staticEntities_.count(e) != size_t(wantStatic)) continue;
       stats.slotsMarked += r.capacity;
       for (uint64_t a = r.first; a < r.first + r.capacity; a += chunkSlots, ++n)
-        chunks.push_back(glm::uvec2(uint32_t(a), uint32_t(std::min(a + chunkSlots, r.first + r.capacity))));
+        chunks.push_back(glm::uvec4(uint32_t(a), uint32_t(std::min(a + chunkSlots, r.first + r.capacity)), uint32_t(r.first), r.counter));
     }
     return n;
   };
@@ -132,12 +134,12 @@ void SvoBuilder::plan(const FragmentRanges& ranges, uint64_t frame, const std::v
     });
     movingLeaves_ = std::move(grown);
   }
-  const VkDeviceSize bytes = std::max<VkDeviceSize>(chunks.size() * sizeof(glm::uvec2), 16);
+  const VkDeviceSize bytes = std::max<VkDeviceSize>(chunks.size() * sizeof(glm::uvec4), 16);
   if (!markChunks_.valid() || markChunks_.size() < bytes) {
     vkDeviceWaitIdle(ctx_.device());  // the last frame may still read the old list
     markChunks_ = Buffer(ctx_, bytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "svo mark chunks");
   }
-  if (!chunks.empty()) markChunks_.upload(chunks.data(), chunks.size() * sizeof(glm::uvec2));
+  if (!chunks.empty()) markChunks_.upload(chunks.data(), chunks.size() * sizeof(glm::uvec4));
 }
 
 void SvoBuilder::recordMark(VkCommandBuffer cmd, const render::Buffer& fragments, const render::Buffer& target, uint32_t depth,
@@ -148,6 +150,7 @@ void SvoBuilder::recordMark(VkCommandBuffer cmd, const render::Buffer& fragments
       .storageBuffer(DYNGI_SVO_MARK_BINDING_FRAGMENTS, fragments.handle())
       .storageBuffer(DYNGI_SVO_MARK_BINDING_OCCUPANCY, target.handle())
       .storageBuffer(DYNGI_SVO_MARK_BINDING_CHUNKS, markChunks_.handle())
+      .storageBuffer(DYNGI_SVO_MARK_BINDING_COUNTERS, counters_->handle())
       .push(ctx_, cmd, mark_);
   const gpu::SvoMarkPush mp{firstChunk, depth};
   vkCmdPushConstants(cmd, mark_.layout(), kCS, 0, sizeof(mp), &mp);
@@ -166,6 +169,7 @@ void SvoBuilder::recordLeafSums(VkCommandBuffer cmd, const render::Buffer& fragm
       .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES, attributes.sums.handle())
       .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_CHUNKS, markChunks_.handle())
       .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_MOVING, movingLeaves_.handle())
+      .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_COUNTERS, counters_->handle())
       .push(ctx_, cmd, pipeline);
   const gpu::SvoLeafAttributesPush ap{depth, uint32_t(attributes.leafCapacity), firstChunk, listLeaves ? 1u : 0u};
   vkCmdPushConstants(cmd, pipeline.layout(), kCS, 0, sizeof(ap), &ap);
@@ -191,8 +195,10 @@ void SvoBuilder::recordVoxelAttributes(VkCommandBuffer cmd, uint32_t step, uint3
   render::computeWriteBarrier(cmd);
 }
 
-void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragments, uint32_t depth, const LeafAttributeTargets* attributes) {
+void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragments, const render::Buffer& counters, uint32_t depth,
+                        const LeafAttributeTargets* attributes) {
   VkCommandBuffer cmd = frame.cmd;
+  counters_ = &counters;
   const bool staticSetChanged = rebuildStaticOccupancy_;
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "svo_build");

@@ -37,7 +37,9 @@ class SvoBuilder {
   // changed, the static entities' fragments summed and written to their voxels; in every build, the
   // voxels the last build's moving leaves touched restored, and the moving entities' fragments summed
   // and added to their voxels.
-  void record(render::FrameContext& frame, const render::Buffer& fragments, uint32_t depth, const LeafAttributeTargets* attributes);
+  // `counters`: the voxelizer's fragment counter of each range (the chunks' ends, DYNGI_SVO_CHUNK).
+  void record(render::FrameContext& frame, const render::Buffer& fragments, const render::Buffer& counters, uint32_t depth,
+              const LeafAttributeTargets* attributes);
   // After the build's frame: node and leaf counts into `stats`, the pool resized to follow use. True
   // when the pool overflowed and grew: build again next frame.
   bool frameFinished(VoxelStats& stats);
@@ -78,7 +80,8 @@ class SvoBuilder {
   render::Buffer staticOccupancy_;
   std::unordered_set<ecs::Entity> staticEntities_;
   bool rebuildStaticOccupancy_ = true;
-  render::Buffer markChunks_;                     // uvec2 (first slot, end slot) per mark workgroup
+  render::Buffer markChunks_;                     // DYNGI_SVO_CHUNK per mark workgroup
+  const render::Buffer* counters_ = nullptr;      // the build being recorded's (record())
   uint32_t staticChunks_ = 0, movingChunks_ = 0;  // this frame's: the static ones first
   // The moving leaves of the last build (DYNGI_SVO_VOXEL_ATTRIBUTES in gi_gpu_types.h): room for one a
   // slot of the moving entities' ranges.

@@ -301,7 +301,7 @@ bool VoxelScene::record(render::FrameContext& frame) {
   }
   {
     const LeafAttributeTargets attributes{attributes_, attributeLeaves_, voxelAttributes_, fragmentsEmit()};
-    svo_->record(frame, fragments_, depth, settings_.leafAttributes ? &attributes : nullptr);
+    svo_->record(frame, fragments_, counters_, depth, settings_.leafAttributes ? &attributes : nullptr);
   }
   stats_.rebuilt = true;
   return false;  // the voxel scene feeds other stages; it does not write indirect light

@@ -209,6 +209,7 @@ struct RsmPush {
 #define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES 3
 #define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_CHUNKS 4  /* the mark pass' chunks: one per workgroup */
 #define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_MOVING 5  /* the moving leaves' list (DYNGI_SVO_VOXEL_ATTRIBUTES) */
+#define DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_COUNTERS 6  /* the voxelizer's fragment counters (DYNGI_SVO_CHUNK) */
 // The voxel attributes: each occupied voxel's mean albedo, normal and emission, an rgba32ui 3D image over
 // the volume (an image load costs lavapipe less than storage-buffer ones; the passes over leaves read
 // one texel a leaf). x: the mean albedo in unorm bytes 0-2 and the fragments it averages (up to 255) in
@@ -246,6 +247,13 @@ struct RsmPush {
 #define DYNGI_SVO_MARK_BINDING_FRAGMENTS 0
 #define DYNGI_SVO_MARK_BINDING_OCCUPANCY 1
 #define DYNGI_SVO_MARK_BINDING_CHUNKS 2
+#define DYNGI_SVO_MARK_BINDING_COUNTERS 3
+// A chunk of fragment slots, one a workgroup of svo_mark.comp and svo_leaf_attributes.comp (SvoBuilder::plan
+// cuts them from the entity ranges), a uvec4: x its first slot, y its end, z the first slot of its
+// entity's range, w that range's fragment counter (the voxelizer's). The voxelizer appends, so a range's
+// fragments are its first counters[w] slots: the chunk's fragments end at DYNGI_SVO_CHUNK_END. A moving
+// range holds slack for its count to grow (about twice it), slots every pass over them paid for.
+#define DYNGI_SVO_CHUNK_END(chunk, counters) min((chunk).y, (chunk).z + (counters)[(chunk).w])
 // voxel_debug
 #define DYNGI_VOXEL_DEBUG_BINDING_FRAME 0
 #define DYNGI_VOXEL_DEBUG_BINDING_NODES 1

@@ -16,7 +16,8 @@ layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS) readonly 
 layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
 layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_ATTRIBUTES) buffer Attributes { uint attributes[]; };  // DYNGI_LEAF_ATTRIBUTE_INTS per leaf
-layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_CHUNKS) readonly buffer Chunks { uvec2 chunks[]; };  // x first slot, y end slot
+layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_CHUNKS) readonly buffer Chunks { uvec4 chunks[]; };  // DYNGI_SVO_CHUNK
+layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_COUNTERS) readonly buffer Counters { uint counters[]; };
 layout(set = 0, binding = DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_MOVING) buffer Moving { uvec4 header; uvec4 entries[]; } moving;
 layout(push_constant) uniform Push { DYNGI_SVO_LEAF_ATTRIBUTES_PUSH };
 
@@ -61,11 +62,17 @@ bool accumulate(uint i, out uint leaf, out uvec3 v) {
 void main() {
   // A chunk is at most DYNGI_SVO_ITEMS_PER_INVOCATION slots an invocation: a uniform trip count, for the
   // subgroup append inside.
-  uvec2 chunk = chunks[firstChunk + gl_WorkGroupID.x];
+  uvec4 chunk = chunks[firstChunk + gl_WorkGroupID.x];
+  // The rounds past the range's fragments are left out (a moving range's slack is about half its slots):
+  // lavapipe runs a round whose lanes are all past the end, masked, at the cost of a full one. The break
+  // is the workgroup's together, so the append stays in uniform control flow.
+  uint end = DYNGI_SVO_CHUNK_END(chunk, counters);
   for (uint r = 0u; r < DYNGI_SVO_ITEMS_PER_INVOCATION; ++r) {
-    uint i = chunk.x + gl_LocalInvocationIndex + r * gl_WorkGroupSize.x, leaf;
+    uint round = chunk.x + r * gl_WorkGroupSize.x;
+    if (round >= end) break;
+    uint i = round + gl_LocalInvocationIndex, leaf;
     uvec3 v;
-    bool first = i < chunk.y && accumulate(i, leaf, v);
+    bool first = i < end && accumulate(i, leaf, v);
     if (listLeaves == 0u) continue;
     // The leaf's first fragment lists it (svo_voxel_attributes.comp merges it): one atomic a subgroup.
     uint k;

@@ -3,15 +3,16 @@
 // first (DYNGI_SVO_LEVEL_BASE). A cell found marked already has its coarser cells marked (or being
 // marked by the invocation that set it), so most fragments stop after a level or two. Reads the entity
 // ranges in place, one chunk of slots per workgroup (the C++ side cuts them from the ranges it wants
-// marked: the static entities' into the static pyramid, the moving ones' into a copy of it); empty
-// slots are skipped.
+// marked: the static entities' into the static pyramid, the moving ones' into a copy of it), up to the
+// range's fragment count (DYNGI_SVO_CHUNK_END).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gi_gpu_types.h"
 #include "svo_morton.glsl"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_SVO_MARK_BINDING_FRAGMENTS) readonly buffer Fragments { uvec4 fragments[]; };
 layout(set = 0, binding = DYNGI_SVO_MARK_BINDING_OCCUPANCY) buffer Occupancy { uint occupancy[]; };
-layout(set = 0, binding = DYNGI_SVO_MARK_BINDING_CHUNKS) readonly buffer Chunks { uvec2 chunks[]; };  // x first slot, y end slot
+layout(set = 0, binding = DYNGI_SVO_MARK_BINDING_CHUNKS) readonly buffer Chunks { uvec4 chunks[]; };  // DYNGI_SVO_CHUNK
+layout(set = 0, binding = DYNGI_SVO_MARK_BINDING_COUNTERS) readonly buffer Counters { uint counters[]; };
 layout(push_constant) uniform Push { DYNGI_SVO_MARK_PUSH };
 void markFragment(uint i) {
   uint c = fragments[i].x;
@@ -25,6 +26,7 @@ void markFragment(uint i) {
   }
 }
 void main() {
-  uvec2 chunk = chunks[firstChunk + gl_WorkGroupID.x];
-  for (uint i = chunk.x + gl_LocalInvocationIndex; i < chunk.y; i += gl_WorkGroupSize.x) markFragment(i);
+  uvec4 chunk = chunks[firstChunk + gl_WorkGroupID.x];
+  uint end = DYNGI_SVO_CHUNK_END(chunk, counters);
+  for (uint i = chunk.x + gl_LocalInvocationIndex; i < end; i += gl_WorkGroupSize.x) markFragment(i);
 }
