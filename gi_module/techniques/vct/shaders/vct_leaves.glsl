@@ -19,6 +19,8 @@ struct VctLeaf {
 bool vctLeaf(uint k, out VctLeaf leaf) {
   if (k >= leafList.header.w) return false;
   leaf.voxel = svoCellOfMortonCode(leafList.entries[k].y);
+  // An overflowing build's entries for leaves it could not make lie outside the volume (svo_expand.comp).
+  if (any(greaterThanEqual(leaf.voxel, imageSize(voxelAttributes)))) return false;
   LeafAttributes a = voxelAttributesAt(leaf.voxel);
   if (a.count == 0u) return false;
   leaf.albedo = a.albedo;
