@@ -69,9 +69,10 @@ SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t
   uint32_t depth = 0;
   while ((1u << depth) < resolution) ++depth;
   const uint64_t pyramidBits = 8 + 8 * (((uint64_t(1) << (3 * depth)) - 1) / 7);
-  occupancy_ = Buffer(ctx, (pyramidBits + 31) / 32 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                      MemoryUsage::GpuOnly, "svo occupancy pyramid");
-  staticOccupancy_ = Buffer(ctx, occupancy_.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+  for (Buffer& pyramid : occupancy_)
+    pyramid = Buffer(ctx, (pyramidBits + 31) / 32 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                     MemoryUsage::GpuOnly, "svo occupancy pyramid");
+  staticOccupancy_ = Buffer(ctx, occupancy_[0].size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                             MemoryUsage::GpuOnly, "svo static occupancy pyramid");
   // The first build gets the whole pool; afterwards it follows what the SVO uses (resizeNodePool).
   nodeGroupCapacity_ = std::max(maxNodeGroups, 2u);
@@ -83,6 +84,10 @@ SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t
                    MemoryUsage::Readback, "svo levels");
   svoCounters_ = Buffer(ctx, sizeof(gpu::SvoCounters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                         MemoryUsage::Readback, "svo counters");
+  // Empty until built: the pyramid a first build sees as the one before it.
+  ctx.immediate([&](VkCommandBuffer cmd) {
+    for (const Buffer& pyramid : occupancy_) vkCmdFillBuffer(cmd, pyramid.handle(), 0, VK_WHOLE_SIZE, 0);
+  });
 }
 
 void SvoBuilder::plan(const FragmentRanges& ranges, uint64_t frame, const std::vector<ecs::Entity>& voxelized,
@@ -199,6 +204,8 @@ void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragm
                         const LeafAttributeTargets* attributes) {
   VkCommandBuffer cmd = frame.cmd;
   counters_ = &counters;
+  occupancyIndex_ ^= 1u;  // the last build's pyramid stays readable (previousOccupancy())
+  const Buffer& occupancy = occupancy_[occupancyIndex_];
   const bool staticSetChanged = rebuildStaticOccupancy_;
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "svo_build");
@@ -215,10 +222,10 @@ void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragm
                             VK_ACCESS_2_TRANSFER_READ_BIT);
       rebuildStaticOccupancy_ = false;
     }
-    const VkBufferCopy whole{0, 0, occupancy_.size()};
-    vkCmdCopyBuffer(cmd, staticOccupancy_.handle(), occupancy_.handle(), 1, &whole);
+    const VkBufferCopy whole{0, 0, occupancy.size()};
+    vkCmdCopyBuffer(cmd, staticOccupancy_.handle(), occupancy.handle(), 1, &whole);
     render::computeWriteBarrier(cmd);
-    recordMark(cmd, fragments, occupancy_, depth, staticChunks_, movingChunks_);
+    recordMark(cmd, fragments, occupancy, depth, staticChunks_, movingChunks_);
     render::computeWriteBarrier(cmd);
     // 2. Top down, level by level: the occupied nodes get their children, flagged from the pyramid.
     for (uint32_t l = 0; l <= depth; ++l) {
@@ -228,7 +235,7 @@ void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragm
           .storageBuffer(DYNGI_SVO_LEVEL_BINDING_COUNTERS, svoCounters_.handle())
           .storageBuffer(DYNGI_SVO_LEVEL_BINDING_NODES, nodes_.handle())
           .storageBuffer(DYNGI_SVO_LEVEL_BINDING_NODE_CELLS, nodeCells_.handle())
-          .storageBuffer(DYNGI_SVO_LEVEL_BINDING_OCCUPANCY, occupancy_.handle())
+          .storageBuffer(DYNGI_SVO_LEVEL_BINDING_OCCUPANCY, occupancy.handle())
           .storageBuffer(DYNGI_SVO_LEVEL_BINDING_LEAF_LIST, leafList_.handle())
           .push(ctx_, cmd, level_);
       const gpu::SvoLevelPush lp{l, depth};
@@ -240,7 +247,7 @@ void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragm
       DescriptorWrites()
           .storageBuffer(DYNGI_SVO_EXPAND_BINDING_NODES, nodes_.handle())
           .storageBuffer(DYNGI_SVO_EXPAND_BINDING_NODE_CELLS, nodeCells_.handle())
-          .storageBuffer(DYNGI_SVO_EXPAND_BINDING_OCCUPANCY, occupancy_.handle())
+          .storageBuffer(DYNGI_SVO_EXPAND_BINDING_OCCUPANCY, occupancy.handle())
           .storageBuffer(DYNGI_SVO_EXPAND_BINDING_LEVELS, levels_.handle())
           .storageBuffer(DYNGI_SVO_EXPAND_BINDING_COUNTERS, svoCounters_.handle())
           .storageBuffer(DYNGI_SVO_EXPAND_BINDING_LEAF_LIST, leafList_.handle())
@@ -300,7 +307,7 @@ bool SvoBuilder::frameFinished(VoxelStats& stats) {
   return stats.poolOverflow && want > groups;  // the conservative SVO stands until the next build
 }
 
-uint64_t SvoBuilder::bytes() const { return nodes_.size() + nodeCells_.size() + leafList_.size() + occupancy_.size(); }
+uint64_t SvoBuilder::bytes() const { return nodes_.size() + nodeCells_.size() + leafList_.size() + 2 * occupancy_[0].size(); }
 
 void SvoBuilder::resizeNodePool(uint32_t groups, uint64_t keepGroups) {
   vkDeviceWaitIdle(ctx_.device());

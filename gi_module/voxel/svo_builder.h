@@ -49,8 +49,12 @@ class SvoBuilder {
   const render::Buffer& nodeCells() const { return nodeCells_; }
   // The occupied leaves (node index, cell), compacted (DYNGI_SVO_LEAF_LIST_HEADER in gi_gpu_types.h).
   const render::Buffer& leafList() const { return leafList_; }
+  // The occupancy pyramid (DYNGI_SVO_LEVEL_BASE) of the last build, and of the build before it: where
+  // both differ, cells emptied (VCT zeroes its per-voxel state there).
+  const render::Buffer& occupancy() const { return occupancy_[occupancyIndex_]; }
+  const render::Buffer& previousOccupancy() const { return occupancy_[occupancyIndex_ ^ 1u]; }
   render::Buffer& counters() { return svoCounters_; }
-  uint64_t bytes() const;  // nodes, node cells, the leaf list and the occupancy pyramid
+  uint64_t bytes() const;  // nodes, node cells, the leaf list and the occupancy pyramids
 
  private:
   // Records the mark pass over chunks [firstChunk, firstChunk + chunkCount) into `target`.
@@ -73,7 +77,8 @@ class SvoBuilder {
   render::Buffer nodeCells_;  // per group of 8 nodes (leaves included), at its first slot: the first child's Morton code
                               // (svo_expand.comp; SVO_NODE_CELL derives the siblings'), sized like nodes_
   render::Buffer leafList_;   // the occupied leaves (node index, cell) after a header (svo_expand.comp, svo_level.comp)
-  render::Buffer occupancy_;  // occupancy pyramid of every level (svo_mark.comp)
+  render::Buffer occupancy_[2];  // occupancy pyramid of every level (svo_mark.comp), by build: the last one's at occupancyIndex_
+  uint32_t occupancyIndex_ = 0;
   // The pyramid of the entities in staticEntities_ alone: a build starts from a copy of it and marks the
   // moving entities' fragments only. Rebuilt when one of them moves or is removed, or when a moving
   // entity has settled and can join; so are their voxel attributes.

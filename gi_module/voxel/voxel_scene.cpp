@@ -50,6 +50,8 @@ const render::Buffer& VoxelScene::nodes() const { return svo_->nodes(); }
 const render::Buffer& VoxelScene::levels() const { return svo_->levels(); }
 const render::Buffer& VoxelScene::nodeCells() const { return svo_->nodeCells(); }
 const render::Buffer& VoxelScene::leafList() const { return svo_->leafList(); }
+const render::Buffer& VoxelScene::occupancy() const { return svo_->occupancy(); }
+const render::Buffer& VoxelScene::previousOccupancy() const { return svo_->previousOccupancy(); }
 
 void VoxelScene::setDebugView(VoxelDebugView v) {
   settings_.debugView = v;

@@ -275,9 +275,16 @@ struct RsmPush {
 #define DYNGI_VCT_INJECT_BINDING_LIGHTS 2
 #define DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES 3
 #define DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS 4
-#define DYNGI_VCT_INJECT_BINDING_PREVIOUS 5
-#define DYNGI_VCT_INJECT_BINDING_DIRECT 6
-#define DYNGI_VCT_INJECT_BINDING_RADIANCE 7
+#define DYNGI_VCT_INJECT_BINDING_DIRECT 5  /* read (last frame's, the temporal blend's history) and written in place */
+#define DYNGI_VCT_INJECT_BINDING_RADIANCE 6
+// vct_clear_stale: the per-voxel state of the cells that emptied since the last SVO build, zeroed
+#define DYNGI_VCT_CLEAR_BINDING_RUNS 0              /* uvec2 (SVO level, first Morton code) per run of 32 cells */
+#define DYNGI_VCT_CLEAR_BINDING_PREVIOUS_OCCUPANCY 1  /* the build before's pyramid */
+#define DYNGI_VCT_CLEAR_BINDING_OCCUPANCY 2           /* the last build's */
+#define DYNGI_VCT_CLEAR_BINDING_RADIANCE 3            /* level 0 */
+#define DYNGI_VCT_CLEAR_BINDING_DIRECT 4
+#define DYNGI_VCT_CLEAR_BINDING_ATLAS 5               /* the anisotropic atlas' level 0 (anisotropic only) */
+#define DYNGI_VCT_CLEAR_BINDING_ATLAS_1 6             /* its level 1 */
 // vct_bounce: one more bounce per occupied voxel (cones over the radiance volume), then vct_commit
 #define DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST 0  /* the SVO's compacted leaf list */
 #define DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES 1
@@ -518,9 +525,11 @@ struct TemporalQueue {
 #define DYNGI_VCT_INJECT_PUSH                                                        \
   vec4 volume;       /* xyz world origin, w voxel size */                          \
   uint lightCount;                                                                 \
-  uint history;      /* 1: PREVIOUS holds last frame's radiance */                \
+  uint history;      /* 1: DIRECT holds last frame's radiance */                  \
   float temporalBlend;                                                             \
   float temporalResponse;
+#define DYNGI_VCT_CLEAR_PUSH uint runCount; uint depth; /* the SVO's: its leaves are level-0 voxels, level depth - 1 the atlas' level-0 texels */ \
+  uint atlasSlabWidth; /* texels; 0: isotropic, no atlas */
 #define DYNGI_VCT_BOUNCE_PUSH DYNGI_VCT_CONE_PARAMS uint commit; /* 0 trace, 1 copy OUT to RADIANCE */
 #define DYNGI_VCT_MIPS_PUSH uint destSlabWidth; /* texels; the isotropic chain has one slab */ uint sourceSlabWidth; /* 0: one source slab */ \
   uint nodeLevel; /* anisotropic: the SVO level whose cells are this atlas level's texels */
@@ -561,6 +570,7 @@ struct ManyLightsDebugPush { DYNGI_MANY_LIGHTS_DEBUG_PUSH };
 struct IndirectFilterPush { DYNGI_INDIRECT_FILTER_PUSH };
 struct CompensatePush { DYNGI_COMPENSATE_PUSH };
 struct VctInjectPush { DYNGI_VCT_INJECT_PUSH };
+struct VctClearPush { DYNGI_VCT_CLEAR_PUSH };
 struct VctBouncePush { DYNGI_VCT_BOUNCE_PUSH };
 struct VctMipsPush { DYNGI_VCT_MIPS_PUSH };
 struct VctTracePush { DYNGI_VCT_TRACE_PUSH };
@@ -589,7 +599,7 @@ static_assert(sizeof(SvoLeafAttributesPush) == 16 && sizeof(SvoVoxelAttributesPu
 static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && sizeof(VplSamplePush) == 16);
 static_assert(sizeof(VplTailPush) == 8 && sizeof(CompensatePush) == 20);
 static_assert(sizeof(VplBouncePush) == 44 && sizeof(ManyLightsDebugPush) == 12 && sizeof(IndirectFilterPush) == 4);
-static_assert(sizeof(VctInjectPush) == 32 && sizeof(VctBouncePush) == 48 && sizeof(VctMipsPush) == 12);
+static_assert(sizeof(VctInjectPush) == 32 && sizeof(VctClearPush) == 12 && sizeof(VctBouncePush) == 48 && sizeof(VctMipsPush) == 12);
 static_assert(sizeof(VctTracePush) == 72 && sizeof(VctReprojectPush) == 84 && sizeof(VctUpsamplePush) == 8 && sizeof(VctFilterPush) == 16 && sizeof(VctDebugPush) == 52 && sizeof(VctProbePush) == 52);
 }  // namespace dyngi::gi::gpu
 #endif

@@ -9,6 +9,7 @@
 #include "gpu_aliases.h"
 #include "shaders/shared/gi_gpu_types.h"
 #include "spirv/vct_bounce.comp.spv.h"
+#include "spirv/vct_clear_stale.comp.spv.h"
 #include "spirv/vct_commit.comp.spv.h"
 #include "spirv/vct_cone_probe.comp.spv.h"
 #include "spirv/vct_debug.comp.spv.h"
@@ -63,6 +64,22 @@ void clearLevel(VkCommandBuffer cmd, Image& img, uint32_t mip) {
 constexpr VkDeviceSize levelDispatchOffset(uint32_t level) {
   return VkDeviceSize(level) * sizeof(gpu::SvoLevel) + offsetof(gpu::SvoLevel, dispatch);
 }
+
+// A cell's Morton code (svo_morton.glsl's svoMortonCode).
+uint32_t mortonCode(glm::uvec3 cell) {
+  uint32_t code = 0;
+  for (uint32_t bit = 0; bit < 10; ++bit)
+    for (uint32_t axis = 0; axis < 3; ++axis) code |= ((cell[axis] >> bit) & 1u) << (3 * bit + axis);
+  return code;
+}
+
+// The runs of 32 consecutive Morton codes (4 x 4 x 2 cells) of SVO level `level` that cover the cells
+// lo..hi (inclusive) of that level.
+void appendRuns(std::vector<glm::uvec2>& runs, uint32_t level, glm::uvec3 lo, glm::uvec3 hi) {
+  for (uint32_t z = lo.z / 2; z <= hi.z / 2; ++z)
+    for (uint32_t y = lo.y / 4; y <= hi.y / 4; ++y)
+      for (uint32_t x = lo.x / 4; x <= hi.x / 4; ++x) runs.push_back(glm::uvec2(level, mortonCode(glm::uvec3(4 * x, 4 * y, 2 * z))));
+}
 }  // namespace
 
 VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxels, const VctOptions& options)
@@ -74,10 +91,14 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
                            {DYNGI_VCT_INJECT_BINDING_LIGHTS, kSSBO, kCS},
                            {DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES, kSSBO, kCS},
                            {DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, kStorageImage, kCS},
-                           {DYNGI_VCT_INJECT_BINDING_PREVIOUS, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_DIRECT, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_RADIANCE, kStorageImage, kCS}};
   inject_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_inject_comp), leafB, sizeof(gpu::VctInjectPush), "vct_inject");
+  const Binding clearB[] = {{DYNGI_VCT_CLEAR_BINDING_RUNS, kSSBO, kCS},          {DYNGI_VCT_CLEAR_BINDING_PREVIOUS_OCCUPANCY, kSSBO, kCS},
+                            {DYNGI_VCT_CLEAR_BINDING_OCCUPANCY, kSSBO, kCS},     {DYNGI_VCT_CLEAR_BINDING_RADIANCE, kStorageImage, kCS},
+                            {DYNGI_VCT_CLEAR_BINDING_DIRECT, kStorageImage, kCS}, {DYNGI_VCT_CLEAR_BINDING_ATLAS, kStorageImage, kCS},
+                            {DYNGI_VCT_CLEAR_BINDING_ATLAS_1, kStorageImage, kCS}};
+  clearStale_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_clear_stale_comp), clearB, sizeof(gpu::VctClearPush), "vct_clear_stale");
 
   const Binding mipsB[] = {{DYNGI_VCT_MIPS_BINDING_SOURCE, kStorageImage, kCS},     {DYNGI_VCT_MIPS_BINDING_DEST, kStorageImage, kCS},
                            {DYNGI_VCT_MIPS_BINDING_SEEN, kStorageImage, kCS},
@@ -177,17 +198,16 @@ void VoxelConeTracing::ensureVolumes(uint32_t res) {
   const uint32_t levels = uint32_t(std::bit_width(res));  // res, res/2, ..., 1
   if (res != res_) {
     radiance_ = makeVolume(ctx_, res, res, res, levels, "vct radiance");
-    direct_[0] = makeVolume(ctx_, res, res, res, 1, "vct direct radiance A");
-    direct_[1] = makeVolume(ctx_, res, res, res, 1, "vct direct radiance B");
+    direct_ = makeVolume(ctx_, res, res, res, 1, "vct direct radiance");
     frames_ = 0;
   }
   const uint32_t half = std::max(res / 2, 1u);
   aniso_ = wantAniso ? makeVolume(ctx_, DYNGI_VCT_SLABS * half, half, half, uint32_t(std::bit_width(half)), "vct anisotropic atlas") : Image();
   bounced_ = wantBounce ? makeVolume(ctx_, res, res, res, 1, "vct bounced radiance") : Image();
   res_ = res;
-  lastStale_ = {true, {}};  // the direct images are new: nothing of theirs to keep
+  frames_ = 0;  // the volumes are new: nothing of theirs to keep
   ctx_.immediate([&](VkCommandBuffer cmd) {
-    for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_}) {
+    for (Image* img : {&radiance_, &aniso_, &direct_, &bounced_}) {
       if (!img->valid()) continue;
       img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
       const VkClearColorValue zero{};
@@ -195,7 +215,7 @@ void VoxelConeTracing::ensureVolumes(uint32_t res) {
       vkCmdClearColorImage(cmd, img->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
     }
   });
-  stats_.volumeBytes = volumeBytes(radiance_) + volumeBytes(aniso_) + volumeBytes(direct_[0]) * 2 + volumeBytes(bounced_);
+  stats_.volumeBytes = volumeBytes(radiance_) + volumeBytes(aniso_) + volumeBytes(direct_) + volumeBytes(bounced_);
 }
 
 uint32_t VoxelConeTracing::traceScale() const {
@@ -307,6 +327,63 @@ uint64_t VoxelConeTracing::clearStale(VkCommandBuffer cmd, Image& img, uint32_t 
   return texels;
 }
 
+uint64_t VoxelConeTracing::recordClearStale(VkCommandBuffer cmd, const StaleVoxels& stale) {
+  const bool aniso = options_.anisotropic;
+  // Copies and clears run in TRANSFER_DST_OPTIMAL (copies into a GENERAL image are a performance warning
+  // of the validation layer), the passes after them in GENERAL again.
+  auto toTransfer = [&](Image& img) {
+    img.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  };
+  auto toGeneral = [&](Image& img) { img.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, kComputeAndTransfer, kReadWrite); };
+  if (stale.everywhere) {
+    for (Image* img : {&radiance_, &direct_, aniso ? &aniso_ : nullptr}) {
+      if (!img) continue;
+      toTransfer(*img);
+      // Radiance level 0 (the isotropic chain is made whole from it; the anisotropic one reads the atlas).
+      for (uint32_t m = 0; m < (img == &aniso_ ? aniso_.desc().mips : 1u); ++m) clearLevel(cmd, *img, m);
+      toGeneral(*img);
+    }
+    return uint64_t(res_) * res_ * res_;
+  }
+  if (stale.boxes.empty()) return 0;
+  // The atlas' levels from 2 whole (6 x (res / 8)^3 texels and less; the mips write every occupied one):
+  // box by box, their copies of a few texels each cost more.
+  if (aniso && aniso_.desc().mips > 2) {
+    toTransfer(aniso_);
+    for (uint32_t m = 2; m < aniso_.desc().mips; ++m) clearLevel(cmd, aniso_, m);
+    toGeneral(aniso_);
+  }
+  // Level 0, the direct radiance and the atlas' levels 0 and 1: the cells that emptied, within the boxes.
+  const uint32_t depth = voxels_.volume().depth();
+  std::vector<glm::uvec2> runs;
+  for (const VoxelBox& b : stale.boxes) appendRuns(runs, depth, b.min, b.max);
+  const size_t leafRuns = runs.size();
+  for (uint32_t up = 1; aniso && up <= 2 && up <= depth && up <= aniso_.desc().mips; ++up)
+    for (const VoxelBox& b : stale.boxes) appendRuns(runs, depth - up, b.min >> up, b.max >> up);
+  std::sort(runs.begin(), runs.end(), [](glm::uvec2 a, glm::uvec2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
+  runs.erase(std::unique(runs.begin(), runs.end()), runs.end());  // boxes overlap
+  const VkDeviceSize bytes = runs.size() * sizeof(glm::uvec2);
+  if (!staleRuns_.valid() || staleRuns_.size() < bytes) {
+    vkDeviceWaitIdle(ctx_.device());  // the last frame may still read the old list
+    staleRuns_ = Buffer(ctx_, bytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "vct stale runs");
+  }
+  staleRuns_.upload(runs.data(), bytes);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, clearStale_.handle());
+  DescriptorWrites()
+      .storageBuffer(DYNGI_VCT_CLEAR_BINDING_RUNS, staleRuns_.handle())
+      .storageBuffer(DYNGI_VCT_CLEAR_BINDING_PREVIOUS_OCCUPANCY, voxels_.previousOccupancy().handle())
+      .storageBuffer(DYNGI_VCT_CLEAR_BINDING_OCCUPANCY, voxels_.occupancy().handle())
+      .storageImage(DYNGI_VCT_CLEAR_BINDING_RADIANCE, radiance_.mipView(0))
+      .storageImage(DYNGI_VCT_CLEAR_BINDING_DIRECT, direct_.view())
+      .storageImage(DYNGI_VCT_CLEAR_BINDING_ATLAS, aniso ? aniso_.mipView(0) : radiance_.mipView(0))  // bound either way
+      .storageImage(DYNGI_VCT_CLEAR_BINDING_ATLAS_1, aniso && aniso_.desc().mips > 1 ? aniso_.mipView(1) : radiance_.mipView(0))
+      .push(ctx_, cmd, clearStale_);
+  const gpu::VctClearPush pc{uint32_t(runs.size()), depth, aniso ? std::max(res_ / 2, 1u) : 0u};
+  vkCmdPushConstants(cmd, clearStale_.layout(), kCS, 0, sizeof(pc), &pc);
+  vkCmdDispatch(cmd, dispatchGroups(uint32_t(runs.size()), 64), 1, 1);
+  return uint64_t(leafRuns) * 32;
+}
+
 void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect) {
   const bool aniso = options_.anisotropic;
   auto bind = [&](const Pipeline& p, VkImageView source, VkImageView dest, const gpu::VctMipsPush& pc) {
@@ -314,7 +391,7 @@ void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect) {
     DescriptorWrites()
         .storageImage(DYNGI_VCT_MIPS_BINDING_SOURCE, source)
         .storageImage(DYNGI_VCT_MIPS_BINDING_DEST, dest)
-        .storageImage(DYNGI_VCT_MIPS_BINDING_SEEN, direct_[current_].view())
+        .storageImage(DYNGI_VCT_MIPS_BINDING_SEEN, direct_.view())
         .storageBuffer(DYNGI_VCT_MIPS_BINDING_NODE_CELLS, voxels_.nodeCells().handle())
         .storageBuffer(DYNGI_VCT_MIPS_BINDING_LEVELS, voxels_.levels().handle())
         .push(ctx_, cmd, p);
@@ -338,7 +415,7 @@ void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect) {
   const uint32_t depth = voxels_.volume().depth();
   for (uint32_t m = 0; m < aniso_.desc().mips && m < depth; ++m) {
     const uint32_t slab = std::max((res_ / 2) >> m, 1u), nodeLevel = depth - 1 - m;
-    const VkImageView source = m > 0 ? aniso_.mipView(m - 1) : (levelZeroIsDirect ? direct_[current_].view() : radiance_.mipView(0));
+    const VkImageView source = m > 0 ? aniso_.mipView(m - 1) : (levelZeroIsDirect ? direct_.view() : radiance_.mipView(0));
     bind(mips_[m > 0 ? 1 : (levelZeroIsDirect ? 4 : 3)], source, aniso_.mipView(m), {slab, m == 0 ? 0u : 2 * slab, nodeLevel});
     vkCmdDispatchIndirect(cmd, voxels_.levels().handle(), levelDispatchOffset(nodeLevel + 1));  // its nodes' child groups
     render::computeWriteBarrier(cmd);
@@ -347,14 +424,17 @@ void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect) {
 
 bool VoxelConeTracing::record(render::FrameContext& frame) {
   stats_.injected = false;
-  if (!voxels_.hasVolume() || !frame.lights.lights || frame.targets.width == 0) return false;
+  if (!voxels_.hasVolume() || !frame.lights.lights || frame.targets.width == 0) {
+    frames_ = 0;  // the voxels this frame's build emptied go uncleared: the next frame clears everything
+    return false;
+  }
   VkCommandBuffer cmd = frame.cmd;
   options_.bounces = std::clamp(options_.bounces, 1u, 3u);
   ensureVolumes(voxels_.volume().resolution);
   ensureTraceTargets(frame.targets.width, frame.targets.height);
   // Back to GENERAL after a read-back (tests); the frames before finished at the renderer's fence, and
   // the passes below order themselves with global barriers.
-  for (Image* img : {&radiance_, &aniso_, &direct_[0], &direct_[1], &bounced_, &traced_[0].diffuse, &traced_[0].specular, &traced_[0].surface,
+  for (Image* img : {&radiance_, &aniso_, &direct_, &bounced_, &traced_[0].diffuse, &traced_[0].specular, &traced_[0].surface,
                      &traced_[1].diffuse, &traced_[1].specular, &traced_[1].surface, &filterAlongX_, &filteredDiffuse_})
     if (img->valid() && img->layout() != VK_IMAGE_LAYOUT_GENERAL) img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, kComputeAndTransfer, kReadWrite);
   frame.lights.shadowMaps->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
@@ -371,33 +451,18 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   if (vol.origin != historyOrigin_ || vol.voxelSize != historyVoxelSize_) frames_ = 0;
   historyOrigin_ = vol.origin;
   historyVoxelSize_ = vol.voxelSize;
-  const uint32_t previous = current_;
-  current_ ^= 1u;
-  // Voxels an object left must be empty. Where they may be (VoxelScene::staleBoxes) is zeroed: in level
-  // 0 and the atlas this frame's boxes, in the direct image (written two frames ago) this frame's and
-  // last frame's. The rest holds the same occupied voxels as before, every one written again below.
-  const StaleVoxels staleNow{frames_ == 0 || voxels_.staleEverywhere(), voxels_.staleBoxes()};
-  StaleVoxels staleForDirect{staleNow.everywhere || lastStale_.everywhere, staleNow.boxes};
-  staleForDirect.boxes.insert(staleForDirect.boxes.end(), lastStale_.boxes.begin(), lastStale_.boxes.end());
-  lastStale_ = staleNow;
+  // Voxels an object left must be empty: the passes below write occupied voxels and texels only. Where
+  // the SVO was built this frame, the cells that emptied (vct_clear_stale.comp: in the last build's
+  // occupancy, not this one's) are zeroed within the boxes where they may be (VoxelScene::staleBoxes);
+  // the first frame, a new volume or boxes holding half of it clear everything. The rest holds the same
+  // occupied voxels as before, every one written again below.
+  uint64_t boxVoxels = 0;
+  for (const VoxelBox& b : voxels_.staleBoxes()) boxVoxels += b.voxels();
+  const bool clearAll = frames_ == 0 || voxels_.staleEverywhere() || boxVoxels * 2 > uint64_t(res_) * res_ * res_;
+  const StaleVoxels stale{clearAll, voxels_.stats().rebuilt ? voxels_.staleBoxes() : std::vector<VoxelBox>{}};
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "inject");
-    // The zeroing runs in TRANSFER_DST_OPTIMAL (copies into a GENERAL image are a performance warning of
-    // the validation layer), the passes after it in GENERAL again.
-    const bool zeroing = staleForDirect.everywhere || !staleForDirect.boxes.empty();
-    Image* const zeroed[] = {&radiance_, &direct_[current_], aniso ? &aniso_ : nullptr};
-    if (zeroing)
-      for (Image* img : zeroed)
-        if (img) img->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    stats_.clearedVoxels = clearStale(cmd, radiance_, 0, staleNow, 0, 1);
-    clearStale(cmd, direct_[current_], 0, staleForDirect, 0, 1);
-    // The atlas' boxes too (level m's texels are 2^(m + 1) voxels wide): nothing reads it before the
-    // mips, and one barrier serves all the clears.
-    if (aniso)
-      for (uint32_t m = 0; m < aniso_.desc().mips; ++m) clearStale(cmd, aniso_, m, staleNow, m + 1, DYNGI_VCT_SLABS);
-    if (zeroing)
-      for (Image* img : zeroed)
-        if (img) img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, kComputeAndTransfer, kReadWrite);
+    stats_.clearedVoxels = recordClearStale(cmd, stale);
     render::computeWriteBarrier(cmd);
     gpu::VctInjectPush pc{};
     pc.volume = glm::vec4(vol.origin, vol.voxelSize);
@@ -409,8 +474,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
     w.storageBuffer(DYNGI_VCT_INJECT_BINDING_LIGHTS, frame.lights.lights->handle())
         .storageBuffer(DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES, frame.lights.shadowMatrices->handle())
         .storageImage(DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, frame.lights.shadowMaps->view())
-        .storageImage(DYNGI_VCT_INJECT_BINDING_PREVIOUS, direct_[previous].view())
-        .storageImage(DYNGI_VCT_INJECT_BINDING_DIRECT, direct_[current_].view())
+        .storageImage(DYNGI_VCT_INJECT_BINDING_DIRECT, direct_.view())
         .storageImage(DYNGI_VCT_INJECT_BINDING_RADIANCE, radiance_.mipView(0));
     recordLeafPass(cmd, inject_, &pc, sizeof(pc), w);
     stats_.injected = true;
@@ -432,7 +496,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
       pc.cones = (options_.diffuseCones + effectiveConeInterleave() - 1) / effectiveConeInterleave();
       pc.farNarrowing = 0.0f;
       DescriptorWrites w;
-      w.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, direct_[current_].view())
+      w.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, direct_.view())
           .sampledImage(DYNGI_VCT_BOUNCE_BINDING_RADIANCE, radiance_.view(), sampler_)
           .sampledImage(DYNGI_VCT_BOUNCE_BINDING_ANISO, anisoView, sampler_)
           .storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, bounced_.view());

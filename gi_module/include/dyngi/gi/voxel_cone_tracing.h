@@ -20,7 +20,7 @@ namespace dyngi::gi {
 
 struct VctFrameStats {
   bool injected = false;    // radiance injected this frame (every frame while the technique runs)
-  uint64_t clearedVoxels = 0;  // of level 0, zeroed first: the stale boxes' voxels, or all of them (res^3)
+  uint64_t clearedVoxels = 0;  // of level 0, cleared first: the stale boxes' (their emptied voxels zeroed), or all of them (res^3)
   uint32_t traceWidth = 0, traceHeight = 0;  // the resolution cones were traced at
   double tracedFraction = 1.0;  // of those, the share traced this frame (the rest reprojected)
   uint64_t volumeBytes = 0;  // radiance volumes, all levels
@@ -59,7 +59,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   // this frame's injected direct radiance. Valid after the first frame.
   render::Image& radianceVolume() { return radiance_; }
   render::Image& anisotropicVolume() { return aniso_; }
-  render::Image& directVolume() { return direct_[current_]; }
+  render::Image& directVolume() { return direct_; }
   // Marches one cone per ray (voxel units: origin, direction) through the volume as it stands, on the
   // GPU (vct_cone_probe.comp): rgb radiance, a opacity. Synchronous.
   std::vector<glm::vec4> probeCones(const std::vector<std::pair<glm::vec3, glm::vec3>>& rays, float tanHalf);
@@ -70,7 +70,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   // The mip chain, or the anisotropic atlas. levelZeroIsDirect: level 0 holds the direct radiance (no
   // bounce added yet), which the atlas' first level then reads alone (vct_mips.comp, kSeenInSource).
   void recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect);
-  // Where voxels may have been emptied (VoxelScene::staleBoxes), over one or more frames.
+  // Where voxels may have been emptied this frame (VoxelScene::staleBoxes), or everywhere.
   struct StaleVoxels {
     bool everywhere = false;
     std::vector<VoxelBox> boxes;
@@ -79,6 +79,11 @@ class VoxelConeTracing final : public render::RenderFeature {
   // side along x): box by box (copies from a buffer of zeros), or the whole level when the boxes hold
   // half the volume or more. Returns the texels zeroed.
   uint64_t clearStale(VkCommandBuffer cmd, render::Image& img, uint32_t mip, const StaleVoxels& stale, uint32_t shift, uint32_t slabs);
+  // Zeroes what the voxels that emptied held (in radiance level 0, the direct radiance, the atlas):
+  // everything, or within the boxes (vct_clear_stale.comp for the voxels and the atlas' level 0, whose
+  // texels are the cells that emptied since the last build; copies for the atlas' coarser levels).
+  // Returns the voxels of level 0 covered.
+  uint64_t recordClearStale(VkCommandBuffer cmd, const StaleVoxels& stale);
   void recordLeafPass(VkCommandBuffer cmd, const render::Pipeline& pipeline, const void* push, uint32_t pushBytes,
                       render::DescriptorWrites& writes);
   template <class Push>
@@ -91,16 +96,15 @@ class VoxelConeTracing final : public render::RenderFeature {
   uint32_t budgetFactor_ = 1;
   uint32_t width_ = 0, height_ = 0;  // the render size the trace scale was chosen for
   uint32_t res_ = 0;
-  uint32_t current_ = 0;
-  uint64_t frames_ = 0;
-  StaleVoxels lastStale_{true, {}};  // last frame's: the direct image written next was last written before it
+  uint64_t frames_ = 0;  // injected into the volumes as they stand (0: clear them first)
   glm::vec3 historyOrigin_{0.0f};  // the volume last frame's radiance was injected into
   float historyVoxelSize_ = 0.0f;
   render::Image radiance_;     // res^3, full mip chain
   render::Image aniso_;        // 6 (res/2) x res/2 x res/2, mips (anisotropic only)
-  render::Image direct_[2];    // res^3: the injected radiance this frame and last (temporal blending); alpha: which cones see the voxel (vct_seen.glsl)
+  render::Image direct_;       // res^3: the injected radiance, blended in place with last frame's (temporal blending); alpha: which cones see the voxel (vct_seen.glsl)
   render::Image bounced_;      // res^3: a bounce's output before it is committed to radiance_ level 0
   render::Buffer zeros_;       // what clearStale copies into the boxes it clears
+  render::Buffer staleRuns_;   // this frame's runs of cells vct_clear_stale.comp visits (recordClearStale)
   // The traced pixels, this frame's and last (alternating): diffuse (AO in alpha), specular (alpha: frames
   // since traced; both alphas -1: missing), the surface each saw (vct_reproject.comp's record).
   struct TracedPixels {
@@ -115,7 +119,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   bool traceHistory_ = false;      // traced_[last] holds last frame's pixels, valid to reproject
   glm::mat4 previousViewProj_{1.0f};
   VkSampler sampler_ = VK_NULL_HANDLE;
-  render::Pipeline inject_, mips_[5], bounce_[4], commit_, trace_[8], reproject_, filter_, upsample_, debug_[2], probe_[4];
+  render::Pipeline inject_, clearStale_, mips_[5], bounce_[4], commit_, trace_[8], reproject_, filter_, upsample_, debug_[2], probe_[4];
   VctFrameStats stats_;
 };
 

@@ -102,6 +102,11 @@ class VoxelScene final : public render::RenderFeature {
   // (indirect dispatch args, count). What passes over the leaves walk; built with the leaf attributes
   // (enableLeafAttributes), whose readers they are.
   const render::Buffer& leafList() const;
+  // The occupancy pyramid (a bit a cell of every level, DYNGI_SVO_LEVEL_BASE) of the last SVO build and
+  // of the build before it: a cell set in the one before and clear in the last has emptied. Valid after
+  // the second build; stats().rebuilt says whether this frame built.
+  const render::Buffer& occupancy() const;
+  const render::Buffer& previousOccupancy() const;
   // The leaf attributes' capacity in leaves (a leaf index at or past it has none).
   uint64_t leafCapacity() const { return attributeLeaves_; }
 

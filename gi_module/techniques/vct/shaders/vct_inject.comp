@@ -15,8 +15,9 @@ layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_VOXEL_ATTRIBUTES, rgba32ui) u
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES) readonly buffer ShadowMatrices { mat4 shadowViewProj[]; };
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, r32f) uniform readonly image2DArray shadowMaps;
-layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_PREVIOUS, rgba16f) uniform readonly image3D previous;
-layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_DIRECT, rgba16f) uniform writeonly image3D direct;
+// Last frame's radiance at each voxel (zero where it was empty: vct_clear_stale.comp), replaced in place:
+// every voxel is read and written by its own invocation alone.
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_DIRECT, rgba16f) uniform image3D direct;
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_RADIANCE, rgba16f) uniform writeonly image3D radiance;
 layout(push_constant) uniform Push { DYNGI_VCT_INJECT_PUSH };
 #include "shared/shadows.glsl"
@@ -56,7 +57,7 @@ void inject(uint i) {
   } while (++i2 < lightCount);
   vec3 L = leaf.emission + leaf.albedo * irradiance / PI;
   if (history != 0u) {
-    vec4 prev = imageLoad(previous, leaf.voxel);
+    vec4 prev = imageLoad(direct, leaf.voxel);
     if (prev.a > 0.0) {
       float lNew = luminance(L), lOld = luminance(prev.rgb);
       float change = abs(lNew - lOld) / max(max(lNew, lOld), 1e-6);
