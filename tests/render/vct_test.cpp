@@ -629,8 +629,7 @@ TEST_F(RenderTest, VctFollowsMovedLightsAndObjectsAndSwitchedLights) {
   run.world.write<scene::Transform>(run.named("tall_box")).translation = {0.5f, 0.6f, -0.5f};
   run.step();
   EXPECT_EQ(occupiedAround(top, vct.radianceVolume()), 0) << "the voxels the box left are empty";
-  // The injected radiance alternates between two volumes (the blend reads last frame's): the one written
-  // next was last written before the move, and holds the box's old voxels until they are zeroed.
+  // The direct radiance (blended in place with last frame's) and in the frame after.
   for (int frame = 0; frame < 2; ++frame) {
     EXPECT_EQ(occupiedAround(top, vct.directVolume()), 0) << "frame " << frame << " after the move: the direct radiance the box left";
     run.step();
@@ -645,6 +644,50 @@ TEST_F(RenderTest, VctFollowsMovedLightsAndObjectsAndSwitchedLights) {
   const double off = lum(render::meanOver(run.indirect()));
   std::printf("spot switched off: indirect light %.5f -> %.5f one frame later (%.2f%%)\n", lit, off, 100 * off / lit);
   EXPECT_LT(off, 0.01 * lit) << "within one frame";
+}
+
+// What emptied is zeroed: after both boxes move for a few frames (the voxels each leaves found by the
+// SVO's occupancy within its old bounds, vct_clear_stale.comp), the texels that hold anything in
+// radiance level 0, the direct image and every level of the atlas are exactly those of a volume built
+// afresh with the boxes where they ended.
+TEST_F(RenderTest, VctVolumesAfterMotionHoldExactlyTheVoxelsOfAFreshBuild) {
+  auto place = [](GiRun& run, int step) {
+    scene::Transform& tall = run.world.write<scene::Transform>(run.named("tall_box"));
+    tall.translation = {-0.35f + 0.03f * float(step), 0.6f, -0.35f};
+    tall.rotation = glm::angleAxis(glm::radians(17.0f + 4.0f * float(step)), glm::vec3(0, 1, 0));
+    run.world.write<scene::Transform>(run.named("short_box")).translation = {0.35f, 0.3f, 0.3f - 0.02f * float(step)};
+  };
+  GiRun moving(context(), vctSettings(), "cornell", kSize, kSize);
+  moving.step(2);
+  constexpr int kSteps = 6;
+  for (int k = 1; k <= kSteps; ++k) {
+    place(moving, k);
+    moving.step();
+  }
+  GiRun fresh(context(), vctSettings(), "cornell", kSize, kSize);
+  place(fresh, kSteps);
+  fresh.step(2);
+  auto held = [](const glm::vec4& v) { return v != glm::vec4(0.0f); };
+  auto compare = [&](const char* name, render::Image& a, render::Image& b) {
+    const std::vector<gi::VolumeLevel> la = readLevels(context(), a), lb = readLevels(context(), b);
+    ASSERT_EQ(la.size(), lb.size());
+    const size_t levels = (&a == &vctOf(moving).radianceVolume()) ? 1 : la.size();  // the isotropic chain past 0 is not kept
+    for (size_t m = 0; m < levels; ++m) {
+      size_t both = 0, onlyMoving = 0, onlyFresh = 0;
+      for (size_t i = 0; i < la[m].texels.size(); ++i) {
+        const bool x = held(la[m].texels[i]), y = held(lb[m].texels[i]);
+        both += x && y, onlyMoving += x && !y, onlyFresh += !x && y;
+      }
+      std::printf("%s level %zu: %zu texels hold something in both, %zu only after the motion, %zu only fresh\n", name, m, both, onlyMoving,
+                  onlyFresh);
+      EXPECT_GT(both, 0u) << name << " level " << m;
+      EXPECT_EQ(onlyMoving, 0u) << name << " level " << m << ": texels the boxes left still hold something";
+      EXPECT_EQ(onlyFresh, 0u) << name << " level " << m;
+    }
+  };
+  compare("radiance", vctOf(moving).radianceVolume(), vctOf(fresh).radianceVolume());
+  compare("direct", vctOf(moving).directVolume(), vctOf(fresh).directVolume());
+  compare("atlas", vctOf(moving).anisotropicVolume(), vctOf(fresh).anisotropicVolume());
 }
 
 // An emissive change re-injects: the tall box made emissive in a scene with no emitter glows in the
