@@ -221,7 +221,7 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
     vkCmdClearColorImage(cmd_, targets_.indirect.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
   }
   if (!settings_.featuresOnly) {
-    lighting_->execute(frame, *shadow_, indirectWritten, frame.specularWritten);
+    lighting_->execute(frame, *shadow_, indirectWritten, frame.specular);
     for (RenderFeature* f : features_) f->recordAfterLighting(frame);
     tonemap_->execute(frame);
     for (RenderFeature* f : features_) f->recordOverlay(frame);

@@ -22,8 +22,9 @@ layout(set = 0, binding = DYNGI_LIGHTING_BINDING_INDIRECT, rgba32f) uniform read
 layout(set = 0, binding = DYNGI_LIGHTING_BINDING_OUT_HDR, rgba32f) uniform writeonly image2D outHdr;
 layout(set = 0, binding = DYNGI_LIGHTING_BINDING_SPECULAR, rgba16f) uniform readonly image2D specular;
 layout(push_constant) uniform Push { DYNGI_LIGHTING_PUSH };
-// A feature wrote indirect specular radiance (RenderTargets::specular): a pipeline variant.
-layout(constant_id = 0) const bool kSpecular = false;
+// Where the indirect specular radiance comes from (SpecularSource): 0 none, 1 RenderTargets::specular,
+// 2 the indirect diffuse light itself. A pipeline variant each.
+layout(constant_id = 0) const uint kSpecular = 0u;
 
 const float PI = 3.14159265358979;
 #include "shared/shadows.glsl"
@@ -60,12 +61,14 @@ void main() {
   do {
     if (i < count) radiance += diffuse * shadowedIrradiance(lights[i], pos.xyz, n);
   } while (++i < count);
-  if (hasIndirect != 0u) radiance += occlusion * albedoMetal.rgb * (1.0 - albedoMetal.a) * imageLoad(indirect, px).rgb;
-  if (kSpecular) {
+  vec3 indirectLight = hasIndirect != 0u ? imageLoad(indirect, px).rgb : vec3(0.0);
+  radiance += occlusion * albedoMetal.rgb * (1.0 - albedoMetal.a) * indirectLight;
+  if (kSpecular != 0u) {
     // Dielectrics reflect 4 percent at normal incidence, metals their base colour.
     vec3 f0 = mix(vec3(0.04), albedoMetal.rgb, albedoMetal.a);
     float nDotV = clamp(dot(n, normalize(frame.cameraPos.xyz - pos.xyz)), 0.0, 1.0);
-    radiance += occlusion * specularColour(f0, normalRough.w, nDotV) * imageLoad(specular, px).rgb;
+    vec3 specularLight = kSpecular == 2u ? indirectLight : imageLoad(specular, px).rgb;
+    radiance += occlusion * specularColour(f0, normalRough.w, nDotV) * specularLight;
   }
   imageStore(outHdr, px, vec4(radiance, 1.0));
 }

@@ -537,7 +537,12 @@ TEST_F(RenderTest, VctSpecularReflectsTheRedWallAndBlursWithRoughness) {
     run.world.write<scene::Material>(run.named("floor")).roughness = roughness;
     run.step(2);
     const Frame f = run.readFrame();
-    const render::ImageRgba specular = run.renderer->readback(render::TargetId::Specular);
+    // Under VctOptions::specularConeBelow a cone is marched; at roughness 1 every draw is rougher than
+    // that: no cone anywhere, and the lighting takes the diffuse light (E / pi) as every pixel's specular
+    // light (SpecularSource::Indirect; VctSpecularFromTheIndirectImageMatchesTheSpecularImage).
+    const bool rough = roughness >= s.vct.specularConeBelow;
+    EXPECT_EQ(vctOf(run).stats().specularCones, !rough) << roughness;
+    const render::ImageRgba specular = run.renderer->readback(rough ? render::TargetId::Indirect : render::TargetId::Specular);
     dump("vct_specular_roughness_" + std::to_string(int(roughness * 10)), specular, kSize, kSize);
     std::vector<uint8_t> nearRed(f.hdr.size(), 0);
     for (size_t i = 0; i < nearRed.size(); ++i)
@@ -545,18 +550,6 @@ TEST_F(RenderTest, VctSpecularReflectsTheRedWallAndBlursWithRoughness) {
     const glm::dvec3 c = render::meanOver(f.hdr, &nearRed), r = render::meanOver(specular, &nearRed);
     redness[roughness] = c.r / c.g;
     reflectionRedness[roughness] = r.r / r.g;
-    // Under VctOptions::specularConeBelow a cone is marched; at roughness 1 every draw is rougher than
-    // that: no cone anywhere, and every pixel's specular light is its diffuse light (E / pi).
-    const bool rough = roughness >= s.vct.specularConeBelow;
-    EXPECT_EQ(vctOf(run).stats().specularCones, !rough) << roughness;
-    if (rough) {
-      const render::ImageRgba indirect = run.renderer->readback(render::TargetId::Indirect);
-      double worst = 0;
-      for (size_t i = 0; i < indirect.size(); ++i)
-        if (f.position[i].w > 0.5f)
-          worst = std::max(worst, double(glm::length(glm::vec3(specular[i]) - glm::vec3(indirect[i])) / std::max(glm::length(glm::vec3(indirect[i])), 1e-3f)));
-      EXPECT_LT(worst, 1e-3) << "a rough pixel's specular light is its diffuse light";
-    }
     // Sharpness: the specular image's mean absolute step between horizontal neighbours on the floor,
     // relative to its mean, over the floor's interior (pixels at least 3 from anything else): where the
     // floor meets a box or a wall its reflection steps by the contact, not by how sharp it is. A rough
@@ -594,6 +587,37 @@ TEST_F(RenderTest, VctSpecularReflectsTheRedWallAndBlursWithRoughness) {
   EXPECT_GT(reflectionRedness[0.1f], 1.1 * reflectionRedness[1.0f]);
   EXPECT_GT(sharpness[0.1f], sharpness[0.4f]);
   EXPECT_GT(sharpness[0.4f], sharpness[1.0f]);
+}
+
+// A rough pixel's specular light is its diffuse light: with no draw smoother than specularConeBelow the
+// lighting reads it from the indirect image (SpecularSource::Indirect), the same image as when the
+// upsample writes it to the specular image, which a roughness texture on the floor brings back (a
+// missing one: white, so every pixel stays at roughness 1; the trace then holds the cone's code).
+TEST_F(RenderTest, VctSpecularFromTheIndirectImageMatchesTheSpecularImage) {
+  GiRun plain(context(), vctSettings(), "cornell", kSize, kSize);
+  GiRun textured(context(), vctSettings(), "cornell", kSize, kSize);
+  textured.world.write<scene::Material>(textured.named("floor")).metallicRoughnessTexture = scene::TextureId(4242);
+  plain.step(3);
+  textured.step(3);
+  EXPECT_FALSE(vctOf(plain).stats().specularCones);
+  EXPECT_TRUE(vctOf(textured).stats().specularCones);
+  const Frame a = plain.readFrame(), b = textured.readFrame();
+  const render::ImageRgba specular = textured.renderer->readback(render::TargetId::Specular),
+                          indirect = textured.renderer->readback(render::TargetId::Indirect);
+  double worstSpecular = 0, worstImage = 0;
+  size_t n = 0;
+  for (size_t i = 0; i < a.hdr.size(); ++i) {
+    if (a.position[i].w < 0.5f) continue;
+    ++n;
+    const glm::vec3 d(indirect[i]);
+    worstSpecular = std::max(worstSpecular, double(glm::length(glm::vec3(specular[i]) - d) / std::max(glm::length(d), 1e-3f)));
+    const glm::vec3 x(a.hdr[i]), y(b.hdr[i]);
+    worstImage = std::max(worstImage, double(glm::length(x - y) / std::max(glm::length(y), 1e-3f)));
+  }
+  ASSERT_GT(n, 1000u);
+  std::printf("specular image against the diffuse light: worst %.2e; final images: worst %.2e\n", worstSpecular, worstImage);
+  EXPECT_LT(worstSpecular, 1e-3) << "the specular image holds each pixel's diffuse light";
+  EXPECT_LT(worstImage, 1e-4) << "either way the lighting adds the same specular light";
 }
 
 // Dynamic scenes: a moved light is re-injected without re-voxelizing; a moved box leaves empty voxels

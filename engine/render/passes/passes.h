@@ -109,13 +109,14 @@ class LightingPass {
  public:
   static constexpr const char* kName = "lighting";
   explicit LightingPass(VulkanContext& ctx);
-  void execute(FrameContext& frame, ShadowPass& shadows, bool hasIndirect, bool hasSpecular);
+  void execute(FrameContext& frame, ShadowPass& shadows, bool hasIndirect, SpecularSource specular);
 
  private:
   VulkanContext& ctx_;
-  // Without and with the indirect specular term (a specialization constant: lavapipe would pay for
-  // the branch in every pixel of every frame that has none).
-  Pipeline pipeline_[2];
+  // By SpecularSource: without the indirect specular term, with it from targets.specular, with it from
+  // targets.indirect (a specialization constant: lavapipe would pay for the branches in every pixel of
+  // every frame that has none).
+  Pipeline pipeline_[3];
 };
 
 class TonemapPass {

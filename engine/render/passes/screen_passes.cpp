@@ -26,19 +26,21 @@ LightingPass::LightingPass(VulkanContext& ctx) : ctx_(ctx) {
                        {DYNGI_LIGHTING_BINDING_INDIRECT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
                        {DYNGI_LIGHTING_BINDING_OUT_HDR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
                        {DYNGI_LIGHTING_BINDING_SPECULAR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
-  for (uint32_t specular : {0u, 1u}) {
+  static_assert(uint32_t(SpecularSource::None) == 0 && uint32_t(SpecularSource::Target) == 1 && uint32_t(SpecularSource::Indirect) == 2,
+                "lighting.comp's kSpecular");
+  for (uint32_t specular : {0u, 1u, 2u}) {
     const uint32_t spec[] = {specular};
     pipeline_[specular] = Pipeline::compute(ctx, DYNGI_SHADER(spv_lighting_comp), b, sizeof(gpu::LightingPush), "lighting", spec);
   }
 }
 
-void LightingPass::execute(FrameContext& frame, ShadowPass& shadows, bool hasIndirect, bool hasSpecular) {
+void LightingPass::execute(FrameContext& frame, ShadowPass& shadows, bool hasIndirect, SpecularSource specular) {
   ScopedPass scope(ctx_, frame.timer, frame.cmd, kName);
   VkCommandBuffer cmd = frame.cmd;
   RenderTargets& t = frame.targets;
   for (Image* in : {&t.position, &t.normal, &t.albedo, &t.emissive, &t.indirect, &t.specular}) prepareInput(cmd, *in);
   prepareOutput(cmd, t.hdr);
-  const Pipeline& pipeline = pipeline_[hasSpecular ? 1 : 0];
+  const Pipeline& pipeline = pipeline_[uint32_t(specular)];
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
   DescriptorWrites()
       .uniformBuffer(DYNGI_LIGHTING_BINDING_FRAME, frame.frameUniforms.handle())

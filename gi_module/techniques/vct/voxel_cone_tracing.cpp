@@ -158,7 +158,10 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
                          {DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR, kStorageImage, kCS},
                          {DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, kStorageImage, kCS},
                          {DYNGI_VCT_UPSAMPLE_BINDING_FRAME, kUBO, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_LOW_SURFACE, kStorageImage, kCS}};
-  upsample_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_upsample_comp), upB, sizeof(gpu::VctUpsamplePush), "vct_upsample");
+  for (uint32_t specular : {0u, 1u}) {
+    const uint32_t spec[] = {specular};
+    upsample_[specular] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_upsample_comp), upB, sizeof(gpu::VctUpsamplePush), "vct_upsample", spec);
+  }
   const Binding reprojectB[] = {{DYNGI_VCT_REPROJECT_BINDING_FRAME, kUBO, kCS},
                                 {DYNGI_VCT_REPROJECT_BINDING_G_POSITION, kStorageImage, kCS},
                                 {DYNGI_VCT_REPROJECT_BINDING_G_NORMAL, kStorageImage, kCS},
@@ -528,6 +531,11 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
                           return d.material.roughness < options_.specularConeBelow || d.material.metallicRoughnessTexture != scene::kNoTexture;
                         });
     stats_.specularCones = glossy;
+    // The specular image is written where some pixel's specular light is a cone's, or the debug view
+    // shows it; else the lighting takes the diffuse light as the specular (SpecularSource::Indirect).
+    specularSource_ = !options_.specular ? render::SpecularSource::None
+                      : glossy || options_.view == VctView::Specular ? render::SpecularSource::Target
+                                                                      : render::SpecularSource::Indirect;
     const Pipeline& p = trace_[(aniso ? 1 : 0) + (glossy ? 2 : 0) + 4 * unitStep()];
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
     DescriptorWrites()
@@ -607,7 +615,8 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   }
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "upsample");
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, upsample_.handle());
+    const Pipeline& up = upsample_[specularSource_ == render::SpecularSource::Target ? 1 : 0];
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, up.handle());
     DescriptorWrites()
         .uniformBuffer(DYNGI_VCT_UPSAMPLE_BINDING_FRAME, frame.frameUniforms.handle())
         .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION, t.position.view())
@@ -617,16 +626,16 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
         .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_SURFACE, traced.surface.view())
         .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, t.indirect.view())
         .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, t.specular.view())
-        .push(ctx_, cmd, upsample_);
+        .push(ctx_, cmd, up);
     const gpu::VctUpsamplePush pc{scale, options_.specularConeBelow};
-    vkCmdPushConstants(cmd, upsample_.layout(), kCS, 0, sizeof(pc), &pc);
+    vkCmdPushConstants(cmd, up.layout(), kCS, 0, sizeof(pc), &pc);
     // One invocation per block of scale x scale pixels sharing their traced neighbours: a block left of
     // and above the first traced pixel, then one per traced pixel.
     vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth + 1, 8), dispatchGroups(stats_.traceHeight + 1, 8), 1);
     render::computeWriteBarrier(cmd);
   }
   ++frames_;
-  frame.specularWritten = options_.specular;
+  frame.specular = specularSource_;
   return true;
 }
 

@@ -64,7 +64,9 @@ struct VctOptions {
   // specular cone. A lobe this wide gathers about what the cosine-weighted hemisphere does (a split-sum
   // prefiltered radiance at roughness 1 is the irradiance's), and the diffuse cones have gathered that
   // already; the cone marched at roughness 1 was a 45-degree cone about the normal, a tenth of the trace
-  // (docs/BENCHMARKS.md, session 30). Over 1: a cone at every roughness.
+  // (docs/BENCHMARKS.md, session 30). With no draw that smooth the trace runs without the cone's code
+  // and the lighting takes the diffuse light as the specular (render::SpecularSource::Indirect). Over 1:
+  // a cone at every roughness.
   float specularConeBelow = 0.8f;
   // Blend of the injected radiance with the previous frame's, per voxel: the fraction of history kept.
   // A voxel whose radiance changed by more than `temporalResponse` (relative) takes the new value at once,

@@ -97,6 +97,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   uint32_t width_ = 0, height_ = 0;  // the render size the trace scale was chosen for
   uint32_t res_ = 0;
   uint64_t frames_ = 0;  // injected into the volumes as they stand (0: clear them first)
+  render::SpecularSource specularSource_ = render::SpecularSource::None;  // this frame's (record())
   glm::vec3 historyOrigin_{0.0f};  // the volume last frame's radiance was injected into
   float historyVoxelSize_ = 0.0f;
   render::Image radiance_;     // res^3, full mip chain
@@ -119,7 +120,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   bool traceHistory_ = false;      // traced_[last] holds last frame's pixels, valid to reproject
   glm::mat4 previousViewProj_{1.0f};
   VkSampler sampler_ = VK_NULL_HANDLE;
-  render::Pipeline inject_, clearStale_, mips_[5], bounce_[4], commit_, trace_[8], reproject_, filter_, upsample_, debug_[2], probe_[4];
+  render::Pipeline inject_, clearStale_, mips_[5], bounce_[4], commit_, trace_[8], reproject_, filter_, upsample_[2], debug_[2], probe_[4];
   VctFrameStats stats_;
 };
 

@@ -20,6 +20,10 @@ layout(set = 0, binding = DYNGI_VCT_UPSAMPLE_BINDING_LOW_SURFACE, rgba32ui) unif
 layout(set = 0, binding = DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, rgba32f) uniform writeonly image2D outDiffuse;
 layout(set = 0, binding = DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, rgba16f) uniform writeonly image2D outSpecular;
 layout(push_constant) uniform Push { DYNGI_VCT_UPSAMPLE_PUSH };
+// False when every pixel's specular light is its diffuse light (no draw smoother than
+// specularConeBelow): the lighting reads it from targets.indirect (SpecularSource::Indirect), and the
+// specular image is neither filled nor written.
+layout(constant_id = 0) const bool kSpecular = true;
 #include "vct_surface.glsl"
 #include "vct_surface_match.glsl"
 
@@ -50,7 +54,7 @@ void main() {
       vec4 pos = imageLoad(gPosition, px);
       if (pos.w == 0.0) {
         imageStore(outDiffuse, px, vec4(0.0, 0.0, 0.0, 1.0));
-        imageStore(outSpecular, px, vec4(0.0));
+        if (kSpecular) imageStore(outSpecular, px, vec4(0.0));
         continue;
       }
       vec4 nr = imageLoad(gNormal, px);
@@ -75,10 +79,11 @@ void main() {
         if (sp[i].a >= 0.0 && match > bestSpecularMatch) bestSpecularMatch = match, bestSpecular = sp[i];
       }
       diffuse = total > 1e-4 ? diffuse / total : bestDiffuse;
+      imageStore(outDiffuse, px, diffuse);
+      if (!kSpecular) continue;
       specular = specularTotal > 1e-4 ? specular / specularTotal : bestSpecular;
       // Rough pixels' specular light is the diffuse light's (VctOptions::specularConeBelow).
       specular.rgb = mix(specular.rgb, diffuse.rgb, smoothstep(specularConeBelow - DYNGI_VCT_SPECULAR_BLEND, specularConeBelow, nr.w));
-      imageStore(outDiffuse, px, diffuse);
       imageStore(outSpecular, px, vec4(specular.rgb, 1.0));
     }
 }

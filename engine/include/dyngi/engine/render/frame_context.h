@@ -24,8 +24,8 @@ struct RenderTargets {
   Image depth;      // D32
   Image indirect;   // RGBA32F: written by GI features (E_indirect / pi); cleared to 0 otherwise
   Image specular;   // RGBA16F: indirect specular radiance along the reflected view ray, written by a GI
-                    // feature that sets FrameContext::specularWritten; lighting weighs it by the
-                    // specular colour (split-sum fit of the GGX BRDF) and ignores it otherwise
+                    // feature that sets FrameContext::specular to SpecularSource::Target; lighting
+                    // weighs it by the specular colour (split-sum fit of the GGX BRDF)
   Image hdr;        // RGBA32F: emission + direct + albedo * indirect, linear radiance before exposure
   Image ldr;        // RGBA8:   tone-mapped, sRGB-encoded display image
 };
@@ -91,6 +91,15 @@ struct LightInputs {
   uint32_t count = 0;
 };
 
+// Where the lighting pass takes the indirect specular radiance it weighs by the specular colour.
+enum class SpecularSource : uint8_t {
+  None,      // no feature gave any: no indirect specular term
+  Target,    // targets.specular, written by a GI feature
+  Indirect,  // the feature's specular light is its diffuse light at every pixel (targets.indirect's E / pi:
+             // a split-sum prefiltered radiance at roughness 1), e.g. a scene without glossy surfaces;
+             // targets.specular is not written, and the lighting reads one image instead of two
+};
+
 struct FrameContext {
   VulkanContext& ctx;
   VkCommandBuffer cmd;
@@ -108,8 +117,8 @@ struct FrameContext {
   // feature that needs this frame's G-buffer on the CPU (ray-traced visibility); costs the overlap.
   std::function<void()> submitAndWait;
   LightInputs lights;
-  // Set by a feature that wrote targets.specular this frame.
-  bool specularWritten = false;
+  // Where a feature put this frame's indirect specular radiance (SpecularSource).
+  SpecularSource specular = SpecularSource::None;
 };
 
 }  // namespace dyngi::render
