@@ -293,43 +293,6 @@ static_assert(DYNGI_VCT_INJECT_BINDING_LEAF_LIST == DYNGI_VCT_BOUNCE_BINDING_LEA
                   DYNGI_VCT_INJECT_BINDING_VOXEL_ATTRIBUTES == DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES,
               "the passes over leaves share their first two bindings (recordLeafPass)");
 
-uint64_t VoxelConeTracing::clearStale(VkCommandBuffer cmd, Image& img, uint32_t mip, const StaleVoxels& stale, uint32_t shift, uint32_t slabs) {
-  // Zeros copied into a box cost lavapipe about what clearing as many texels does (session 23: a box of
-  // half the volume 0.9 ms less than the whole clear at 128^3). Boxes holding half the volume or more,
-  // or one needing more zeros than kMaxZeroBytes, get the whole clear.
-  constexpr VkDeviceSize kMaxZeroBytes = 8ull << 20;
-  uint64_t boxVoxels = 0, largest = 0;
-  for (const VoxelBox& b : stale.boxes) boxVoxels += b.voxels(), largest = std::max(largest, b.voxels());
-  const VkDeviceSize bytes = largest * render::formatBytesPerPixel(img.desc().format);
-  const auto& d = img.desc();
-  if (stale.everywhere || boxVoxels * 2 > uint64_t(res_) * res_ * res_ || bytes > kMaxZeroBytes) {
-    clearLevel(cmd, img, mip);
-    return uint64_t(std::max(d.width >> mip, 1u)) * std::max(d.height >> mip, 1u) * std::max(d.depth >> mip, 1u);
-  }
-  if (stale.boxes.empty()) return 0;
-  // Copied from a buffer of zeros, box by box and slab by slab.
-  if (!zeros_.valid() || zeros_.size() < bytes) {
-    zeros_ = Buffer(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::GpuOnly, "vct zeros");
-    ctx_.immediate([&](VkCommandBuffer c) { vkCmdFillBuffer(c, zeros_.handle(), 0, VK_WHOLE_SIZE, 0); });
-  }
-  const uint32_t slabWidth = std::max(d.width >> mip, 1u) / slabs;
-  std::vector<VkBufferImageCopy> regions;
-  uint64_t texels = 0;
-  for (const VoxelBox& b : stale.boxes) {
-    const glm::uvec3 lo = b.min >> shift, hi = b.max >> shift;
-    for (uint32_t s = 0; s < slabs; ++s) {
-      VkBufferImageCopy r{};
-      r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip, 0, 1};
-      r.imageOffset = {int32_t(lo.x + s * slabWidth), int32_t(lo.y), int32_t(lo.z)};
-      r.imageExtent = {hi.x - lo.x + 1, hi.y - lo.y + 1, hi.z - lo.z + 1};
-      texels += uint64_t(r.imageExtent.width) * r.imageExtent.height * r.imageExtent.depth;
-      regions.push_back(r);
-    }
-  }
-  vkCmdCopyBufferToImage(cmd, zeros_.handle(), img.handle(), img.layout(), uint32_t(regions.size()), regions.data());
-  return texels;
-}
-
 uint64_t VoxelConeTracing::recordClearStale(VkCommandBuffer cmd, const StaleVoxels& stale) {
   const bool aniso = options_.anisotropic;
   // Copies and clears run in TRANSFER_DST_OPTIMAL (copies into a GENERAL image are a performance warning

@@ -75,14 +75,10 @@ class VoxelConeTracing final : public render::RenderFeature {
     bool everywhere = false;
     std::vector<VoxelBox> boxes;
   };
-  // Zeroes level `mip` of `img` where `stale` says (texels 2^shift voxels wide, `slabs` slabs side by
-  // side along x): box by box (copies from a buffer of zeros), or the whole level when the boxes hold
-  // half the volume or more. Returns the texels zeroed.
-  uint64_t clearStale(VkCommandBuffer cmd, render::Image& img, uint32_t mip, const StaleVoxels& stale, uint32_t shift, uint32_t slabs);
   // Zeroes what the voxels that emptied held (in radiance level 0, the direct radiance, the atlas):
-  // everything, or within the boxes (vct_clear_stale.comp for the voxels and the atlas' level 0, whose
-  // texels are the cells that emptied since the last build; copies for the atlas' coarser levels).
-  // Returns the voxels of level 0 covered.
+  // everything, or within the boxes (vct_clear_stale.comp for the voxels and the atlas' levels 0 and 1,
+  // at the cells that emptied since the last build; the atlas' coarser levels whole, the mips rewriting
+  // every occupied texel). Returns the voxels of level 0 covered.
   uint64_t recordClearStale(VkCommandBuffer cmd, const StaleVoxels& stale);
   void recordLeafPass(VkCommandBuffer cmd, const render::Pipeline& pipeline, const void* push, uint32_t pushBytes,
                       render::DescriptorWrites& writes);
@@ -104,7 +100,6 @@ class VoxelConeTracing final : public render::RenderFeature {
   render::Image aniso_;        // 6 (res/2) x res/2 x res/2, mips (anisotropic only)
   render::Image direct_;       // res^3: the injected radiance, blended in place with last frame's (temporal blending); alpha: which cones see the voxel (vct_seen.glsl)
   render::Image bounced_;      // res^3: a bounce's output before it is committed to radiance_ level 0
-  render::Buffer zeros_;       // what clearStale copies into the boxes it clears
   render::Buffer staleRuns_;   // this frame's runs of cells vct_clear_stale.comp visits (recordClearStale)
   // The traced pixels, this frame's and last (alternating): diffuse (AO in alpha), specular (alpha: frames
   // since traced; both alphas -1: missing), the surface each saw (vct_reproject.comp's record).
