@@ -88,6 +88,20 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
 }
 
 void VulkanContext::create(const ContextOptions& options) {
+  createInstance(options);
+  pickPhysicalDevice(options);
+  createDevice(options);
+  VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT | VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+  pci.queueFamilyIndex = queueFamily_;
+  DYNGI_VK(vkCreateCommandPool(device_, &pci, nullptr, &immediatePool_));
+  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  DYNGI_VK(vkCreateFence(device_, &fci, nullptr, &immediateFence_));
+}
+
+// The instance with the validation layer (and its synchronization checks) when asked for, and the
+// debug-utils functions: messenger, labels, object names.
+void VulkanContext::createInstance(const ContextOptions& options) {
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "dyngi";
   app.pEngineName = "dyngi";
@@ -140,8 +154,11 @@ void VulkanContext::create(const ContextOptions& options) {
     endLabel_ = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(vkGetInstanceProcAddr(instance_, "vkCmdEndDebugUtilsLabelEXT"));
     setName_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(vkGetInstanceProcAddr(instance_, "vkSetDebugUtilsObjectNameEXT"));
   }
+}
 
-  // Pick a device: discrete > integrated > anything, among those that meet our requirements.
+// A device: discrete > integrated > anything, among those that meet our requirements; the error names
+// what each device lacks.
+void VulkanContext::pickPhysicalDevice(const ContextOptions& options) {
   uint32_t count = 0;
   vkEnumeratePhysicalDevices(instance_, &count, nullptr);
   std::vector<VkPhysicalDevice> devices(count);
@@ -189,7 +206,10 @@ void VulkanContext::create(const ContextOptions& options) {
     if ((fl & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) && (fl & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)) hostVisibleDeviceLocal_ = true;
   }
   if (!options.quiet) std::fprintf(stderr, "dyngi: Vulkan device: %s\n", deviceName_.c_str());
+}
 
+// The logical device with the features and extensions the renderer and the GI use, its queue.
+void VulkanContext::createDevice(const ContextOptions& options) {
   VkPhysicalDeviceFeatures supported;
   vkGetPhysicalDeviceFeatures(physical_, &supported);
   VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
@@ -225,13 +245,6 @@ void VulkanContext::create(const ContextOptions& options) {
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
   pushDescriptorSet_ = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
   if (!pushDescriptorSet_) throw VulkanError("vkCmdPushDescriptorSetKHR not found");
-
-  VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT | VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-  pci.queueFamilyIndex = queueFamily_;
-  DYNGI_VK(vkCreateCommandPool(device_, &pci, nullptr, &immediatePool_));
-  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  DYNGI_VK(vkCreateFence(device_, &fci, nullptr, &immediateFence_));
 }
 
 VulkanContext::~VulkanContext() { destroy(); }

@@ -158,111 +158,133 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
   stats_ = {};
   if (targets_.width == 0) throw VulkanError("Renderer::render called before resize()");
   auto t0 = Clock::now();
-
   // Uploads first (they submit their own one-off work), then record the frame.
-  std::vector<GpuMesh*> meshes(snapshot.draws.size(), nullptr);
-  if (snapshot.assets)
-    for (size_t i = 0; i < snapshot.draws.size(); ++i) meshes[i] = meshFor(*snapshot.assets, snapshot.draws[i].mesh);
+  const std::vector<GpuMesh*> meshes = uploadAssets(snapshot);
   auto textures = [&](scene::TextureId id) { return snapshot.assets ? textureView(*snapshot.assets, id) : whiteTexture_.view(); };
-  for (const DrawItem& d : snapshot.draws) {  // create textures before recording starts
-    textures(d.material.baseColorTexture);
-    textures(d.material.emissiveTexture);
-    textures(d.material.metallicRoughnessTexture);
-    textures(d.material.occlusionTexture);
-    textures(d.material.normalTexture);
-  }
   for (RenderFeature* f : features_) f->prepare(ctx_, snapshot);
   shadow_->prepare(snapshot);
+  const gpu::FrameUniforms fu = uploadFrameUniforms(snapshot);
+  uint32_t imageIndex = UINT32_MAX;
+  if (swapchain && swapchain->valid()) imageIndex = swapchain->acquire();
+  beginCommands();
+  auto submitAndWait = [this] { submitAndWaitMidFrame(); };
+  if (timer_) timer_->beginFrame(cmd_, submitAndWait);
+  FrameContext frame{ctx_, cmd_, timer_.get(), snapshot, targets_, frameUniforms_, fu, meshes, linearSampler_, nearestSampler_, textures,
+                     submitAndWait};
+  frame.lights = LightInputs{&shadow_->lights(), &shadow_->matrices(), &shadow_->shadowMap(), shadow_->lightCount()};
+  recordPasses(frame, textures);
+  if (imageIndex != UINT32_MAX && !settings_.featuresOnly) recordPresentBlit(*swapchain, imageIndex);
+  DYNGI_VK(vkEndCommandBuffer(cmd_));
+  submitFrame(swapchain, imageIndex, t0);
+  for (RenderFeature* f : features_) f->frameFinished(ctx_);
+  return stats_;
+}
 
+// The meshes whose version changed and the textures the draws use, uploaded before recording starts.
+std::vector<GpuMesh*> Renderer::uploadAssets(const RenderSnapshot& snapshot) {
+  std::vector<GpuMesh*> meshes(snapshot.draws.size(), nullptr);
+  if (!snapshot.assets) return meshes;
+  for (size_t i = 0; i < snapshot.draws.size(); ++i) meshes[i] = meshFor(*snapshot.assets, snapshot.draws[i].mesh);
+  for (const DrawItem& d : snapshot.draws)
+    for (scene::TextureId id : {d.material.baseColorTexture, d.material.emissiveTexture, d.material.metallicRoughnessTexture,
+                                d.material.occlusionTexture, d.material.normalTexture})
+      textureView(*snapshot.assets, id);
+  return meshes;
+}
+
+gpu::FrameUniforms Renderer::uploadFrameUniforms(const RenderSnapshot& snapshot) {
   gpu::FrameUniforms fu = cameraUniforms(snapshot.camera, targets_.width, targets_.height);
   fu.sizeAndCount = glm::uvec4(targets_.width, targets_.height, shadow_->lightCount(), uint32_t(snapshot.frame));
   fu.exposure = glm::vec4(settings_.exposure, float(settings_.toneMapper), 0, 0);
   fu.background = glm::vec4(settings_.background, 0.0f);
   frameUniforms_.upload(&fu, sizeof(fu));
+  return fu;
+}
 
-  uint32_t imageIndex = UINT32_MAX;
-  if (swapchain && swapchain->valid()) imageIndex = swapchain->acquire();
-
+void Renderer::beginCommands() {
   DYNGI_VK(vkResetCommandBuffer(cmd_, 0));
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   DYNGI_VK(vkBeginCommandBuffer(cmd_, &bi));
-  auto submitAndWait = [this] {
-    DYNGI_VK(vkEndCommandBuffer(cmd_));
-    VkCommandBufferSubmitInfo part{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-    part.commandBuffer = cmd_;
-    VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
-    si.commandBufferInfoCount = 1;
-    si.pCommandBufferInfos = &part;
-    DYNGI_VK(vkResetFences(ctx_.device(), 1, &fence_));
-    DYNGI_VK(vkQueueSubmit2(ctx_.queue(), 1, &si, fence_));
-    DYNGI_VK(vkWaitForFences(ctx_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
-    VkCommandBufferBeginInfo again{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    again.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    DYNGI_VK(vkBeginCommandBuffer(cmd_, &again));
-  };
-  if (timer_) timer_->beginFrame(cmd_, submitAndWait);
-  FrameContext frame{ctx_, cmd_, timer_.get(), snapshot, targets_, frameUniforms_, fu, meshes, linearSampler_, nearestSampler_, textures,
-                     submitAndWait};
-  frame.lights = LightInputs{&shadow_->lights(), &shadow_->matrices(), &shadow_->shadowMap(), shadow_->lightCount()};
+}
 
+// What FrameContext::submitAndWait does: the frame so far, submitted and waited for, then recording goes
+// on in the same command buffer (fenced stage timing; Embree visibility reading the G-buffer).
+void Renderer::submitAndWaitMidFrame() {
+  DYNGI_VK(vkEndCommandBuffer(cmd_));
+  VkCommandBufferSubmitInfo part{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  part.commandBuffer = cmd_;
+  VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  si.commandBufferInfoCount = 1;
+  si.pCommandBufferInfos = &part;
+  DYNGI_VK(vkResetFences(ctx_.device(), 1, &fence_));
+  DYNGI_VK(vkQueueSubmit2(ctx_.queue(), 1, &si, fence_));
+  DYNGI_VK(vkWaitForFences(ctx_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
+  VkCommandBufferBeginInfo again{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  again.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  DYNGI_VK(vkBeginCommandBuffer(cmd_, &again));
+}
+
+// shadow, gbuffer, the features, lighting, the features' views, tonemap, the overlays.
+void Renderer::recordPasses(FrameContext& frame, const std::function<VkImageView(scene::TextureId)>& textures) {
   if (!settings_.featuresOnly) {
     shadow_->execute(frame);
     gbuffer_->execute(frame, textures);
   }
   bool indirectWritten = false;
   for (RenderFeature* f : features_) indirectWritten |= f->record(frame);
-  if (settings_.featuresOnly) {
-    // nothing else to record
-  } else if (!indirectWritten) {  // readable as a target: zero, not last frame's
+  if (settings_.featuresOnly) return;
+  if (!indirectWritten) {  // readable as a target: zero, not last frame's
     targets_.indirect.transition(cmd_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     VkClearColorValue zero{};
     VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     vkCmdClearColorImage(cmd_, targets_.indirect.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
   }
-  if (!settings_.featuresOnly) {
-    lighting_->execute(frame, *shadow_, indirectWritten, frame.specular);
-    for (RenderFeature* f : features_) f->recordAfterLighting(frame);
-    tonemap_->execute(frame);
-    for (RenderFeature* f : features_) f->recordOverlay(frame);
-  }
+  lighting_->execute(frame, *shadow_, indirectWritten, frame.specular);
+  for (RenderFeature* f : features_) f->recordAfterLighting(frame);
+  tonemap_->execute(frame);
+  for (RenderFeature* f : features_) f->recordOverlay(frame);
+}
 
-  if (imageIndex != UINT32_MAX && !settings_.featuresOnly) {
-    // Not fenced: a submission before the last would write the swapchain image before it is acquired.
-    ScopedPass scope(ctx_, timer_ && timer_->mode() == GpuTimer::Mode::Timestamps ? timer_.get() : nullptr, cmd_, "present_blit");
-    targets_.ldr.transition(cmd_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    VkImage sw = swapchain->image(imageIndex);
-    auto swBarrier = [&](VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcS, VkAccessFlags2 srcA,
-                         VkPipelineStageFlags2 dstS, VkAccessFlags2 dstA) {
-      VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-      b.srcStageMask = srcS;
-      b.srcAccessMask = srcA;
-      b.dstStageMask = dstS;
-      b.dstAccessMask = dstA;
-      b.oldLayout = from;
-      b.newLayout = to;
-      b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      b.image = sw;
-      b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-      VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-      dep.imageMemoryBarrierCount = 1;
-      dep.pImageMemoryBarriers = &b;
-      vkCmdPipelineBarrier2(cmd_, &dep);
-    };
-    swBarrier(VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
-              VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    VkExtent2D ext = swapchain->extent();
-    VkImageBlit blit{};
-    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.srcOffsets[1] = {int32_t(targets_.width), int32_t(targets_.height), 1};
-    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.dstOffsets[1] = {int32_t(ext.width), int32_t(ext.height), 1};
-    vkCmdBlitImage(cmd_, targets_.ldr.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, sw, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
-    swBarrier(VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_BLIT_BIT,
-              VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);
-  }
-  DYNGI_VK(vkEndCommandBuffer(cmd_));
+// The display image blitted to the swapchain image. Not fenced: a submission before the last would
+// write the swapchain image before it is acquired.
+void Renderer::recordPresentBlit(Swapchain& swapchain, uint32_t imageIndex) {
+  ScopedPass scope(ctx_, timer_ && timer_->mode() == GpuTimer::Mode::Timestamps ? timer_.get() : nullptr, cmd_, "present_blit");
+  targets_.ldr.transition(cmd_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  VkImage sw = swapchain.image(imageIndex);
+  auto swBarrier = [&](VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcS, VkAccessFlags2 srcA, VkPipelineStageFlags2 dstS,
+                       VkAccessFlags2 dstA) {
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.srcStageMask = srcS;
+    b.srcAccessMask = srcA;
+    b.dstStageMask = dstS;
+    b.dstAccessMask = dstA;
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = sw;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = 1;
+    dep.pImageMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd_, &dep);
+  };
+  swBarrier(VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
+            VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  VkExtent2D ext = swapchain.extent();
+  VkImageBlit blit{};
+  blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.srcOffsets[1] = {int32_t(targets_.width), int32_t(targets_.height), 1};
+  blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.dstOffsets[1] = {int32_t(ext.width), int32_t(ext.height), 1};
+  vkCmdBlitImage(cmd_, targets_.ldr.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, sw, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+  swBarrier(VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+            VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);
+}
 
+// The frame submitted (waiting on the swapchain image, signalling its presentation), waited for,
+// presented, and its pass times resolved.
+void Renderer::submitFrame(Swapchain* swapchain, uint32_t imageIndex, Clock::time_point recordStart) {
   VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   cbi.commandBuffer = cmd_;
   VkSemaphoreSubmitInfo waitInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
@@ -282,7 +304,7 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
   }
   DYNGI_VK(vkResetFences(ctx_.device(), 1, &fence_));
   DYNGI_VK(vkQueueSubmit2(ctx_.queue(), 1, &si, fence_));
-  stats_.cpuRecordMs = msSince(t0);
+  stats_.cpuRecordMs = msSince(recordStart);
   auto t1 = Clock::now();
   DYNGI_VK(vkWaitForFences(ctx_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
   stats_.cpuWaitMs = msSince(t1);
@@ -291,8 +313,6 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
     timer_->resolve();
     stats_.gpuMs = timer_->results();
   }
-  for (RenderFeature* f : features_) f->frameFinished(ctx_);
-  return stats_;
 }
 
 Image& Renderer::target(TargetId id) {

@@ -173,6 +173,19 @@ struct EmbreeScene::Impl {
     instances.emplace(e, inst);
   }
 
+  // One sync(): what it reads, and what it found.
+  struct SyncPass {
+    const ecs::World& world;
+    const scene::AssetStore& assets;
+    std::unordered_set<scene::MeshId> deforming;  // written by skinning: built for refit
+    BvhStats stats;
+    bool topDirty = false;  // the top level must be committed again
+  };
+  void removeGone(SyncPass& pass, const ChangeSet& changes);
+  void refitDeformed(SyncPass& pass);
+  void upsert(SyncPass& pass, ecs::Entity e);
+  void applyAlphaCuts(SyncPass& pass);
+
   void removeInstance(ecs::Entity e) {
     auto it = instances.find(e);
     if (it == instances.end()) return;
@@ -208,143 +221,147 @@ const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetSto
 }
 
 const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetStore& assets, const ChangeSet& changes) {
-  const ecs::Tick since = changes.since;
   auto t0 = std::chrono::steady_clock::now();
   Impl& im = *impl_;
-  BvhStats st;
-  bool topDirty = false;
+  Impl::SyncPass pass{world, assets, {}, {}};
   im.rebuiltThisSync.clear();
   im.refitThisSync.clear();
-
   // Meshes written by skinning deform every frame: build those for refit.
-  std::unordered_set<scene::MeshId> deforming;
-  world.each<scene::SkinnedMesh>([&](ecs::Entity, const scene::SkinnedMesh& s) { deforming.insert(s.deformed); });
-
-  // Removed instances (entity destroyed or MeshInstance removed).
-  for (ecs::Entity e : changes.removed) {
-    if (im.instances.count(e)) im.removeInstance(e), ++st.instancesRemoved, topDirty = true;
-  }
-  for (auto it = im.instances.begin(); it != im.instances.end();) {  // stale handles (cheap: instances only)
-    ecs::Entity e = it->first;
-    ++it;
-    if (!world.alive(e) || !world.has<scene::MeshInstance>(e)) im.removeInstance(e), ++st.instancesRemoved, topDirty = true;
-  }
-
-  // Deformed meshes: refit once per mesh, whichever entities use them. (Ids first: a rebuild replaces the
-  // map's entry, which must not happen while the map is being walked.) A mesh deformed into NaN or
-  // beyond the coordinate range is not refit: its instances leave the BVH and wait in `parked`.
-  std::vector<scene::MeshId> changedMeshes;
-  std::unordered_set<scene::MeshId> unusable;
-  for (auto& [id, b] : im.blas)
-    if (id < assets.meshCount() && assets.mesh(id).version != b.version) changedMeshes.push_back(id);
-  for (scene::MeshId id : changedMeshes) {
-    if (!assets.mesh(id).usable) {
-      unusable.insert(id);
-      continue;
-    }
-    im.ensureBlas(assets.mesh(id), id, deforming.count(id) > 0, st);
-    topDirty = true;  // instance bounds changed
-  }
-  if (!unusable.empty()) {
-    std::vector<ecs::Entity> leaving;
-    for (auto& [e, inst] : im.instances)
-      if (unusable.count(inst.mesh)) leaving.push_back(e);
-    for (ecs::Entity e : leaving) im.removeInstance(e), im.parked.insert(e), ++st.instancesRemoved, topDirty = true;
-  }
-  // A rebuilt BLAS is a new RTCScene: point its existing instances at it. A refit one has new bounds:
-  // its instances must be committed again too, or the top level keeps their old bounds (Embree rebuilds
-  // only modified geometries' entries) and rays miss whatever deformed out of them.
-  if (!im.rebuiltThisSync.empty() || !im.refitThisSync.empty())
-    for (auto& [e, inst] : im.instances) {
-      if (im.rebuiltThisSync.count(inst.mesh)) {
-        rtcSetGeometryInstancedScene(inst.geometry, im.blas.at(inst.mesh).scene);
-        rtcCommitGeometry(inst.geometry);
-      } else if (im.refitThisSync.count(inst.mesh)) {
-        rtcCommitGeometry(inst.geometry);
-      }
-    }
-
-  // New or changed instances.
-  auto upsert = [&](ecs::Entity e) {
-    const auto* mi = world.tryGet<scene::MeshInstance>(e);
-    const auto* wt = world.tryGet<scene::WorldTransform>(e);
-    if (!mi || !wt || mi->mesh >= assets.meshCount()) return;
-    const scene::MeshData& mesh = assets.mesh(mi->mesh);
-    if (mesh.indices.empty()) return;
-    auto it = im.instances.find(e);
-    if (!mesh.usable) {  // NaN or runaway vertices: out of the BVH (and of the frame) until usable again
-      if (it != im.instances.end()) im.removeInstance(e), ++st.instancesRemoved, topDirty = true;
-      im.parked.insert(e);
-      return;
-    }
-    im.parked.erase(e);
-    // Embree transforms each ray into an instance's space with the inverse of its matrix: a singular
-    // matrix (scale 0: a legal way to hide an object) would make NaN rays, which Embree asserts on.
-    // Such an instance has no surface to hit, so it leaves the BVH until its transform is usable again.
-    if (!usableInstanceTransform(wt->matrix)) {
-      if (it != im.instances.end()) im.removeInstance(e), ++st.instancesRemoved, topDirty = true;
-      return;
-    }
-    if (it == im.instances.end()) {
-      Impl::Blas& b = im.ensureBlas(mesh, mi->mesh, deforming.count(mi->mesh) > 0, st);
-      im.addInstance(e, mi->mesh, wt->matrix, b);
-      ++st.instancesAdded;
-      topDirty = true;
-      return;
-    }
-    Impl::Instance& inst = it->second;
-    if (inst.mesh != mi->mesh) {
-      Impl::Blas& b = im.ensureBlas(mesh, mi->mesh, deforming.count(mi->mesh) > 0, st);
-      rtcSetGeometryInstancedScene(inst.geometry, b.scene);
-      inst.mesh = mi->mesh;
-      im.meshByGeomId[inst.geomId] = mi->mesh;
-      rtcCommitGeometry(inst.geometry);
-      topDirty = true;
-    }
-    if (inst.transform != wt->matrix) {
-      im.setTransform(inst, wt->matrix);
-      ++st.instancesUpdated;
-      topDirty = true;
-    }
-  };
-  for (ecs::Entity e : changes.moved) upsert(e);
-  for (ecs::Entity e : changes.meshWritten) upsert(e);
+  world.each<scene::SkinnedMesh>([&](ecs::Entity, const scene::SkinnedMesh& s) { pass.deforming.insert(s.deformed); });
+  im.removeGone(pass, changes);
+  im.refitDeformed(pass);
+  for (ecs::Entity e : changes.moved) im.upsert(pass, e);
+  for (ecs::Entity e : changes.meshWritten) im.upsert(pass, e);
   // Entities whose mesh was unusable come back as soon as it is usable again, changed or not.
   if (!im.parked.empty()) {
     std::vector<ecs::Entity> parked(im.parked.begin(), im.parked.end());
     for (ecs::Entity e : parked) {
       if (!world.alive(e) || !world.has<scene::MeshInstance>(e)) im.parked.erase(e);
-      else upsert(e);
+      else im.upsert(pass, e);
     }
   }
+  im.applyAlphaCuts(pass);
+  if (pass.topDirty || changes.since == 0) rtcCommitScene(im.top);
+  pass.stats.instances = im.instances.size();
+  pass.stats.meshes = im.blas.size();
+  pass.stats.updateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  stats_ = pass.stats;
+  return stats_;
+}
 
-  // The alpha cuts, from every instance's material as it is now (cheap: instances only). A mesh a masked
-  // instance uses gets the filter functions once; its instances are committed again with the changed BLAS.
-  im.assets = &assets;
-  im.alphaByGeomId.assign(im.byGeomId.size(), Impl::MaskedInstance{});
-  for (auto& [e, inst] : im.instances) {
-    const auto* mat = world.tryGet<scene::Material>(e);
+// Removed instances (entity destroyed or MeshInstance removed), and stale handles (cheap: instances only).
+void EmbreeScene::Impl::removeGone(SyncPass& pass, const ChangeSet& changes) {
+  for (ecs::Entity e : changes.removed)
+    if (instances.count(e)) removeInstance(e), ++pass.stats.instancesRemoved, pass.topDirty = true;
+  for (auto it = instances.begin(); it != instances.end();) {
+    ecs::Entity e = it->first;
+    ++it;
+    if (!pass.world.alive(e) || !pass.world.has<scene::MeshInstance>(e)) removeInstance(e), ++pass.stats.instancesRemoved, pass.topDirty = true;
+  }
+}
+
+// Deformed meshes: refit once per mesh, whichever entities use them. (Ids first: a rebuild replaces the
+// map's entry, which must not happen while the map is being walked.) A mesh deformed into NaN or beyond
+// the coordinate range is not refit: its instances leave the BVH and wait in `parked`.
+void EmbreeScene::Impl::refitDeformed(SyncPass& pass) {
+  std::vector<scene::MeshId> changedMeshes;
+  std::unordered_set<scene::MeshId> unusable;
+  for (auto& [id, b] : blas)
+    if (id < pass.assets.meshCount() && pass.assets.mesh(id).version != b.version) changedMeshes.push_back(id);
+  for (scene::MeshId id : changedMeshes) {
+    if (!pass.assets.mesh(id).usable) {
+      unusable.insert(id);
+      continue;
+    }
+    ensureBlas(pass.assets.mesh(id), id, pass.deforming.count(id) > 0, pass.stats);
+    pass.topDirty = true;  // instance bounds changed
+  }
+  if (!unusable.empty()) {
+    std::vector<ecs::Entity> leaving;
+    for (auto& [e, inst] : instances)
+      if (unusable.count(inst.mesh)) leaving.push_back(e);
+    for (ecs::Entity e : leaving) removeInstance(e), parked.insert(e), ++pass.stats.instancesRemoved, pass.topDirty = true;
+  }
+  // A rebuilt BLAS is a new RTCScene: point its existing instances at it. A refit one has new bounds: its
+  // instances must be committed again too, or the top level keeps their old bounds (Embree rebuilds only
+  // modified geometries' entries) and rays miss whatever deformed out of them.
+  if (rebuiltThisSync.empty() && refitThisSync.empty()) return;
+  for (auto& [e, inst] : instances) {
+    if (rebuiltThisSync.count(inst.mesh)) {
+      rtcSetGeometryInstancedScene(inst.geometry, blas.at(inst.mesh).scene);
+      rtcCommitGeometry(inst.geometry);
+    } else if (refitThisSync.count(inst.mesh)) {
+      rtcCommitGeometry(inst.geometry);
+    }
+  }
+}
+
+// A new or changed instance: added, pointed at another mesh, moved, or parked while its mesh or
+// transform cannot be traced.
+void EmbreeScene::Impl::upsert(SyncPass& pass, ecs::Entity e) {
+  const auto* mi = pass.world.tryGet<scene::MeshInstance>(e);
+  const auto* wt = pass.world.tryGet<scene::WorldTransform>(e);
+  if (!mi || !wt || mi->mesh >= pass.assets.meshCount()) return;
+  const scene::MeshData& mesh = pass.assets.mesh(mi->mesh);
+  if (mesh.indices.empty()) return;
+  auto it = instances.find(e);
+  if (!mesh.usable) {  // NaN or runaway vertices: out of the BVH (and of the frame) until usable again
+    if (it != instances.end()) removeInstance(e), ++pass.stats.instancesRemoved, pass.topDirty = true;
+    parked.insert(e);
+    return;
+  }
+  parked.erase(e);
+  // Embree transforms each ray into an instance's space with the inverse of its matrix: a singular
+  // matrix (scale 0: a legal way to hide an object) would make NaN rays, which Embree asserts on. Such an
+  // instance has no surface to hit, so it leaves the BVH until its transform is usable again.
+  if (!usableInstanceTransform(wt->matrix)) {
+    if (it != instances.end()) removeInstance(e), ++pass.stats.instancesRemoved, pass.topDirty = true;
+    return;
+  }
+  if (it == instances.end()) {
+    Blas& b = ensureBlas(mesh, mi->mesh, pass.deforming.count(mi->mesh) > 0, pass.stats);
+    addInstance(e, mi->mesh, wt->matrix, b);
+    ++pass.stats.instancesAdded;
+    pass.topDirty = true;
+    return;
+  }
+  Instance& inst = it->second;
+  if (inst.mesh != mi->mesh) {
+    Blas& b = ensureBlas(mesh, mi->mesh, pass.deforming.count(mi->mesh) > 0, pass.stats);
+    rtcSetGeometryInstancedScene(inst.geometry, b.scene);
+    inst.mesh = mi->mesh;
+    meshByGeomId[inst.geomId] = mi->mesh;
+    rtcCommitGeometry(inst.geometry);
+    pass.topDirty = true;
+  }
+  if (inst.transform != wt->matrix) {
+    setTransform(inst, wt->matrix);
+    ++pass.stats.instancesUpdated;
+    pass.topDirty = true;
+  }
+}
+
+// The alpha cuts, from every instance's material as it is now (cheap: instances only). A mesh a masked
+// instance uses gets the filter functions once; its instances are committed again with the changed BLAS.
+void EmbreeScene::Impl::applyAlphaCuts(SyncPass& pass) {
+  assets = &pass.assets;
+  alphaByGeomId.assign(byGeomId.size(), MaskedInstance{});
+  for (auto& [e, inst] : instances) {
+    const auto* mat = pass.world.tryGet<scene::Material>(e);
     if (!mat || !mat->alphaMask) continue;
-    im.alphaByGeomId[inst.geomId] = {inst.mesh, scene::AlphaCut::of(*mat)};
-    Impl::Blas& b = im.blas.at(inst.mesh);
+    alphaByGeomId[inst.geomId] = {inst.mesh, scene::AlphaCut::of(*mat)};
+    Blas& b = blas.at(inst.mesh);
     if (b.filtered) continue;
-    rtcSetGeometryUserData(b.geometry, &im);
-    rtcSetGeometryIntersectFilterFunction(b.geometry, &Impl::alphaFilter);
-    rtcSetGeometryOccludedFilterFunction(b.geometry, &Impl::alphaFilter);
+    rtcSetGeometryUserData(b.geometry, this);
+    rtcSetGeometryIntersectFilterFunction(b.geometry, &alphaFilter);
+    rtcSetGeometryOccludedFilterFunction(b.geometry, &alphaFilter);
     rtcCommitGeometry(b.geometry);
     rtcCommitScene(b.scene);
     b.filtered = true;
-    for (auto& [e2, other] : im.instances)
+    for (auto& [e2, other] : instances)
       if (other.mesh == inst.mesh) rtcCommitGeometry(other.geometry);
-    topDirty = true;
+    pass.topDirty = true;
   }
-
-  if (topDirty || since == 0) rtcCommitScene(im.top);
-  st.instances = im.instances.size();
-  st.meshes = im.blas.size();
-  st.updateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  stats_ = st;
-  return stats_;
 }
 
 const BvhStats& EmbreeScene::rebuild(const ecs::World& world, const scene::AssetStore& assets) {

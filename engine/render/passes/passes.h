@@ -85,6 +85,20 @@ class ShadowPass {
   std::optional<VkRect2D> movingFootprint(const glm::mat4& viewProj, const FrameContext& frame, const std::vector<size_t>& draws) const;
   void drawCasters(VkCommandBuffer cmd, const Layers& target, uint32_t layer, const glm::mat4& viewProj, const FrameContext& frame,
                    const std::vector<size_t>& draws, bool clear);
+  // This frame's casters: every one (draw indices), the static and the moving ones, the static keys.
+  struct CasterSets {
+    std::vector<Caster> casters, staticCasters;
+    std::vector<size_t> all, statics, moving;
+  };
+  // The layers drawn whole, those built from the cache plus the moving casters, and those whose cached
+  // layer must be drawn again first.
+  struct LayerPlan {
+    std::vector<uint32_t> direct, fromCache, cacheRebuild;
+  };
+  CasterSets gatherCasters(const FrameContext& frame);
+  LayerPlan planLayers(const CasterSets& sets) const;
+  void rebuildStaticCache(FrameContext& frame, const CasterSets& sets, LayerPlan& plan);
+  void restoreFromCache(FrameContext& frame, const CasterSets& sets, const LayerPlan& plan);
   bool warnedCapacity_ = false;
 };
 

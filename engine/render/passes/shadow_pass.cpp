@@ -148,10 +148,35 @@ std::optional<VkRect2D> ShadowPass::movingFootprint(const glm::mat4& viewProj, c
 
 void ShadowPass::execute(FrameContext& frame) {
   ++frameCounter_;
-  // Casters, and which of them moved, turned or deformed lately (the first sight of one is no change).
-  std::vector<Caster> casters;
-  std::vector<size_t> all, statics, moving;
-  std::vector<Caster> staticCasters;
+  CasterSets sets = gatherCasters(frame);
+  // The layers grow to what the lights use (memory for one spot is one layer, not maxLayers); all are
+  // drawn again then. Frames are synchronous, so no command buffer still reads the old images.
+  if (layerMatrices_.size() > layers_.count()) {
+    layers_ = makeLayers(uint32_t(layerMatrices_.size()), "shadow map");
+    renderedMatrices_.clear();
+  }
+  movingRects_.resize(layers_.count());
+  LayerPlan plan = planLayers(sets);
+  layersRendered_ = uint32_t(plan.direct.size() + plan.fromCache.size());
+  if (rendered_ && layersRendered_ == 0) return;  // the shadow map is current
+  rendered_ = true;
+  renderedCasters_ = std::move(sets.casters);
+  renderedMatrices_ = layerMatrices_;
+
+  ScopedPass scope(ctx_, frame.timer, frame.cmd, kName);
+  VkCommandBuffer cmd = frame.cmd;
+  if (!plan.cacheRebuild.empty()) rebuildStaticCache(frame, sets, plan);
+  if (!plan.fromCache.empty()) restoreFromCache(frame, sets, plan);
+  for (uint32_t layer : plan.direct) movingRects_[layer].reset();  // drawn whole: not the cache plus movers
+  prepareForDrawing(cmd, layers_);
+  for (uint32_t layer : plan.direct) drawCasters(cmd, layers_, layer, layerMatrices_[layer], frame, sets.all, true);
+  for (uint32_t layer : plan.fromCache) drawCasters(cmd, layers_, layer, layerMatrices_[layer], frame, sets.moving, false);
+  layers_.lookup.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+// Casters, and which of them moved, turned or deformed lately (the first sight of one is no change).
+ShadowPass::CasterSets ShadowPass::gatherCasters(const FrameContext& frame) {
+  CasterSets sets;
   std::unordered_map<scene::Entity, const Caster*> before;
   for (const Caster& c : renderedCasters_) before[c.entity] = &c;
   for (size_t i = 0; i < frame.snapshot.draws.size(); ++i) {
@@ -162,109 +187,97 @@ void ShadowPass::execute(FrameContext& frame) {
     auto it = before.find(d.entity);
     uint64_t& changedAt = casterChangedAt_[d.entity];
     if (rendered_ && (it == before.end() || !(*it->second == c))) changedAt = frameCounter_;
-    casters.push_back(c);
-    all.push_back(i);
+    sets.casters.push_back(c);
+    sets.all.push_back(i);
     const bool isMoving = changedAt > 0 && frameCounter_ - changedAt < kSettleFrames;
-    (isMoving ? moving : statics).push_back(i);
-    if (!isMoving) staticCasters.push_back(c);
+    (isMoving ? sets.moving : sets.statics).push_back(i);
+    if (!isMoving) sets.staticCasters.push_back(c);
   }
-  if (casterChangedAt_.size() > 2 * casters.size() + 64) {  // forget casters that are gone
+  if (casterChangedAt_.size() > 2 * sets.casters.size() + 64) {  // forget casters that are gone
     std::unordered_map<scene::Entity, uint64_t> kept;
-    for (const Caster& c : casters) kept[c.entity] = casterChangedAt_[c.entity];
+    for (const Caster& c : sets.casters) kept[c.entity] = casterChangedAt_[c.entity];
     casterChangedAt_ = std::move(kept);
   }
-  // The layers grow to what the lights use (memory for one spot is one layer, not maxLayers); all are
-  // drawn again then. Frames are synchronous, so no command buffer still reads the old images.
-  if (layerMatrices_.size() > layers_.count()) {
-    layers_ = makeLayers(uint32_t(layerMatrices_.size()), "shadow map");
-    renderedMatrices_.clear();
-  }
-  movingRects_.resize(layers_.count());
-  // Per layer: kept (nothing it shows changed), redrawn whole (its light view changed, or no caster
-  // moves), or rebuilt from the cached static casters plus the moving ones (light still, casters moving).
-  const bool castersChanged = !rendered_ || casters != renderedCasters_;
-  std::vector<uint32_t> direct, fromCache, cacheRebuild;
+  return sets;
+}
+
+// Per layer: kept (nothing it shows changed), redrawn whole (its light view changed, or no caster moves),
+// or rebuilt from the cached static casters plus the moving ones (light still, casters moving).
+ShadowPass::LayerPlan ShadowPass::planLayers(const CasterSets& sets) const {
+  LayerPlan plan;
+  const bool castersChanged = !rendered_ || sets.casters != renderedCasters_;
   for (uint32_t layer = 0; layer < layerMatrices_.size(); ++layer) {
     const bool viewSame = layer < renderedMatrices_.size() && renderedMatrices_[layer] == layerMatrices_[layer];
     if (rendered_ && viewSame && !castersChanged) continue;
-    if (!viewSame || moving.empty()) {
-      direct.push_back(layer);
+    if (!viewSame || sets.moving.empty()) {
+      plan.direct.push_back(layer);
       continue;
     }
-    fromCache.push_back(layer);
-    if (layer >= cacheMatrices_.size() || cacheMatrices_[layer] != layerMatrices_[layer] || cacheCasters_[layer] != staticCasters)
-      cacheRebuild.push_back(layer);
+    plan.fromCache.push_back(layer);
+    if (layer >= cacheMatrices_.size() || cacheMatrices_[layer] != layerMatrices_[layer] || cacheCasters_[layer] != sets.staticCasters)
+      plan.cacheRebuild.push_back(layer);
   }
-  layersRendered_ = uint32_t(direct.size() + fromCache.size());
-  if (rendered_ && layersRendered_ == 0) return;  // the shadow map is current
-  rendered_ = true;
-  renderedCasters_ = std::move(casters);
-  renderedMatrices_ = layerMatrices_;
+  return plan;
+}
 
-  ScopedPass scope(ctx_, frame.timer, frame.cmd, kName);
+// The static casters' layers the cache lacks, drawn into it (the whole cache when it had to grow).
+void ShadowPass::rebuildStaticCache(FrameContext& frame, const CasterSets& sets, LayerPlan& plan) {
+  const uint32_t layersInUse = uint32_t(layerMatrices_.size());
+  if (staticCache_.count() < layersInUse) {
+    staticCache_ = makeLayers(layersInUse, "shadow static cache");
+    cacheMatrices_.clear();
+    cacheCasters_.clear();
+    plan.cacheRebuild = plan.fromCache;  // the old cache is gone
+  }
+  cacheMatrices_.resize(layersInUse, glm::mat4(0.0f));
+  cacheCasters_.resize(layersInUse);
+  prepareForDrawing(frame.cmd, staticCache_);
+  for (uint32_t layer : plan.cacheRebuild) {
+    drawCasters(frame.cmd, staticCache_, layer, layerMatrices_[layer], frame, sets.statics, true);
+    cacheMatrices_[layer] = layerMatrices_[layer];
+    cacheCasters_[layer] = sets.staticCasters;
+  }
+}
+
+// The layers drawn from the cache get back, per layer, where the moving casters were drawn last frame
+// and where they are now (the rest of the layer is the cache already), or the whole layer.
+void ShadowPass::restoreFromCache(FrameContext& frame, const CasterSets& sets, const LayerPlan& plan) {
   VkCommandBuffer cmd = frame.cmd;
-  if (!cacheRebuild.empty()) {
-    const uint32_t layersInUse = uint32_t(layerMatrices_.size());
-    if (staticCache_.count() < layersInUse) {
-      staticCache_ = makeLayers(layersInUse, "shadow static cache");
-      cacheMatrices_.clear();
-      cacheCasters_.clear();
-      cacheRebuild = fromCache;  // the old cache is gone
+  for (Image* img : {&staticCache_.depth, &staticCache_.lookup})
+    img->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  for (Image* img : {&layers_.depth, &layers_.lookup})
+    img->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  std::vector<VkRect2D> restore;
+  for (uint32_t layer : plan.fromCache) {
+    std::optional<VkRect2D> now = movingFootprint(layerMatrices_[layer], frame, sets.moving);
+    const bool cacheRedrawn = std::find(plan.cacheRebuild.begin(), plan.cacheRebuild.end(), layer) != plan.cacheRebuild.end();
+    VkRect2D r{{0, 0}, {settings_.mapSize, settings_.mapSize}};
+    if (now && movingRects_[layer] && !cacheRedrawn) {
+      const VkRect2D& was = *movingRects_[layer];
+      const int32_t x0 = std::min(was.offset.x, now->offset.x), y0 = std::min(was.offset.y, now->offset.y);
+      const int32_t x1 = std::max(was.offset.x + int32_t(was.extent.width), now->offset.x + int32_t(now->extent.width));
+      const int32_t y1 = std::max(was.offset.y + int32_t(was.extent.height), now->offset.y + int32_t(now->extent.height));
+      r = VkRect2D{{x0, y0}, {uint32_t(x1 - x0), uint32_t(y1 - y0)}};
     }
-    cacheMatrices_.resize(layersInUse, glm::mat4(0.0f));
-    cacheCasters_.resize(layersInUse);
-    prepareForDrawing(cmd, staticCache_);
-    for (uint32_t layer : cacheRebuild) {
-      drawCasters(cmd, staticCache_, layer, layerMatrices_[layer], frame, statics, true);
-      cacheMatrices_[layer] = layerMatrices_[layer];
-      cacheCasters_[layer] = staticCasters;
-    }
+    restore.push_back(r);
+    movingRects_[layer] = now;
   }
-  if (!fromCache.empty()) {
-    for (Image* img : {&staticCache_.depth, &staticCache_.lookup})
-      img->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    for (Image* img : {&layers_.depth, &layers_.lookup})
-      img->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    // Per layer, the part to restore from the cache: where the moving casters were drawn last frame and
-    // where they are now (the rest of the layer is the cache already), or the whole layer.
-    std::vector<VkRect2D> restore;
-    for (uint32_t layer : fromCache) {
-      std::optional<VkRect2D> now = movingFootprint(layerMatrices_[layer], frame, moving);
-      const bool cacheRedrawn = std::find(cacheRebuild.begin(), cacheRebuild.end(), layer) != cacheRebuild.end();
-      VkRect2D r{{0, 0}, {settings_.mapSize, settings_.mapSize}};
-      if (now && movingRects_[layer] && !cacheRedrawn) {
-        const VkRect2D& was = *movingRects_[layer];
-        const int32_t x0 = std::min(was.offset.x, now->offset.x), y0 = std::min(was.offset.y, now->offset.y);
-        const int32_t x1 = std::max(was.offset.x + int32_t(was.extent.width), now->offset.x + int32_t(now->extent.width));
-        const int32_t y1 = std::max(was.offset.y + int32_t(was.extent.height), now->offset.y + int32_t(now->extent.height));
-        r = VkRect2D{{x0, y0}, {uint32_t(x1 - x0), uint32_t(y1 - y0)}};
-      }
-      restore.push_back(r);
-      movingRects_[layer] = now;
+  for (VkImageAspectFlags aspect : {VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT), VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT)}) {
+    std::vector<VkImageCopy> regions;
+    for (size_t k = 0; k < plan.fromCache.size(); ++k) {
+      if (restore[k].extent.width == 0 || restore[k].extent.height == 0) continue;
+      VkImageCopy c{};
+      c.srcSubresource = {aspect, 0, plan.fromCache[k], 1};
+      c.dstSubresource = {aspect, 0, plan.fromCache[k], 1};
+      c.srcOffset = c.dstOffset = {restore[k].offset.x, restore[k].offset.y, 0};
+      c.extent = {restore[k].extent.width, restore[k].extent.height, 1};
+      regions.push_back(c);
     }
-    for (VkImageAspectFlags aspect : {VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT), VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT)}) {
-      std::vector<VkImageCopy> regions;
-      for (size_t k = 0; k < fromCache.size(); ++k) {
-        if (restore[k].extent.width == 0 || restore[k].extent.height == 0) continue;
-        VkImageCopy c{};
-        c.srcSubresource = {aspect, 0, fromCache[k], 1};
-        c.dstSubresource = {aspect, 0, fromCache[k], 1};
-        c.srcOffset = c.dstOffset = {restore[k].offset.x, restore[k].offset.y, 0};
-        c.extent = {restore[k].extent.width, restore[k].extent.height, 1};
-        regions.push_back(c);
-      }
-      if (regions.empty()) continue;
-      const bool depth = aspect == VK_IMAGE_ASPECT_DEPTH_BIT;
-      vkCmdCopyImage(cmd, (depth ? staticCache_.depth : staticCache_.lookup).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                     (depth ? layers_.depth : layers_.lookup).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(regions.size()),
-                     regions.data());
-    }
+    if (regions.empty()) continue;
+    const bool depth = aspect == VK_IMAGE_ASPECT_DEPTH_BIT;
+    vkCmdCopyImage(cmd, (depth ? staticCache_.depth : staticCache_.lookup).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                   (depth ? layers_.depth : layers_.lookup).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(regions.size()), regions.data());
   }
-  for (uint32_t layer : direct) movingRects_[layer].reset();  // drawn whole: not the cache plus movers
-  prepareForDrawing(cmd, layers_);
-  for (uint32_t layer : direct) drawCasters(cmd, layers_, layer, layerMatrices_[layer], frame, all, true);
-  for (uint32_t layer : fromCache) drawCasters(cmd, layers_, layer, layerMatrices_[layer], frame, moving, false);
-  layers_.lookup.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 }
 
 }  // namespace dyngi::render

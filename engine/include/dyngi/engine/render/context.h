@@ -78,6 +78,9 @@ class VulkanContext {
                                                       VkDebugUtilsMessageTypeFlagsEXT types,
                                                       const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
   void create(const ContextOptions& options);
+  void createInstance(const ContextOptions& options);
+  void pickPhysicalDevice(const ContextOptions& options);
+  void createDevice(const ContextOptions& options);
   void destroy();
 
   VkInstance instance_ = VK_NULL_HANDLE;

@@ -4,6 +4,8 @@
 // -> present or read back. One frame in flight: the CPU waits for each frame's fence. On lavapipe the
 // "GPU" is the CPU, so overlap would buy nothing there; on a discrete GPU this is the first thing to
 // change (see docs/ARCHITECTURE.md).
+#include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -88,6 +90,14 @@ class Renderer {
   void create();
   void releaseHandles();
   GpuMesh* meshFor(const scene::AssetStore& assets, scene::MeshId id);
+  // render()'s steps, in order.
+  std::vector<GpuMesh*> uploadAssets(const RenderSnapshot& snapshot);
+  gpu::FrameUniforms uploadFrameUniforms(const RenderSnapshot& snapshot);
+  void beginCommands();
+  void submitAndWaitMidFrame();
+  void recordPasses(FrameContext& frame, const std::function<VkImageView(scene::TextureId)>& textures);
+  void recordPresentBlit(Swapchain& swapchain, uint32_t imageIndex);
+  void submitFrame(Swapchain* swapchain, uint32_t imageIndex, std::chrono::steady_clock::time_point recordStart);
   VkImageView textureView(const scene::AssetStore& assets, scene::TextureId id);
   Image& target(TargetId id);
 
