@@ -5,6 +5,7 @@
 
 #include "dyngi/engine/scene/animation.h"
 #include "dyngi/engine/scene/components.h"
+#include "gi_views.h"
 
 namespace dyngi::gi {
 
@@ -34,6 +35,7 @@ void GiSystem::build(const GiSettings& s) {
   // The old parts go first, users before what they use (the technique holds the BVH and voxel scene).
   budget_.reset();
   frameUpdate_.reset();
+  indirectView_.reset();
   technique_.reset();
   voxelSync_.reset();
   voxels_.reset();
@@ -53,6 +55,8 @@ void GiSystem::build(const GiSettings& s) {
   }
   technique_ = entry_->create(TechniqueServices{ctx_, assets_, *bvh_, voxels_.get()}, s);
   frameUpdate_ = std::make_unique<GiFrameUpdate>(*this);
+  indirectView_ = std::make_unique<GiIndirectView>(ctx_);
+  if (view_ != "final" && !setDebugView(view_)) view_ = "final";  // the same view after a rebuild, when it still exists
   if (s.budget.budgetMs > 0.0f) budget_ = std::make_unique<BudgetController>(s.budget.budgetMs, technique_->qualityKnobs());
 }
 
@@ -77,12 +81,14 @@ void GiSystem::addFeaturesTo(render::Renderer& renderer) {
   renderer.addFeature(frameUpdate_.get());
   if (voxels_) renderer.addFeature(voxels_.get());
   for (render::RenderFeature* f : technique_->features()) renderer.addFeature(f);
+  renderer.addFeature(indirectView_.get());
 }
 
 void GiSystem::removeFeaturesFrom(render::Renderer& renderer) {
   renderer.removeFeature(frameUpdate_.get());
   if (voxels_) renderer.removeFeature(voxels_.get());
   for (render::RenderFeature* f : technique_->features()) renderer.removeFeature(f);
+  renderer.removeFeature(indirectView_.get());
 }
 
 void GiSystem::reset(const GiSettings& settings) {
@@ -143,28 +149,25 @@ void GiSystem::updateTechnique(const render::RenderSnapshot& snapshot) {
   syncMs_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-VplPaths* GiSystem::paths() {
-  TemporalIndirect* t = temporal();
-  return t ? &t->paths() : nullptr;
+std::vector<std::string> GiSystem::debugViews() const {
+  std::vector<std::string> views = {"final", "indirect"};
+  for (const char* v : entry_->debugViews) views.push_back(v);
+  return views;
 }
-TemporalIndirect* GiSystem::temporal() { return findFeature<TemporalIndirect>(); }
-ManyLights* GiSystem::manyLights() { return findFeature<ManyLights>(); }
 
-uint32_t GiSystem::effectiveVplCount() const {
-  for (const OptionRef& o : technique_->options())
-    if (std::string_view(o.spec->name) == "vpls") return uint32_t(o.get());
-  return 0;
+bool GiSystem::setDebugView(std::string_view name) {
+  const bool common = name == "final" || name == "indirect";
+  if (!common && !technique_->setDebugView(name)) return false;
+  if (common) technique_->setDebugView("final");
+  indirectView_->enabled = name == "indirect";
+  view_ = name;
+  return true;
 }
 
 GiStats GiSystem::stats() const {
   GiStats s;
   s.bvh = bvh_->stats();
   if (voxels_) s.voxels = voxels_->stats();
-  if (auto* t = findFeature<TemporalIndirect>()) {
-    s.vpl = t->paths().stats();
-    s.bvhVisibilityMs = t->lastBvhVisibilityMs();
-    s.temporalSet = t->lastRenderedSet();
-  }
   s.syncMs = syncMs_;
   s.giMs = giMs_;
   return s;

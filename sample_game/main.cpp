@@ -13,8 +13,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "dyngi_sample: %s\n", error.c_str());
     return 2;
   }
-  if (options->help) {
-    std::printf("%s", dyngi::sample::usage().c_str());
+  if (options->help || options->helpMarkdown) {
+    std::printf("%s", options->help ? dyngi::sample::usage().c_str() : dyngi::sample::usageMarkdown().c_str());
     return 0;
   }
   if (std::string bad = dyngi::sample::checkOutputPaths(*options); !bad.empty()) {

@@ -3,33 +3,47 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <vector>
+
+#include "scenes/builtin_scenes.h"
 
 namespace dyngi::sample {
 
-namespace {
-
-const char* const kGiModes[] = {"off", "svo", "bvh", "vct", "path"};
-const char* const kEngineViews[] = {"final", "voxels", "svo-steps"};  // the voxel scene's and the default
-
-// The command line that selects each technique of the registry (a new technique adds its --gi here).
-std::string flagsOf(std::string_view technique) {
-  if (technique == "temporal") return "--gi svo | --gi bvh";
-  if (technique == "many_lights") return "--gi svo --vpl-source rsm";
-  if (technique == "vct") return "--gi vct";
-  return "--gi " + std::string(technique);
+const std::vector<std::string>& giModes() {
+  static const std::vector<std::string> modes = [] {
+    std::vector<std::string> m = {"off"};
+    for (const gi::TechniqueEntry& e : gi::techniqueRegistry()) m.push_back(e.name);
+    m.push_back("path");
+    return m;
+  }();
+  return modes;
 }
 
-// --gi and --vpl-source pick the technique (and the temporal technique's visibility).
-void selectTechnique(Options& o) {
-  if (!o.usesGiSystem()) return;
-  if (o.gi == "vct") {
-    o.giSettings.technique = "vct";
-    return;
-  }
-  o.giSettings.technique = o.vplSource == "rsm" ? "many_lights" : "temporal";
-  o.giSettings.temporal.visibility = o.gi == "bvh" ? gi::VisibilityBackend::Bvh : gi::VisibilityBackend::Svo;
+bool isTechniqueMode(std::string_view mode) { return gi::findTechnique(mode) != nullptr; }
+
+const std::vector<std::string>& commonGiViews() {
+  static const std::vector<std::string> views = {"final", "indirect"};
+  return views;
+}
+
+const std::vector<std::string>& voxelViews() {
+  static const std::vector<std::string> views = {"voxels", "svo-steps"};
+  return views;
+}
+
+namespace {
+
+std::string joined(const std::vector<std::string>& names, const char* separator) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : separator) + n;
+  return s;
+}
+
+bool contains(const std::vector<std::string>& names, std::string_view name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
 }
 
 bool parseUint(const std::string& s, uint32_t& out) {
@@ -37,13 +51,136 @@ bool parseUint(const std::string& s, uint32_t& out) {
   return r.ec == std::errc() && r.ptr == s.data() + s.size();
 }
 
+// One of the sample's own flags. A value's default is the Options member's initializer; `shown` reads
+// it back for --help.
+struct SampleFlag {
+  const char* name;     // without the dashes
+  const char* value;    // what it takes, for --help ("" for a switch)
+  const char* help;
+  std::function<std::string(Options&, const std::string&)> set;  // an error line, or ""
+  std::function<std::string(const Options&)> shown = {};         // the value as text (none: no default shown)
+};
+
+std::string oneOf(const char* flag, const std::vector<std::string>& names, const std::string& v, std::string& into) {
+  if (!contains(names, v)) return "unknown " + std::string(flag) + " '" + v + "' (available: " + joined(names, ", ") + ")";
+  into = v;
+  return {};
+}
+
+std::string count(const char* flag, const std::string& v, uint32_t min, int& into) {
+  uint32_t n = 0;
+  if (!parseUint(v, n) || n < min || n > 1000000)
+    return std::string(flag) + " wants " + (min > 0 ? "a positive integer" : "a frame count") + ", got '" + v + "'";
+  into = int(n);
+  return {};
+}
+
+std::string sizeOf(Options& o, const std::string& v) {
+  const size_t x = v.find('x');
+  if (x == std::string::npos || !parseUint(v.substr(0, x), o.width) || !parseUint(v.substr(x + 1), o.height) || o.width == 0 ||
+      o.height == 0 || o.width > 8192 || o.height > 8192)
+    return "--size wants WxH with 1..8192 each, got '" + v + "'";
+  return {};
+}
+
+std::string exposureOf(Options& o, const std::string& v) {
+  float f = 0;
+  auto r = std::from_chars(v.data(), v.data() + v.size(), f);
+  if (r.ec != std::errc() || r.ptr != v.data() + v.size() || !std::isfinite(f) || f <= 0)
+    return "--exposure wants a positive number, got '" + v + "'";
+  o.exposure = f;
+  return {};
+}
+
+std::function<std::string(Options&, const std::string&)> into(std::string Options::*member) {
+  return [member](Options& o, const std::string& v) { return (o.*member = v), std::string(); };
+}
+std::function<std::string(Options&, const std::string&)> on(bool Options::*member) {
+  return [member](Options& o, const std::string&) { return (o.*member = true), std::string(); };
+}
+std::function<std::string(const Options&)> text(std::string Options::*member) {
+  return [member](const Options& o) { return o.*member; };
+}
+
+const std::vector<SampleFlag>& sampleFlags() {
+  static const std::vector<SampleFlag> flags = {
+      {"scene", "PATH|NAME", "a .gltf/.glb file or a built-in scene (showcase: an uplight, mostly bounce light; two-rooms[-door]: the leak test)",
+       [](Options& o, const std::string& v) { return (o.scene = v), std::string(); }, text(&Options::scene)},
+      {"headless", "", "render offscreen, no window (also the fallback when no window opens)", on(&Options::headless)},
+      {"size", "WxH", "render size",
+       sizeOf, [](const Options& o) { return std::to_string(o.width) + "x" + std::to_string(o.height); }},
+      {"frames", "N", "frames to render (default: 60 headless, until closed in a window)",
+       [](Options& o, const std::string& v) { return count("--frames", v, 1, o.frames); }},
+      {"gi", "MODE", "global illumination: off, a technique (its options below) or path (the reference path tracer)",
+       [](Options& o, const std::string& v) { return oneOf("--gi mode", giModes(), v, o.gi); }, text(&Options::gi)},
+      {"animate", "NAME", "a scripted scene: the Cornell box with a moving spot, object or camera, or the glTF fox (benchmark and soak scenes)",
+       [](Options& o, const std::string& v) { return oneOf("--animate", animatedSceneNames(), v, o.animate); }},
+      {"view", "NAME", "final, indirect (the GI's diffuse light before albedo), voxels, svo-steps, or a technique's view (below)",
+       into(&Options::view), text(&Options::view)},
+      {"out", "FILE.png", "write the last frame, tone-mapped sRGB", into(&Options::out)},
+      {"hdr-out", "FILE.exr", "write the last frame's linear radiance before exposure", into(&Options::hdrOut)},
+      {"stats", "FILE.json", "write timings (medians after the warm-up), counts and the settings used", into(&Options::stats)},
+      {"memory-log", "FILE.tsv", "every 100 frames: frame, resident memory, live Vulkan allocations, device bytes", into(&Options::memoryLog)},
+      {"warmup", "N", "frames left out of the --stats medians (default 2, fewer for shorter runs)",
+       [](Options& o, const std::string& v) { return count("--warmup", v, 0, o.warmup); }},
+      {"stage-times", "timestamps|fenced", "how --stats times each pass: GPU timestamps, or the CPU clock between fences at each pass' ends",
+       [](Options& o, const std::string& v) { return oneOf("--stage-times", {"timestamps", "fenced"}, v, o.stageTimes); },
+       text(&Options::stageTimes)},
+      {"clip", "NAME", "glTF animation clip to play (default: the first)", into(&Options::clip)},
+      {"ui", "on|off|auto", "the settings panel (auto: in a window, not headless)",
+       [](Options& o, const std::string& v) { return oneOf("--ui", {"on", "off", "auto"}, v, o.ui); }, text(&Options::ui)},
+      {"input-script", "FILE", "replay clicks, drags, keys and panel clicks from FILE (format: sample_game/play/input.h), fixed time step",
+       into(&Options::inputScript)},
+      {"record", "DIR", "write every frame's displayed image to DIR/frame_NNNNN.png", into(&Options::recordDir)},
+      {"exposure", "X", "linear exposure multiplier", exposureOf,
+       [](const Options& o) {
+         char b[32];
+         std::snprintf(b, sizeof b, "%g", double(o.exposure));
+         return std::string(b);
+       }},
+      {"validation", "", "enable the Vulkan validation layer (missing: an error)", on(&Options::validation)},
+      {"help", "", "this text", on(&Options::help)},
+      {"help-markdown", "", "every option as Markdown (docs/OPTIONS.md)", on(&Options::helpMarkdown)},
+  };
+  return flags;
+}
+
+const SampleFlag* findSampleFlag(std::string_view name) {
+  for (const SampleFlag& f : sampleFlags())
+    if (name == f.name) return &f;
+  return nullptr;
+}
+
+// Spellings the command line no longer takes, each with the one that replaced it.
+std::string renamedSpelling(const std::string& flag, const std::string* value) {
+  static const std::pair<const char*, const char*> renamed[] = {
+      {"--vpl-source", "--gi many-lights (rsm) or --gi temporal (paths)"},
+      {"--temporal", "--temporal-sets"},
+      {"--reshoot", "--reshoot-budget"},
+      {"--incremental", "--incremental-accumulation"},
+      {"--clamp", "--distance-clamp"},
+      {"--rsm-res", "--rsm-resolution"},
+      {"--indirect-shadows", "--visibility svo|none"},
+      {"--cones", "--diffuse-cones"},
+      {"--diffuse-filter", "--diffuse-filter-radius"},
+      {"--voxel-res", "--voxel-resolution"},
+  };
+  if (flag == "--gi" && value && (*value == "svo" || *value == "bvh"))
+    return "--gi " + *value + " is now --gi temporal" + (*value == "bvh" ? " --visibility bvh" : " (--visibility svo is its default)");
+  if (flag == "--gi" && value && *value == "rsm") return "--gi rsm is now --gi many-lights";
+  for (const auto& [old, now] : renamed)
+    if (flag == old) return flag + " is now " + now;
+  return {};
+}
+
 void append(std::vector<gi::OptionRef>& to, std::vector<gi::OptionRef> from) { to.insert(to.end(), from.begin(), from.end()); }
 
-// Every option this run can take: the technique's, the path tracer's (--gi path), the voxel scene's.
+// Every table option this run can take: the technique's and the budget's, the path tracer's (--gi
+// path), the voxel scene's.
 std::vector<gi::OptionRef> acceptedOptions(Options& o) {
   std::vector<gi::OptionRef> refs;
-  if (o.usesGiSystem()) {
-    if (const gi::TechniqueEntry* e = gi::findTechnique(o.giSettings.technique)) append(refs, e->options(o.giSettings));
+  if (const gi::TechniqueEntry* e = gi::findTechnique(o.gi)) {
+    append(refs, e->options(o.giSettings));
     append(refs, gi::bindOptions(o.giSettings.budget));
   }
   if (o.gi == "path") append(refs, gi::bindOptions(o.pathTracer));
@@ -55,69 +192,125 @@ std::vector<gi::OptionRef> acceptedOptions(Options& o) {
 std::string notForThisRun(const Options& o, const std::string& flag) {
   const std::string name = flag.substr(2);
   gi::GiSettings probe;
+  std::vector<std::string> owners;
   for (const gi::TechniqueEntry& e : gi::techniqueRegistry())
-    for (const gi::OptionRef& r : e.options(probe))
-      if (name == r.spec->name) return flag + " is an option of " + flagsOf(e.name) + ", not of --gi " + o.gi + (o.gi == "svo" ? " --vpl-source " + o.vplSource : "");
+    if (gi::findOption(e.options(probe), name)) owners.push_back(e.name);
+  if (gi::findOption(gi::bindOptions(probe.budget), name))
+    for (const gi::TechniqueEntry& e : gi::techniqueRegistry()) owners.push_back(e.name);
   gi::PathTracerSettings pt;
-  for (const gi::OptionRef& r : gi::bindOptions(pt))
-    if (name == r.spec->name) return flag + " is an option of --gi path, not of --gi " + o.gi;
-  for (const gi::OptionRef& r : gi::bindOptions(probe.budget))
-    if (name == r.spec->name) return flag + " is an option of --gi svo | --gi bvh | --gi vct, not of --gi " + o.gi;
-  return "unknown option '" + flag + "' (see --help)";
+  if (gi::findOption(gi::bindOptions(pt), name)) owners.push_back("path");
+  if (owners.empty()) return "unknown option '" + flag + "' (see --help)";
+  return flag + " is an option of --gi " + joined(owners, "|") + ", not of --gi " + o.gi;
 }
+
+// Table options wait until --gi is known: it says which tables apply.
+using Deferred = std::vector<std::pair<std::string, std::optional<std::string>>>;
+
+std::string parseArguments(const std::vector<std::string>& args, Options& o, Deferred& deferred) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    const std::string* next = i + 1 < args.size() ? &args[i + 1] : nullptr;
+    if (std::string old = renamedSpelling(a, next); !old.empty()) return old;
+    const SampleFlag* flag = a == "-h" ? findSampleFlag("help") : a.rfind("--", 0) == 0 ? findSampleFlag(a.substr(2)) : nullptr;
+    if (flag) {
+      if (*flag->value && !next) return a + " needs a value";
+      if (std::string error = flag->set(o, *flag->value ? *next : std::string()); !error.empty()) return error;
+      if (*flag->value) ++i;
+    } else if (a.rfind("--", 0) == 0 && a.size() > 2) {
+      deferred.emplace_back(a, next ? std::optional<std::string>(*next) : std::nullopt);
+      if (next) ++i;
+    } else {
+      return "unknown option '" + a + "' (see --help)";
+    }
+  }
+  return {};
+}
+
+std::string applyTableOptions(Options& o, const Deferred& deferred) {
+  const std::vector<gi::OptionRef> accepted = acceptedOptions(o);
+  for (const auto& [flag, value] : deferred) {
+    const std::optional<gi::OptionRef> option = gi::findOption(accepted, flag.substr(2));
+    if (!option) return notForThisRun(o, flag);
+    if (!value) return flag + " needs a value";
+    if (std::string error = gi::parseOptionValue(*option, *value); !error.empty()) return error;
+  }
+  return {};
+}
+
+// --view: a common view with a technique, a voxel view with any --gi, or the technique's own.
+std::string checkView(const Options& o) {
+  if (contains(voxelViews(), o.view) || o.view == "final") return {};
+  const gi::TechniqueEntry* active = gi::findTechnique(o.gi);
+  if (contains(commonGiViews(), o.view)) {
+    if (active) return {};
+    std::vector<std::string> techniques;
+    for (const gi::TechniqueEntry& e : gi::techniqueRegistry()) techniques.push_back(e.name);
+    return "--view " + o.view + " needs a GI technique (--gi " + joined(techniques, "|") + ")";
+  }
+  if (active && std::find(active->debugViews.begin(), active->debugViews.end(), o.view) != active->debugViews.end()) return {};
+  for (const gi::TechniqueEntry& e : gi::techniqueRegistry())
+    for (const char* v : e.debugViews)
+      if (o.view == v) return "--view " + o.view + " is a view of --gi " + e.name + ", not of --gi " + o.gi;
+  return "unknown --view '" + o.view + "' (see --help for each technique's views)";
+}
+
+std::string sampleFlagColumn(const SampleFlag& f) { return std::string("--") + f.name + (*f.value ? " " + std::string(f.value) : ""); }
 
 }  // namespace
 
 std::string usage() {
-  std::string u =
-      "usage: dyngi_sample [options]\n"
-      "  --scene PATH|NAME                      a .gltf/.glb file or a built-in scene: cornell, cornell-dynamic (default),\n"
-      "                                         showcase (the main job's: an uplight, so mostly bounce light),\n"
-      "                                         two-rooms, two-rooms-door (a thin wall between two rooms: the leak test)\n"
-      "  --headless                             render offscreen, no window\n"
-      "  --size WxH                             render size (default 768x768)\n"
-      "  --frames N                             frames to render (default: 60 headless, until closed windowed)\n"
-      "  --gi MODE                              global illumination: off | svo (VPLs, SVO visibility on the GPU) |\n"
-      "                                         bvh (VPLs, Embree visibility on the CPU) | vct (voxel cone tracing) |\n"
-      "                                         path (reference path tracer)\n"
-      "  --vpl-source paths|rsm                 incremental light paths (default) or per-frame RSM sampling (svo)\n"
-      "  --animate NAME                         static | moving-spot | rotating-object | moving-camera |\n"
-      "                                         walking-fox | fox-and-spot | fox-spot-light-on (benchmark, soak and\n"
-      "                                         GI budget scenes: the last switches a second spot on at 4 s)\n"
-      "  --out FILE.png                         write the last frame (tone-mapped, sRGB)\n"
-      "  --hdr-out FILE.exr                     write the last frame's linear radiance before exposure\n"
-      "  --stats FILE.json                      write timings (medians over frames after warm-up) and the settings used\n"
-      "  --memory-log FILE.tsv                  every 100 frames: frame, resident memory, live Vulkan allocations\n"
-      "  --warmup N                             frames left out of the medians (default 2, fewer for shorter runs;\n"
-      "                                         e.g. T + 2 to time the steady state once every temporal set is filled)\n"
-      "  --stage-times timestamps|fenced        how --stats times each pass: GPU timestamps (default; on lavapipe they\n"
-      "                                         miss compute work) or the CPU clock between fences at every pass'\n"
-      "                                         ends (each pass' own cost; the frame loses the overlap between passes)\n"
-      "  --view NAME                            final | voxels | svo-steps | a technique's debug view (below)\n"
-      "  --clip NAME                            glTF animation clip to play (default: the first)\n"
-      "  --ui on|off|auto                       the settings panel (default auto: in a window, not headless)\n"
-      "  --input-script FILE                    replay clicks and keys from FILE (format: sample_game/play/input.h);\n"
-      "                                         fixed time step, ends after its last event unless --frames\n"
-      "  --record DIR                           write every frame's displayed image to DIR/frame_NNNNN.png\n"
-      "  --exposure X                           linear exposure multiplier (default 1)\n"
-      "  --validation                           enable Vulkan validation layers\n"
-      "  --help                                 this text\n";
-  gi::GiSettings defaults;
+  std::string u = "usage: dyngi_sample [options]\n";
+  const Options defaults;
+  for (const SampleFlag& f : sampleFlags()) {
+    std::string line = "  " + sampleFlagColumn(f);
+    line.resize(std::max<size_t>(41, line.size() + 1), ' ');
+    u += line + f.help + (f.shown ? " (default " + f.shown(defaults) + ")" : "") + "\n";
+  }
+  u += "  --gi takes: " + joined(giModes(), ", ") + "; --scene NAME: " + joined(builtinSceneNames(), ", ") +
+       "; --animate: " + joined(animatedSceneNames(), ", ") + "\n";
+  gi::GiSettings settings;
   for (const gi::TechniqueEntry& e : gi::techniqueRegistry()) {
-    u += "\nTechnique " + std::string(e.name) + " (" + flagsOf(e.name) + "): " + e.summary + "\n";
+    u += "\n--gi " + std::string(e.name) + ": " + e.summary + "\n";
     if (!e.debugViews.empty()) {
-      u += "  views:";
+      u += "  views: final indirect";
       for (const char* v : e.debugViews) u += std::string(" ") + v;
       u += "\n";
     }
-    u += gi::optionHelp(e.options(defaults));
+    u += gi::optionHelp(e.options(settings));
   }
   gi::PathTracerSettings pt;
-  u += "\nReference path tracer (--gi path):\n" + gi::optionHelp(gi::bindOptions(pt));
-  u += "\nVoxel scene (--gi svo | vct, --view voxels | svo-steps):\n" + gi::optionHelp(gi::bindOptions(defaults.voxels));
-  u += "\nGI budget (--gi svo | bvh | vct; docs/QUALITY.md, \"The GI budget\"):\n" + gi::optionHelp(gi::bindOptions(defaults.budget));
+  u += "\n--gi path: the reference path tracer (CPU)\n" + gi::optionHelp(gi::bindOptions(pt));
+  u += "\nVoxel scene (techniques that use one, and --view voxels | svo-steps):\n" + gi::optionHelp(gi::bindOptions(settings.voxels));
+  u += "\nGI budget (every technique; docs/QUALITY.md, \"The GI budget\"):\n" + gi::optionHelp(gi::bindOptions(settings.budget));
   u += "\nWindowed: WASD move, hold the right mouse button to look, Q/E down/up, Esc quits.\n";
   return u;
+}
+
+std::string usageMarkdown() {
+  const char* header = "| option | default | range | meaning |\n| --- | --- | --- | --- |\n";
+  std::string md =
+      "# dyngi_sample options\n\n"
+      "Generated by `dyngi_sample --help-markdown` from the sample's flag table and the GI's option tables;\n"
+      "`SampleCli.OptionsDocIsTheGeneratedOne` holds this file equal to that output.\n\n"
+      "## The sample\n\n| option | default | meaning |\n| --- | --- | --- |\n";
+  const Options defaults;
+  for (const SampleFlag& f : sampleFlags())
+    md += "| `" + sampleFlagColumn(f) + "` | " + (f.shown ? f.shown(defaults) : "") + " | " + f.help + " |\n";
+  md += "\n`--gi`: " + joined(giModes(), ", ") + ". `--scene NAME`: " + joined(builtinSceneNames(), ", ") + ". `--animate`: " +
+        joined(animatedSceneNames(), ", ") + ".\n";
+  gi::GiSettings settings;
+  for (const gi::TechniqueEntry& e : gi::techniqueRegistry()) {
+    md += "\n## `--gi " + std::string(e.name) + "`\n\n" + e.summary + ".\n\nViews: `final`, `indirect`";
+    for (const char* v : e.debugViews) md += std::string(", `") + v + "`";
+    md += ".\n\n" + std::string(header) + gi::optionMarkdown(e.options(settings));
+  }
+  gi::PathTracerSettings pt;
+  md += "\n## `--gi path`: the reference path tracer\n\n" + std::string(header) + gi::optionMarkdown(gi::bindOptions(pt));
+  md += "\n## The voxel scene\n\nFor the techniques that use one, and `--view voxels|svo-steps` with any `--gi`.\n\n" + std::string(header) +
+        gi::optionMarkdown(gi::bindOptions(settings.voxels));
+  md += "\n## The GI budget\n\nEvery technique (docs/QUALITY.md, \"The GI budget\").\n\n" + std::string(header) +
+        gi::optionMarkdown(gi::bindOptions(settings.budget));
+  return md;
 }
 
 int Options::warmupFrames() const {
@@ -128,150 +321,15 @@ int Options::warmupFrames() const {
 
 std::optional<Options> parseOptions(int argc, const char* const* argv, std::string& error) {
   Options o;
-  std::vector<std::string> args(argv + 1, argv + argc);
-  // Table options wait until --gi and --vpl-source are known: they say which tables apply.
-  std::vector<std::pair<std::string, std::optional<std::string>>> deferred;
-  for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&](std::string& v) {
-      if (i + 1 >= args.size()) {
-        error = a + " needs a value";
-        return false;
-      }
-      v = args[++i];
-      return true;
-    };
-    std::string v;
-    if (a == "--help" || a == "-h") o.help = true;
-    else if (a == "--headless") o.headless = true;
-    else if (a == "--validation") o.validation = true;
-    else if (a == "--scene") { if (!value(o.scene)) return std::nullopt; }
-    else if (a == "--out") { if (!value(o.out)) return std::nullopt; }
-    else if (a == "--hdr-out") { if (!value(o.hdrOut)) return std::nullopt; }
-    else if (a == "--stats") { if (!value(o.stats)) return std::nullopt; }
-    else if (a == "--memory-log") { if (!value(o.memoryLog)) return std::nullopt; }
-    else if (a == "--clip") { if (!value(o.clip)) return std::nullopt; }
-    else if (a == "--view") { if (!value(o.view)) return std::nullopt; }
-    else if (a == "--input-script") { if (!value(o.inputScript)) return std::nullopt; }
-    else if (a == "--record") { if (!value(o.recordDir)) return std::nullopt; }
-    else if (a == "--stage-times") {
-      if (!value(o.stageTimes)) return std::nullopt;
-      if (o.stageTimes != "timestamps" && o.stageTimes != "fenced") {
-        error = "--stage-times wants timestamps or fenced, got '" + o.stageTimes + "'";
-        return std::nullopt;
-      }
-    }
-    else if (a == "--ui") {
-      if (!value(o.ui)) return std::nullopt;
-      if (o.ui != "on" && o.ui != "off" && o.ui != "auto") {
-        error = "--ui wants on, off or auto, got '" + o.ui + "'";
-        return std::nullopt;
-      }
-    }
-    else if (a == "--size") {
-      if (!value(v)) return std::nullopt;
-      auto x = v.find('x');
-      if (x == std::string::npos || !parseUint(v.substr(0, x), o.width) || !parseUint(v.substr(x + 1), o.height) ||
-          o.width == 0 || o.height == 0 || o.width > 8192 || o.height > 8192) {
-        error = "--size wants WxH with 1..8192 each, got '" + v + "'";
-        return std::nullopt;
-      }
-    } else if (a == "--frames") {
-      uint32_t n;
-      if (!value(v)) return std::nullopt;
-      if (!parseUint(v, n) || n == 0 || n > 1000000) {
-        error = "--frames wants a positive integer, got '" + v + "'";
-        return std::nullopt;
-      }
-      o.frames = int(n);
-    } else if (a == "--warmup") {
-      if (!value(v)) return std::nullopt;
-      uint32_t n;
-      if (!parseUint(v, n) || n > 1000000) {
-        error = "--warmup wants a frame count, got '" + v + "'";
-        return std::nullopt;
-      }
-      o.warmup = int(n);
-    } else if (a == "--vpl-source") {
-      if (!value(o.vplSource)) return std::nullopt;
-      if (o.vplSource != "paths" && o.vplSource != "rsm") {
-        error = "unknown --vpl-source '" + o.vplSource + "' (available: paths, rsm)";
-        return std::nullopt;
-      }
-    } else if (a == "--animate") {
-      if (!value(o.animate)) return std::nullopt;
-      if (o.animate != "static" && o.animate != "moving-spot" && o.animate != "rotating-object" && o.animate != "moving-camera" &&
-          o.animate != "walking-fox" && o.animate != "fox-and-spot" && o.animate != "fox-spot-light-on") {
-        error = "unknown --animate '" + o.animate +
-                "' (available: static, moving-spot, rotating-object, moving-camera, walking-fox, fox-and-spot, fox-spot-light-on)";
-        return std::nullopt;
-      }
-    } else if (a == "--exposure") {
-      if (!value(v)) return std::nullopt;
-      float f = 0;
-      auto r = std::from_chars(v.data(), v.data() + v.size(), f);
-      if (r.ec != std::errc() || r.ptr != v.data() + v.size() || !std::isfinite(f) || f <= 0) {
-        error = "--exposure wants a positive number, got '" + v + "'";
-        return std::nullopt;
-      }
-      o.exposure = f;
-    } else if (a == "--gi") {
-      if (!value(o.gi)) return std::nullopt;
-      bool known = false;
-      for (const char* m : kGiModes) known |= o.gi == m;
-      if (!known) {
-        error = "unknown --gi mode '" + o.gi + "' (available: off, svo, bvh, vct, path)";
-        return std::nullopt;
-      }
-    } else if (a.rfind("--", 0) == 0 && a.size() > 2) {
-      std::optional<std::string> next;
-      if (i + 1 < args.size()) next = args[++i];
-      deferred.emplace_back(a, next);
-    } else {
-      error = "unknown option '" + a + "' (see --help)";
-      return std::nullopt;
-    }
-  }
-  if (o.vplSource == "rsm" && o.gi == "bvh") {
-    error = "--vpl-source rsm needs --gi svo";
-    return std::nullopt;
-  }
-  selectTechnique(o);
-  const std::vector<gi::OptionRef> accepted = acceptedOptions(o);
-  for (const auto& [flag, text] : deferred) {
-    const std::string name = flag.substr(2);  // a copy: clang 14 cannot capture a structured binding
-    auto it = std::find_if(accepted.begin(), accepted.end(), [&](const gi::OptionRef& r) { return name == r.spec->name; });
-    if (it == accepted.end()) {
-      error = notForThisRun(o, flag);
-      return std::nullopt;
-    }
-    if (!text) {
-      error = flag + " needs a value";
-      return std::nullopt;
-    }
-    error = gi::parseOptionValue(*it, *text);
-    if (!error.empty()) return std::nullopt;
-  }
-  // --view: the voxel scene's views, or one of the technique's.
-  bool knownView = std::find(std::begin(kEngineViews), std::end(kEngineViews), o.view) != std::end(kEngineViews);
-  const gi::TechniqueEntry* active = o.usesGiSystem() ? gi::findTechnique(o.giSettings.technique) : nullptr;
-  if (!knownView && active)
-    for (const char* v : active->debugViews) knownView |= o.view == v;
-  if (!knownView) {
-    for (const gi::TechniqueEntry& e : gi::techniqueRegistry())
-      for (const char* v : e.debugViews)
-        if (o.view == v) {
-          error = "--view " + o.view + " needs " + flagsOf(e.name) + " (a view of the " + e.name + " technique)";
-          return std::nullopt;
-        }
-    error = "unknown --view '" + o.view + "' (see --help for each technique's views)";
-    return std::nullopt;
-  }
+  Deferred deferred;
+  error = parseArguments(std::vector<std::string>(argv + 1, argv + argc), o, deferred);
+  if (error.empty() && o.usesGiSystem()) o.giSettings.technique = o.gi;
+  if (error.empty()) error = applyTableOptions(o, deferred);
+  if (error.empty()) error = checkView(o);
   const int frames = o.frames > 0 ? o.frames : (o.headless ? kHeadlessDefaultFrames : -1);
-  if (o.warmup >= 0 && frames > 0 && o.warmup >= frames) {
+  if (error.empty() && o.warmup >= 0 && frames > 0 && o.warmup >= frames)
     error = "--warmup " + std::to_string(o.warmup) + " leaves none of the run's " + std::to_string(frames) + " frames to time";
-    return std::nullopt;
-  }
+  if (!error.empty()) return std::nullopt;
   return o;
 }
 

@@ -67,4 +67,11 @@ void MemoryLog::frameRendered(int rendered, const render::VulkanContext& ctx) {
   std::fflush(file_.get());
 }
 
+void addSettings(RunStats& stats, const std::vector<gi::OptionRef>& options) {
+  for (const gi::OptionRef& r : options) {
+    if (r.isChoice()) stats.namedSettings[r.spec->name] = r.text();
+    else stats.sections["settings"][r.spec->name] = r.get();
+  }
+}
+
 }  // namespace dyngi::sample

@@ -21,6 +21,9 @@ int writeImages(const Options& o, uint32_t width, uint32_t height, const std::fu
 // --stats, then the table on stdout.
 int writeStats(const Options& o, const RunStats& stats);
 
+// Options as the stats' "settings" report them, by flag name: a number (bools 0 or 1), or a choice's name.
+void addSettings(RunStats& stats, const std::vector<gi::OptionRef>& options);
+
 // --memory-log: every kEvery rendered frames, resident memory and live Vulkan allocations.
 class MemoryLog {
  public:

@@ -54,7 +54,7 @@ int runPathTracer(const Options& o, ecs::World& world, scene::AssetStore& assets
   stats.gpuStageMs.clear();
   stats.cpuStageMs["path_trace"].push(pstats.ms);
   gi::PathTracerSettings used = pts;
-  for (const gi::OptionRef& r : gi::bindOptions(used)) stats.sections["settings"][r.spec->name] = r.get();
+  addSettings(stats, gi::bindOptions(used));
   stats.scalars["spp"] = pts.spp;
   stats.scalars["bounces"] = pts.bounces;
   stats.scalars["msamples_per_second"] = pstats.samplesPerSecond * 1e-6;

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "dyngi/engine/ecs/scheduler.h"
 #include "dyngi/engine/platform/window.h"
@@ -50,7 +51,7 @@ GiSetup setUpGi(const Options& o, render::VulkanContext& ctx, render::Renderer& 
     for (const std::string& line : gi::adjustedOptions(g.system->techniqueEntry().options(asked), g.system->technique().options()))
       std::fprintf(stderr, "dyngi_sample: note: %s (the value the technique uses; --stats lists every value used)\n", line.c_str());
     g.system->attach(renderer);
-    if (!voxelView) g.system->technique().setDebugView(o.view);  // parseOptions checked the name
+    if (!voxelView) g.system->setDebugView(o.view);  // parseOptions checked the name
     g.voxels = g.system->voxels();
   }
   if (voxelView && g.voxels) g.voxels->setDebugView(voxelDebug);
@@ -68,18 +69,16 @@ GiSetup setUpGi(const Options& o, render::VulkanContext& ctx, render::Renderer& 
 // `settings`: the GI's settings at the end of the run (the panel may have changed them).
 void reportGi(const gi::GiSettings& settings, const GiSetup& g, RunStats& stats) {
   if (gi::GiSystem* gi = g.system) {
-    stats.scalars["vpls"] = gi->effectiveVplCount();  // as used (see the note above), not as asked
     gi::GiSettings asked = settings;
-    for (const gi::OptionRef& r : gi->techniqueEntry().options(asked))
-      if (std::string_view(r.spec->name) == "vpls") stats.scalars["vpls_requested"] = r.get();
-    for (const gi::OptionRef& r : gi->technique().options()) {
-      const std::string_view name = r.spec->name;
-      if (name == "interleave" || name == "bounces") stats.scalars[std::string(name)] = r.get();
-      if (name == "temporal") stats.scalars["temporal_sets"] = r.get();
-      stats.sections["settings"][r.spec->name] = r.get();
-    }
+    if (auto r = gi::findOption(gi->techniqueEntry().options(asked), "vpls")) stats.scalars["vpls_requested"] = r->get();
+    // The technique's options as it uses them (a VPL count rounded to a multiple of the bounces): the
+    // counts take the key with dashes as underscores.
+    const std::vector<gi::OptionRef> used = gi->technique().options();
+    for (const char* count : {"vpls", "interleave", "bounces", "temporal-sets"})
+      if (auto r = gi::findOption(used, count)) stats.scalars[count == std::string("temporal-sets") ? "temporal_sets" : count] = r->get();
+    addSettings(stats, used);
     gi::BudgetOptions budget = settings.budget;
-    for (const gi::OptionRef& r : gi::bindOptions(budget)) stats.sections["settings"][r.spec->name] = r.get();
+    addSettings(stats, gi::bindOptions(budget));
     for (auto& [section, values] : gi->technique().statsSections())
       for (auto& [key, value] : values) stats.sections[section][key] = value;
     if (const gi::BudgetController* b = gi->budget()) {
@@ -100,7 +99,7 @@ void reportGi(const gi::GiSettings& settings, const GiSetup& g, RunStats& stats)
     const gi::VoxelStats& v = voxels->stats();
     stats.scalars["voxel_resolution"] = settings.voxels.resolution;
     gi::VoxelSettings used = settings.voxels;
-    for (const gi::OptionRef& r : gi::bindOptions(used)) stats.sections["settings"][r.spec->name] = r.get();
+    addSettings(stats, gi::bindOptions(used));
     stats.scalars["voxel_fragments"] = double(v.fragments);
     stats.scalars["svo_nodes"] = double(v.nodes);
     stats.scalars["svo_leaves"] = double(v.leaves);
@@ -108,6 +107,197 @@ void reportGi(const gi::GiSettings& settings, const GiSetup& g, RunStats& stats)
     stats.scalars["voxel_total_bytes"] = double(v.totalBytes);
   }
 }
+
+// What the window says about this frame.
+enum class WindowStep { Draw, Minimised, NotReady, Close };
+
+WindowStep pumpWindow(platform::Window& window, render::Swapchain& swapchain, render::Renderer& renderer) {
+  window.pollEvents();
+  if (window.shouldClose()) return WindowStep::Close;
+  uint32_t fw, fh;
+  window.framebufferSize(fw, fh);
+  if (fw == 0 || fh == 0) {  // minimised: nothing to draw into
+    window.waitEvents();
+    return WindowStep::Minimised;
+  }
+  if (fw != swapchain.extent().width || fh != swapchain.extent().height || !swapchain.valid()) {
+    if (!swapchain.recreate(fw, fh)) return WindowStep::NotReady;
+    renderer.resize(fw, fh);
+  }
+  return WindowStep::Draw;
+}
+
+render::ContextOptions contextOptions(const Options& o, bool headless) {
+  render::ContextOptions co;
+#ifndef NDEBUG
+  co.validation = true;  // debug builds always validate
+#else
+  co.validation = o.validation;
+#endif
+  co.requireValidation = o.validation;  // asked for on the command line: a missing layer is an error
+  co.requireSwapchain = !headless;
+  if (!headless) co.instanceExtensions = platform::Window::requiredInstanceExtensions();
+  return co;
+}
+
+// One rendered frame's timings into the run's series (after the warm-up).
+void recordFrameTimes(RunStats& stats, const render::FrameStats& fs, double frameMs, double extractMs, const ecs::Scheduler& scheduler,
+                      gi::GiSystem* gi) {
+  stats.frameMs.push(frameMs);
+  std::map<std::string, double> perPass;  // a pass recorded more than once a frame (the temporal catch-up's gathers) counts once
+  for (auto& [name, ms] : fs.gpuMs) perPass[name] += ms;
+  for (auto& [name, ms] : perPass) stats.gpuStageMs[name].push(ms);
+  for (auto& t : scheduler.lastTimings()) stats.cpuStageMs[t.name].push(t.cpuMs);
+  stats.cpuStageMs["extract"].push(extractMs);
+  stats.cpuStageMs["render_record"].push(fs.cpuRecordMs);
+  stats.cpuStageMs["render_wait"].push(fs.cpuWaitMs);
+  if (!gi) return;
+  const gi::GiStats giStats = gi->stats();
+  stats.cpuStageMs["gi_bvh_update"].push(giStats.bvh.updateMs);
+  if (giStats.giMs >= 0) stats.giMs.push(giStats.giMs);
+  for (const auto& [name, ms] : gi->technique().cpuMs()) stats.cpuStageMs[name].push(ms);
+}
+
+// A run's device, window, renderer, GI and systems, and its frame loop.
+class RealtimeRun {
+ public:
+  RealtimeRun(const Options& o, ecs::World& world, scene::AssetStore& assets, std::unique_ptr<platform::Window> window,
+              std::optional<InputScript> script)
+      : o_(o), world_(world), assets_(assets), window_(std::move(window)), ctx_(contextOptions(o, !window_)), renderer_(ctx_, rendererSettings(o)) {
+    uint32_t width = o.width, height = o.height;
+    if (window_) {
+      swapchain_ = std::make_unique<render::Swapchain>(ctx_, window_->createSurface(ctx_.instance()));
+      window_->framebufferSize(width, height);
+      if (width == 0 || height == 0) width = o.width, height = o.height;
+      swapchain_->recreate(width, height);
+    }
+    renderer_.resize(width, height);
+    gi_ = setUpGi(o, ctx_, renderer_, world, assets);
+    session_ = std::make_unique<PlaySession>(o, ctx_, renderer_, scheduler_, assets, gi_.system, window_.get(), std::move(script));
+    addSystems();
+  }
+
+  // Renders `frames` frames (-1: until the window closes or the script ends); returns the exit status.
+  int run(int frames, RunStats& stats) {
+    stats.device = ctx_.deviceName();
+    stats.stageTimes = o_.stageTimes;
+    stats.warmupFrames = o_.warmupFrames();  // Mesa compiles pipelines on first use: keep them out of the medians
+    MemoryLog memoryLog;
+    if (!memoryLog.open(o_.memoryLog)) return 1;
+    const bool fixedStep = !window_ || session_->scripted();  // frame N is the same on every machine
+    last_ = Clock::now();
+    int rendered = 0;
+    for (uint64_t frame = 0; frames < 0 || rendered < frames; ++frame) {
+      auto t0 = Clock::now();
+      if (window_) {
+        const WindowStep step = pumpWindow(*window_, *swapchain_, renderer_);
+        if (step == WindowStep::Close) break;
+        if (step == WindowStep::Minimised) last_ = Clock::now();
+        if (step != WindowStep::Draw) continue;
+      }
+      advanceTime(frame, fixedStep, t0);
+      const bool keepGoing = renderFrame(frame, t0, ++rendered, stats);
+      memoryLog.frameRendered(rendered, ctx_);
+      if (!keepGoing) break;
+    }
+    return finish(rendered, stats);
+  }
+
+ private:
+  static render::RendererSettings rendererSettings(const Options& o) {
+    render::RendererSettings rs;
+    rs.exposure = o.exposure;
+    rs.stageTiming = o.stageTimes == "fenced" ? render::GpuTimer::Mode::Fenced : render::GpuTimer::Mode::Timestamps;
+    return rs;
+  }
+
+  void addSystems() {
+    if (window_ || session_->scripted())
+      scheduler_.add(ecs::Phase::Update, std::make_unique<FlyCameraSystem>(session_->input(), session_->uiHasMouse()));
+    scheduler_.add(ecs::Phase::Update, std::make_unique<scene::ScriptedMotionSystem>());
+    scheduler_.add(ecs::Phase::Update, std::make_unique<scene::AnimationSystem>());
+    scheduler_.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
+    scheduler_.add(ecs::Phase::PostUpdate, std::make_unique<scene::SkinningSystem>(assets_));
+    // --gi path in a window: the progressive path-traced preview, on a BVH that follows the world.
+    if (o_.gi == "path") {
+      previewBvh_ = std::make_unique<gi::EmbreeScene>();
+      preview_ = std::make_unique<PathPreview>(*previewBvh_, assets_, o_.pathTracer);
+      renderer_.addFeature(preview_.get());
+      scheduler_.add(ecs::Phase::PostUpdate, std::make_unique<gi::BvhSyncSystem>(*previewBvh_, assets_));
+    }
+    if (gi_.systemOwned) scheduler_.add(ecs::Phase::PostUpdate, std::move(gi_.systemOwned));
+    else if (gi_.standaloneVoxels) scheduler_.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(*gi_.standaloneVoxels, assets_));
+  }
+
+  // The scene's clock: with a fixed step frame N's time is exactly (N - frames paused) / 60; in a window
+  // it stands still while paused (P).
+  void advanceTime(uint64_t frame, bool fixedStep, Clock::time_point t0) {
+    time_.dt = fixedStep ? 1.0 / 60.0 : std::chrono::duration<double>(t0 - last_).count();
+    time_.time = fixedStep ? double(frame - pausedFrames_) / 60.0 : sceneTime_;
+    if (session_->paused()) ++pausedFrames_;
+    else sceneTime_ += time_.dt;
+    last_ = t0;
+    time_.frame = frame;
+  }
+
+  bool renderFrame(uint64_t frame, Clock::time_point t0, int rendered, RunStats& stats) {
+    session_->beginFrame(frame, time_.dt, world_, assets_, renderer_.width(), renderer_.height());
+    scheduler_.runFrame(world_, time_);
+    auto tExtract = Clock::now();
+    const render::RenderSnapshot snapshot = render::extractSnapshot(world_, assets_, frame);  // the frame's one snapshot
+    const double extractMs = std::chrono::duration<double, std::milli>(Clock::now() - tExtract).count();
+    const render::FrameStats& fs = renderer_.render(snapshot, swapchain_.get());
+    if (swapchain_ && !fs.presented) swapchain_->recreate(renderer_.width(), renderer_.height());
+    const double frameMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    const bool keepGoing = session_->endFrame(frame, snapshot, fs, frameMs);
+    // The panel may have made a GI system, or rebuilt it (GiSystem::reset makes a new voxel scene).
+    if (gi::GiSystem* made = session_->gi().everMade()) {
+      gi_.system = made;
+      gi_.voxels = made->voxels();
+    }
+    if (rendered > stats.warmupFrames) recordFrameTimes(stats, fs, frameMs, extractMs, scheduler_, gi_.system);
+    return keepGoing;
+  }
+
+  int finish(int rendered, RunStats& stats) {
+    stats.frames = rendered;
+    if (window_ || session_->scripted())
+      stats.play = RunStats::Play{session_->gi().mode(), entityLabel(world_, session_->play().selected), session_->play().lastAction,
+                                  session_->scripted()};
+    stats.width = renderer_.width();
+    stats.height = renderer_.height();
+    stats.scalars["draws"] = double(render::extractSnapshot(world_, assets_, 0).draws.size());
+    stats.scalars["validation_errors"] = ctx_.validationErrorCount();
+    if (preview_) stats.scalars["path_preview_spp"] = preview_->samplesPerPixel();
+    reportGi(session_->gi().settings(), gi_, stats);
+    int status = session_->status();
+    if (rendered > 0)
+      status |= writeImages(
+          o_, renderer_.width(), renderer_.height(), [&] { return renderer_.readbackLdr(); }, [&] { return renderer_.readback(render::TargetId::Hdr); });
+    if (ctx_.validationErrorCount() > 0) {
+      std::fprintf(stderr, "dyngi_sample: %u Vulkan validation error(s)\n", ctx_.validationErrorCount());
+      status = 1;
+    }
+    return status;
+  }
+
+  const Options& o_;
+  ecs::World& world_;
+  scene::AssetStore& assets_;
+  std::unique_ptr<platform::Window> window_;
+  render::VulkanContext ctx_;
+  render::Renderer renderer_;
+  std::unique_ptr<render::Swapchain> swapchain_;
+  GiSetup gi_;
+  ecs::Scheduler scheduler_;
+  std::unique_ptr<PlaySession> session_;
+  std::unique_ptr<gi::EmbreeScene> previewBvh_;
+  std::unique_ptr<PathPreview> preview_;
+  ecs::FrameTime time_;
+  Clock::time_point last_;
+  double sceneTime_ = 0;      // scripted motion's clock in a window
+  uint64_t pausedFrames_ = 0;  // the same with a fixed step
+};
 
 }  // namespace
 
@@ -118,8 +308,7 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
     window = platform::Window::create(o.width, o.height, "dyngi — " + o.scene, &why);
     if (!window) std::fprintf(stderr, "dyngi_sample: no window (%s); running headless\n", why.c_str());
   }
-  const bool headless = !window;
-  if (headless && o.gi == "path") {
+  if (!window && o.gi == "path") {
     std::fprintf(stderr, "dyngi_sample: the path tracer's preview needs a window; path tracing headless\n");
     return runPathTracer(o, world, assets, stats);
   }
@@ -133,140 +322,9 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
     }
   }
   // A script runs to its last event (plus the frame that shows it) unless --frames says otherwise.
-  const int frames = o.frames > 0 ? o.frames : script ? int(script->lastFrame()) + 2 : (headless ? kHeadlessDefaultFrames : -1);
-  const bool fixedStep = headless || script;  // frame N is the same on every machine
-
-  render::ContextOptions co;
-#ifndef NDEBUG
-  co.validation = true;  // debug builds always validate
-#else
-  co.validation = o.validation;
-#endif
-  co.requireValidation = o.validation;  // asked for on the command line: a missing layer is an error
-  co.requireSwapchain = !headless;
-  if (!headless) co.instanceExtensions = platform::Window::requiredInstanceExtensions();
-  render::VulkanContext ctx(co);
-  render::RendererSettings rs;
-  rs.exposure = o.exposure;
-  rs.stageTiming = o.stageTimes == "fenced" ? render::GpuTimer::Mode::Fenced : render::GpuTimer::Mode::Timestamps;
-  render::Renderer renderer(ctx, rs);
-  std::unique_ptr<render::Swapchain> swapchain;
-  uint32_t width = o.width, height = o.height;
-  if (!headless) {
-    swapchain = std::make_unique<render::Swapchain>(ctx, window->createSurface(ctx.instance()));
-    window->framebufferSize(width, height);
-    if (width == 0 || height == 0) width = o.width, height = o.height;
-    swapchain->recreate(width, height);
-  }
-  renderer.resize(width, height);
-
-  GiSetup gi = setUpGi(o, ctx, renderer, world, assets);
-  ecs::Scheduler scheduler;
-  PlaySession session(o, ctx, renderer, scheduler, assets, gi.system, window.get(), std::move(script));
-  if (window || session.scripted()) scheduler.add(ecs::Phase::Update, std::make_unique<FlyCameraSystem>(session.input(), session.uiHasMouse()));
-  scheduler.add(ecs::Phase::Update, std::make_unique<scene::ScriptedMotionSystem>());
-  scheduler.add(ecs::Phase::Update, std::make_unique<scene::AnimationSystem>());
-  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::TransformSystem>());
-  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<scene::SkinningSystem>(assets));
-  // --gi path in a window: the progressive path-traced preview, on a BVH that follows the world.
-  std::unique_ptr<gi::EmbreeScene> previewBvh;
-  std::unique_ptr<PathPreview> preview;
-  if (o.gi == "path") {
-    previewBvh = std::make_unique<gi::EmbreeScene>();
-    preview = std::make_unique<PathPreview>(*previewBvh, assets, o.pathTracer);
-    renderer.addFeature(preview.get());
-    scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::BvhSyncSystem>(*previewBvh, assets));
-  }
-  if (gi.systemOwned) scheduler.add(ecs::Phase::PostUpdate, std::move(gi.systemOwned));
-  else if (gi.standaloneVoxels) scheduler.add(ecs::Phase::PostUpdate, std::make_unique<gi::VoxelSyncSystem>(*gi.standaloneVoxels, assets));
-
-  stats.device = ctx.deviceName();
-  stats.stageTimes = o.stageTimes;
-  stats.warmupFrames = o.warmupFrames();  // Mesa compiles pipelines on first use: keep them out of the medians
-  MemoryLog memoryLog;
-  if (!memoryLog.open(o.memoryLog)) return 1;
-  ecs::FrameTime time;
-  auto start = Clock::now(), last = start;
-  int rendered = 0;
-  double sceneTime = 0;      // scripted motion's clock in a window: stands still while paused (P)
-  uint64_t pausedFrames = 0;  // the same with a fixed step
-  for (uint64_t frame = 0; frames < 0 || rendered < frames; ++frame) {
-    auto t0 = Clock::now();
-    if (window) {
-      window->pollEvents();
-      if (window->shouldClose()) break;
-      uint32_t fw, fh;
-      window->framebufferSize(fw, fh);
-      if (fw == 0 || fh == 0) {  // minimised: nothing to draw into
-        window->waitEvents();
-        last = Clock::now();
-        continue;
-      }
-      if (fw != swapchain->extent().width || fh != swapchain->extent().height || !swapchain->valid()) {
-        if (!swapchain->recreate(fw, fh)) continue;
-        renderer.resize(fw, fh);
-      }
-    }
-    time.dt = fixedStep ? 1.0 / 60.0 : std::chrono::duration<double>(t0 - last).count();
-    // Fixed step: frame N's time is exactly (N - frames paused) / 60, as in every headless run before.
-    time.time = fixedStep ? double(frame - pausedFrames) / 60.0 : sceneTime;
-    if (session.paused()) ++pausedFrames;
-    else sceneTime += time.dt;
-    last = t0;
-    time.frame = frame;
-    session.beginFrame(frame, time.dt, world, assets, renderer.width(), renderer.height());
-    scheduler.runFrame(world, time);
-    auto tExtract = Clock::now();
-    const render::RenderSnapshot snapshot = render::extractSnapshot(world, assets, frame);  // the frame's one snapshot
-    double extractMs = std::chrono::duration<double, std::milli>(Clock::now() - tExtract).count();
-    const render::FrameStats& fs = renderer.render(snapshot, swapchain.get());
-    if (swapchain && !fs.presented) swapchain->recreate(renderer.width(), renderer.height());
-    double frameMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-    ++rendered;
-    const bool keepGoing = session.endFrame(frame, snapshot, fs, frameMs);
-    // The panel may have made a GI system, or rebuilt it (GiSystem::reset makes a new voxel scene).
-    if (gi::GiSystem* made = session.gi().everMade()) {
-      gi.system = made;
-      gi.voxels = made->voxels();
-    }
-    memoryLog.frameRendered(rendered, ctx);
-    if (rendered > stats.warmupFrames) {
-      stats.frameMs.push(frameMs);
-      std::map<std::string, double> perPass;  // a pass recorded more than once a frame (the temporal catch-up's gathers) counts once
-      for (auto& [name, ms] : fs.gpuMs) perPass[name] += ms;
-      for (auto& [name, ms] : perPass) stats.gpuStageMs[name].push(ms);
-      for (auto& t : scheduler.lastTimings()) stats.cpuStageMs[t.name].push(t.cpuMs);
-      stats.cpuStageMs["extract"].push(extractMs);
-      stats.cpuStageMs["render_record"].push(fs.cpuRecordMs);
-      stats.cpuStageMs["render_wait"].push(fs.cpuWaitMs);
-      if (gi.system) {
-        const gi::GiStats giStats = gi.system->stats();
-        stats.cpuStageMs["gi_bvh_update"].push(giStats.bvh.updateMs);
-        if (giStats.giMs >= 0) stats.giMs.push(giStats.giMs);
-        for (const auto& [name, ms] : gi.system->technique().cpuMs()) stats.cpuStageMs[name].push(ms);
-      }
-    }
-    if (!keepGoing) break;
-  }
-  stats.frames = rendered;
-  if (window || session.scripted())
-    stats.play = RunStats::Play{session.gi().mode(), entityLabel(world, session.play().selected), session.play().lastAction, session.scripted()};
-  stats.width = renderer.width();
-  stats.height = renderer.height();
-  stats.scalars["draws"] = double(render::extractSnapshot(world, assets, 0).draws.size());
-  stats.scalars["validation_errors"] = ctx.validationErrorCount();
-  if (preview) stats.scalars["path_preview_spp"] = preview->samplesPerPixel();
-  reportGi(session.gi().settings(), gi, stats);
-
-  int status = session.status();
-  if (rendered > 0)
-    status |= writeImages(
-        o, renderer.width(), renderer.height(), [&] { return renderer.readbackLdr(); }, [&] { return renderer.readback(render::TargetId::Hdr); });
-  if (ctx.validationErrorCount() > 0) {
-    std::fprintf(stderr, "dyngi_sample: %u Vulkan validation error(s)\n", ctx.validationErrorCount());
-    status = 1;
-  }
-  return status;
+  const int frames = o.frames > 0 ? o.frames : script ? int(script->lastFrame()) + 2 : (window ? -1 : kHeadlessDefaultFrames);
+  RealtimeRun run(o, world, assets, std::move(window), std::move(script));
+  return run.run(frames, stats);
 }
 
 }  // namespace dyngi::sample

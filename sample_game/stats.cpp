@@ -62,6 +62,7 @@ std::string RunStats::toJson() const {
     for (auto& [name, v] : values) o[name] = number(v);
     j[key] = o;
   }
+  for (auto& [name, value] : namedSettings) j["settings"][name] = value;
   if (play) j["play"] = {{"gi_mode", play->giMode}, {"selected", play->selected}, {"last_action", play->lastAction}, {"scripted", play->scripted}};
   if (!giMs.empty()) j["gi_ms"] = {{"median", number(giMs.percentile(0.5))}, {"p95", number(giMs.percentile(0.95))}};
   if (budget) {

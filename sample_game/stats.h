@@ -45,6 +45,7 @@ struct RunStats {
   std::map<std::string, SampleSeries> cpuStageMs;  // system / CPU step -> per frame
   std::map<std::string, double> scalars;                  // counts and sizes
   std::map<std::string, std::map<std::string, double>> sections;  // extra objects, e.g. "vpl": {...}
+  std::map<std::string, std::string> namedSettings;  // "settings" entries whose value is a name (--visibility bvh)
   SampleSeries giMs;  // the GI's measured cost per frame (GPU sections + the technique's CPU sections)
   // A GI budget's run: its settings and state at the end, and each change of quality level with the
   // knob values it set ("budget" in the JSON; absent without --gi-budget-ms).

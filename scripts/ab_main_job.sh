@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Interleaved A/B of the main job's frame time (scripts/run.sh's headless command: --gi svo, the default
+# Interleaved A/B of the main job's frame time (scripts/run.sh's headless command: --gi temporal, the default
 # scene and size): two dyngi_sample binaries run in turn, RUNS times each, so this machine's drift
 # (10-30% over minutes) hits both alike; prints each run and the medians of the runs' frame medians.
 #   scripts/ab_main_job.sh A_BIN B_BIN [RUNS=5] [extra dyngi_sample arguments...]
@@ -19,7 +19,7 @@ trap 'rm -rf "$out"' EXIT
 for i in $(seq 1 "$runs"); do
   for who in a b; do
     bin=$a; [ "$who" = b ] && bin=$b
-    "$bin" --headless --gi svo --out "$out/$who.png" --stats "$out/${who}_$i.json" "$@" >/dev/null 2>&1
+    "$bin" --headless --gi temporal --out "$out/$who.png" --stats "$out/${who}_$i.json" "$@" >/dev/null 2>&1
   done
 done
 python3 - "$out" "$runs" <<'PY'

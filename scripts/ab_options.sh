@@ -4,9 +4,9 @@
 # medians and their median. Headless, the main job's scene unless a set names another.
 #   scripts/ab_options.sh ROUNDS SIZE "LABEL|ARGS" ["LABEL|ARGS" ...]
 # e.g. the trace spread over frames against the temporal VPL technique at 768^2:
-#   scripts/ab_options.sh 3 768 "off|--gi off" "vct 1|--gi vct --trace-frames 1" "vct 4|--gi vct" "svo|--gi svo"
+#   scripts/ab_options.sh 3 768 "off|--gi off" "vct 1|--gi vct --trace-frames 1" "vct 4|--gi vct" "temporal|--gi temporal"
 # A set's arguments may start with @PATH: that set runs the dyngi_sample at PATH (another build), e.g.
-#   scripts/ab_options.sh 5 512 "old vct|@/tmp/base/build/bin/dyngi_sample --gi vct" "vct|--gi vct" "svo|--gi svo"
+#   scripts/ab_options.sh 5 512 "old vct|@/tmp/base/build/bin/dyngi_sample --gi vct" "vct|--gi vct" "temporal|--gi temporal"
 # env: BIN (build/bin/dyngi_sample), FRAMES (24), WARMUP (6); REPORT=stages (what scripts/ab_stages.sh
 # sets): fenced stage times instead, one row per set with each stage's median over the rounds (STAGES:
 # the stages to print, space-separated; default every stage a set reported)

@@ -11,7 +11,7 @@ mkdir -p out/bench
 cmake --build build -j"$(nproc)" --target dyngi_sample dyngi_imgcmp >/dev/null
 
 for n in 512 1024 2048; do
-  $BIN/dyngi_sample --headless --gi svo --vpl-source rsm --vpls "$n" --frames $((FRAMES + 2)) --size 768x768 \
+  $BIN/dyngi_sample --headless --gi many-lights --vpls "$n" --frames $((FRAMES + 2)) --size 768x768 \
     --stats out/bench/svo_$n.json --out out/bench/svo_$n.png >/dev/null
 done
 python3 - "$FRAMES" <<'PY'
@@ -30,7 +30,7 @@ PY
 S=256x256
 # The reference uses another seed, so the path tracer's images below are independent of it.
 $BIN/dyngi_sample --headless --scene cornell --gi path --bounces 1 --spp 2048 --seed 99 --size $S --hdr-out out/bench/ref.exr >/dev/null
-$BIN/dyngi_sample --headless --scene cornell --gi svo --vpl-source rsm --vpls 1024 --frames 12 --size $S \
+$BIN/dyngi_sample --headless --scene cornell --gi many-lights --vpls 1024 --frames 12 --size $S \
   --hdr-out out/bench/svo_eq.exr --stats out/bench/svo_eq.json >/dev/null
 svo_err=$($BIN/dyngi_imgcmp out/bench/ref.exr out/bench/svo_eq.exr)
 svo_ms=$(python3 -c "import json; print(json.load(open('out/bench/svo_eq.json'))['frame_ms']['median'])")

@@ -29,7 +29,7 @@ for r in $(seq 1 "$RUNS"); do
   for scene in $SCENES; do
     for T in $TS; do
       warm=$((T + 2))  # left out of the medians: filling the pool and rendering every set once
-      $BIN/dyngi_sample --headless --animate $scene --gi svo --vpls 512 --temporal $T --frames $((warm + FRAMES)) --warmup $warm \
+      $BIN/dyngi_sample --headless --animate $scene --gi temporal --vpls 512 --temporal-sets $T --frames $((warm + FRAMES)) --warmup $warm \
         --size $SIZE --stats out/bench/temporal_${scene}_${T}_$r.json >/dev/null 2>&1
     done
   done
@@ -56,7 +56,7 @@ $BIN/dyngi_sample --headless --animate static --gi path --bounces 1 --spp 512 --
 echo "| T | relMSE vs path tracer |"
 echo "| ---: | ---: |"
 for T in 1 16; do
-  $BIN/dyngi_sample --headless --animate static --gi svo --vpls 512 --temporal $T --frames 40 --size $SIZE \
+  $BIN/dyngi_sample --headless --animate static --gi temporal --vpls 512 --temporal-sets $T --frames 40 --size $SIZE \
     --hdr-out out/bench/t_$T.exr >/dev/null 2>&1
   e=$($BIN/dyngi_imgcmp out/bench/t_ref.exr out/bench/t_$T.exr)
   echo "| $T | $(python3 -c "import json,sys; print(round(json.loads(sys.argv[1])['rel_mse'], 5))" "$e") |"

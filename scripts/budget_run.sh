@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The GI budget on the real renderer (issue 17's acceptance): the scripted load change of
+# The GI budget on the real renderer: the scripted load change of
 # --animate fox-spot-light-on (the walking fox under the moving spot, a second spot switched on at 4 s,
 # frame 240) rendered headless without a budget and with two budgets (default 150 and 110 ms). For each budget it prints the GI's
 # measured milliseconds per frame (median, p95) against the budget, the knobs' trace from the stats JSON,

@@ -10,7 +10,7 @@ BIN=${BIN:-build/bin/dyngi_render_tests}
 [ -x "$BIN" ] || { echo "quality_report.sh: $BIN not built (see the comment at the top)" >&2; exit 2; }
 cmd="$BIN --gtest_filter=RenderTest.Quality*"
 echo "command: $cmd"
-out=$($cmd 2>&1) || { echo "$out" >&2; exit 1; }
+out=$(DYNGI_REPORT=1 $cmd 2>&1) || { echo "$out" >&2; exit 1; }
 table() {  # the lines the tests print with prefix $1, as a Markdown table
   echo "$out" | sed -n "s/^$1| //p" |
     awk 'NR == 1 { print "| " $0 " |"; n = split($0, f, "|"); s = "|"; for (i = 0; i < n; ++i) s = s " --- |"; print s; next } { print "| " $0 " |" }'

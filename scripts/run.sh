@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main job: set up (if needed), build Release into build/, run the sample scene with GI
-# (--gi svo: incremental temporal VPLs with SVO visibility). With no display it renders the default
+# (--gi temporal: incremental temporal VPLs with SVO visibility). With no display it renders the default
 # scene headless to out/frame.png + out/stats.json and prints the per-stage table; with a display it
 # opens the window. Extra arguments go to dyngi_sample (a later --gi overrides the default here).
 set -euo pipefail
@@ -12,7 +12,7 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDYNGI_BUILD_TESTS=ON >/dev/null
 cmake --build build -j"$(nproc)" --target dyngi_sample
 mkdir -p out
 if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then
-  exec build/bin/dyngi_sample --gi svo "$@"
+  exec build/bin/dyngi_sample --gi temporal "$@"
 else
-  exec build/bin/dyngi_sample --headless --gi svo --out out/frame.png --hdr-out out/frame.exr --stats out/stats.json "$@"
+  exec build/bin/dyngi_sample --headless --gi temporal --out out/frame.png --hdr-out out/frame.exr --stats out/stats.json "$@"
 fi

@@ -15,8 +15,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 # -g1 (line tables and function names, no variable info): every report keeps its file:line stack, and
-# the build takes far less time (tests/render/vct_test.cpp: 45 s to compile with -g, 28 s with -g1; the
-# job's build was 12 of CI's 38 minutes in session 28).
+# the build takes far less time (tests/render/vct_test.cpp: 45 s to compile with -g, 28 s with -g1).
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDYNGI_SANITIZE=ON -DDYNGI_BUILD_TESTS=ON \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
   -DDYNGI_TEST_TIMEOUT_SCALE=6 -DDYNGI_SERIAL_GPU_TESTS=OFF >/dev/null

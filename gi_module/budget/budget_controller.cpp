@@ -12,9 +12,8 @@ constexpr double kLoadDrop = 0.15;
 }  // namespace
 
 const OptionTable<BudgetOptions>& BudgetOptions::table() {
-  static const OptionTable<BudgetOptions> t = OptionTable<BudgetOptions>().add(
-      {"gi-budget-ms", "hold the GI's milliseconds per frame near this by lowering the technique's quality knobs (0: off)", 0, 10000},
-      &BudgetOptions::budgetMs);
+  static const OptionTable<BudgetOptions> t = OptionTable<BudgetOptions>("gi").add(
+      DYNGI_OPTION(BudgetOptions, budgetMs), "hold the GI's milliseconds per frame near this by lowering the technique's quality knobs (0: off)", 0, 10000);
   return t;
 }
 

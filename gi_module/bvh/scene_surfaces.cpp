@@ -1,4 +1,4 @@
-#include "dyngi/gi/scene_surfaces.h"
+#include "bvh/scene_surfaces.h"
 
 #include <algorithm>
 #include <cmath>

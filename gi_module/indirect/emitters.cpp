@@ -1,4 +1,4 @@
-#include "vpl/emitters.h"
+#include "indirect/emitters.h"
 
 #include <algorithm>
 #include <cmath>

@@ -11,8 +11,8 @@
 #include <glm/glm.hpp>
 
 #include "dyngi/engine/render/snapshot.h"
-#include "dyngi/gi/scene_surfaces.h"
-#include "dyngi/gi/vpl_paths.h"  // EmitterSource
+#include "bvh/scene_surfaces.h"
+#include "techniques/temporal/vpl_paths.h"  // EmitterSource
 
 namespace dyngi::gi {
 

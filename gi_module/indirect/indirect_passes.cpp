@@ -89,7 +89,7 @@ IndirectFilterPass::IndirectFilterPass(render::VulkanContext& ctx) : ctx_(ctx) {
 
 void IndirectFilterPass::record(render::FrameContext& frame, render::Image& input, uint32_t K, const VplOptions& vpl) {
   K = std::clamp(K, 1u, 8u);
-  const bool compensate = vpl.compensationRays > 0 && vpl.distanceClamp > 0.0f;
+  const bool compensate = vpl.clampCompensation > 0 && vpl.distanceClamp > 0.0f;
   const uint32_t spec[] = {K, compensate ? 1u : 0u};
   render::Pipeline& rows = rows_[K - 1];
   if (!rows.handle()) {
@@ -187,7 +187,7 @@ void IndirectFilterPass::recordCompensation(render::FrameContext& frame, const V
       .storageImage(DYNGI_COMPENSATE_BINDING_SHADOW_MAPS, lights.shadowMaps->view())
       .storageImage(DYNGI_COMPENSATE_BINDING_OUT, traced_.view())
       .push(ctx_, cmd, compensate_);
-  const gpu::CompensatePush pc{vpl.distanceClamp, vpl.compensationRays, (vpl.bounces > 1 || vpl.bounceTail) ? 1u : 0u, lights.count,
+  const gpu::CompensatePush pc{vpl.distanceClamp, vpl.clampCompensation, (vpl.bounces > 1 || vpl.bounceTail) ? 1u : 0u, lights.count,
                                vpl.filterPlaneTolerance};
   vkCmdPushConstants(cmd, compensate_.layout(), kCS, 0, sizeof(pc), &pc);
   const uint32_t groupsX = dispatchGroups(traced_.desc().width, 8), groupsY = dispatchGroups(traced_.desc().height, 8);

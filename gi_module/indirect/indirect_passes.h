@@ -9,7 +9,7 @@
 
 #include "dyngi/engine/render/frame_context.h"
 #include "dyngi/engine/render/pipeline.h"
-#include "shaders/shared/gi_gpu_types.h"
+#include "indirect/shaders/indirect_shared.h"
 
 namespace dyngi::gi {
 
@@ -49,7 +49,7 @@ class IndirectFilterPass {
   explicit IndirectFilterPass(render::VulkanContext& ctx);
   // Filters `input` (interleaved K x K, K in 1..8; rgba32ui packed as in filter_input.glsl) into
   // frame.targets.indirect ("filter" in stats): a separable geometry-aware tent (shaders/filter_tent.glsl),
-  // with vpl.filterPlaneTolerance. Between its passes, unless vpl.compensationRays or vpl.distanceClamp is
+  // with vpl.filterPlaneTolerance. Between its passes, unless vpl.clampCompensation or vpl.distanceClamp is
   // 0, it traces the light the gather's distance clamp dropped (shaders/compensate.comp, "compensate" in
   // stats: short screen-space rays for one pixel in 4 x 4), which the second pass adds.
   void record(render::FrameContext& frame, render::Image& input, uint32_t K, const struct VplOptions& vpl);

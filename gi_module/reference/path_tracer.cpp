@@ -8,7 +8,7 @@
 
 #include "dyngi/engine/scene/light_units.h"
 #include "dyngi/gi/job_pool.h"
-#include "dyngi/gi/scene_surfaces.h"
+#include "bvh/scene_surfaces.h"
 #include "sampling.h"
 
 namespace dyngi::gi {
@@ -16,11 +16,10 @@ namespace dyngi::gi {
 const OptionTable<PathTracerSettings>& PathTracerSettings::table() {
   static const OptionTable<PathTracerSettings> t =
       OptionTable<PathTracerSettings>()
-          .add({"spp", "path tracer samples per pixel", 1, 1000000}, &PathTracerSettings::spp)
-          .add({"bounces", "indirect bounces (0: direct light only)", 0, 64}, &PathTracerSettings::bounces)
-          .add({"seed", "seed of the path tracer's random numbers", 0, 4294967295.0}, &PathTracerSettings::seed)
-          .add({"pixel-jitter", "samples spread over the pixel (off: through its centre, as the rasterizer samples: the reference for a GI image)", 0, 1},
-               &PathTracerSettings::pixelJitter);
+          .add(DYNGI_OPTION(PathTracerSettings, spp), "path tracer samples per pixel", 1, 1000000)
+          .add(DYNGI_OPTION(PathTracerSettings, bounces), "indirect bounces (0: direct light only)", 0, 64)
+          .add(DYNGI_OPTION(PathTracerSettings, seed), "seed of the path tracer's random numbers", 0, 4294967295.0)
+          .add(DYNGI_OPTION(PathTracerSettings, pixelJitter), "samples spread over the pixel (off: through its centre, as the rasterizer samples: the reference for a GI image)", 0, 1);
   return t;
 }
 namespace {

@@ -9,13 +9,30 @@
 #include <glm/gtc/packing.hpp>
 
 #include "dyngi/engine/render/gpu_timer.h"
-#include "shaders/shared/gi_gpu_types.h"
+#include "voxel/shaders/voxel_shared.h"
+#include "indirect/shaders/indirect_shared.h"
 #include "voxel/svo_builder.h"
 #include "spirv/svo_march.comp.spv.h"
 
 #include "gpu_aliases.h"
 
 namespace dyngi::gi {
+
+namespace {
+template <class F>
+F* featureOf(GiSystem& gi) {
+  for (render::RenderFeature* f : gi.technique().features())
+    if (auto* typed = dynamic_cast<F*>(f)) return typed;
+  return nullptr;
+}
+}  // namespace
+
+TemporalIndirect* temporalOf(GiSystem& gi) { return featureOf<TemporalIndirect>(gi); }
+VplPaths* pathsOf(GiSystem& gi) {
+  TemporalIndirect* t = temporalOf(gi);
+  return t ? &t->paths() : nullptr;
+}
+ManyLights* manyLightsOf(GiSystem& gi) { return featureOf<ManyLights>(gi); }
 
 VoxelProbe::VoxelProbe(VoxelScene& voxels) : voxels_(voxels) {}
 

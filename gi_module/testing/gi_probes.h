@@ -8,11 +8,20 @@
 #include <glm/glm.hpp>
 
 #include "dyngi/engine/render/pipeline.h"
-#include "dyngi/gi/many_lights.h"
+#include "dyngi/gi/gi_system.h"
 #include "dyngi/gi/voxel.h"
 #include "dyngi/gi/voxel_scene.h"
+#include "techniques/many_lights/many_lights.h"
+#include "techniques/temporal/temporal_indirect.h"
+#include "techniques/temporal/vpl_paths.h"
 
 namespace dyngi::gi {
+
+// A technique's parts inside a GI system, when it runs that technique (nullptr otherwise): what tests
+// inspect, kept out of GiSystem's public interface.
+TemporalIndirect* temporalOf(GiSystem& gi);
+VplPaths* pathsOf(GiSystem& gi);
+ManyLights* manyLightsOf(GiSystem& gi);
 
 // One voxelization fragment as the voxelizer wrote it (decoded).
 struct VoxelFragment {

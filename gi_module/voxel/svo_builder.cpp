@@ -5,7 +5,7 @@
 #include <cstddef>
 
 #include "dyngi/engine/render/gpu_timer.h"
-#include "shaders/shared/gi_gpu_types.h"
+#include "voxel/shaders/voxel_shared.h"
 #include "spirv/svo_expand.comp.spv.h"
 #include "spirv/svo_leaf_attributes.comp.spv.h"
 #include "spirv/svo_level.comp.spv.h"

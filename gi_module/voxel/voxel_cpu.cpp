@@ -4,7 +4,7 @@
 #include <limits>
 
 #include "dyngi/gi/voxel.h"
-#include "shaders/shared/gi_gpu_types.h"
+#include "voxel/shaders/voxel_shared.h"
 
 namespace dyngi::gi {
 

@@ -1,7 +1,7 @@
 #include "voxel/voxel_debug_pass.h"
 
 #include "dyngi/engine/render/gpu_timer.h"
-#include "shaders/shared/gi_gpu_types.h"
+#include "voxel/shaders/voxel_shared.h"
 #include "spirv/voxel_debug.comp.spv.h"
 
 #include "gpu_aliases.h"

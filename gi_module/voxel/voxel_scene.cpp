@@ -10,7 +10,7 @@
 #include "dyngi/engine/render/draw_pass.h"
 #include "dyngi/engine/render/gpu_timer.h"
 #include "dyngi/engine/scene/animation.h"
-#include "shaders/shared/gi_gpu_types.h"
+#include "voxel/shaders/voxel_shared.h"
 #include "voxel/svo_builder.h"
 #include "voxel/voxel_debug_pass.h"
 #include "spirv/voxelize.frag.spv.h"
@@ -23,8 +23,8 @@
 namespace dyngi::gi {
 
 const OptionTable<VoxelSettings>& VoxelSettings::table() {
-  static const OptionTable<VoxelSettings> t = OptionTable<VoxelSettings>().add(
-      {"voxel-res", "voxel volume resolution (the SVO's finest level)", 64, 512, /*powerOfTwo=*/true}, &VoxelSettings::resolution);
+  static const OptionTable<VoxelSettings> t = OptionTable<VoxelSettings>("voxel").add(
+      DYNGI_OPTION(VoxelSettings, resolution), "voxel volume resolution (the SVO's finest level)", 64, 512, /*powerOfTwo=*/true);
   return t;
 }
 

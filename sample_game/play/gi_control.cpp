@@ -1,5 +1,7 @@
 #include "play/gi_control.h"
 
+#include "options.h"
+
 namespace dyngi::sample {
 
 GiControl::GiControl(render::VulkanContext& ctx, render::Renderer& renderer, ecs::Scheduler& scheduler, const scene::AssetStore& assets,
@@ -7,15 +9,16 @@ GiControl::GiControl(render::VulkanContext& ctx, render::Renderer& renderer, ecs
     : ctx_(ctx), renderer_(renderer), scheduler_(scheduler), assets_(assets), system_(existing), settings_(settings), mode_(std::move(mode)) {}
 
 const std::vector<std::string>& GiControl::modes() {
-  static const std::vector<std::string> m = {"off", "svo", "bvh", "rsm", "vct"};
+  static const std::vector<std::string> m = [] {
+    std::vector<std::string> all;
+    for (const std::string& mode : giModes())
+      if (mode == "off" || isTechniqueMode(mode)) all.push_back(mode);
+    return all;
+  }();
   return m;
 }
 
-std::string GiControl::modeOf(const std::string& gi, const std::string& vplSource) {
-  if (gi == "svo" && vplSource == "rsm") return "rsm";
-  if (gi == "svo" || gi == "bvh" || gi == "vct") return gi;
-  return "off";
-}
+std::string GiControl::modeOf(const std::string& gi) { return isTechniqueMode(gi) ? gi : "off"; }
 
 void GiControl::setMode(const std::string& mode) {
   if (mode == mode_) return;
@@ -24,12 +27,7 @@ void GiControl::setMode(const std::string& mode) {
     if (system_) system_->detach();
     return;
   }
-  if (mode == "vct") settings_.technique = "vct";
-  else if (mode == "rsm") settings_.technique = "many_lights";
-  else {
-    settings_.technique = "temporal";
-    settings_.temporal.visibility = mode == "bvh" ? gi::VisibilityBackend::Bvh : gi::VisibilityBackend::Svo;
-  }
+  settings_.technique = mode;
   view_ = "final";  // another technique's views are not this one's
   if (!system_) {
     auto made = std::make_unique<gi::GiSystem>(ctx_, assets_, settings_);
@@ -45,12 +43,12 @@ void GiControl::setMode(const std::string& mode) {
 void GiControl::apply() {
   if (system_ && system_->attached()) {
     system_->reset(settings_);
-    system_->technique().setDebugView(view_);
+    system_->setDebugView(view_);
   }
 }
 
 bool GiControl::setView(const std::string& view) {
-  if (!system() || !system_->technique().setDebugView(view)) return false;
+  if (!system() || !system_->setDebugView(view)) return false;
   view_ = view;
   return true;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The GI of a run that changes while it runs: the panel's mode (off, svo, bvh, rsm, vct), the settings
+// The GI of a run that changes while it runs: the panel's mode (off or a technique), the settings
 // of the active technique, and the debug view, applied between frames through GiSystem::reset,
 // detach and attach. The GI system is made the first time a mode needs it and then lives in the
 // scheduler like any system.
@@ -18,9 +18,9 @@ class GiControl {
   GiControl(render::VulkanContext& ctx, render::Renderer& renderer, ecs::Scheduler& scheduler, const scene::AssetStore& assets,
             gi::GiSystem* existing, const gi::GiSettings& settings, std::string mode);
 
-  static const std::vector<std::string>& modes();  // off, svo, bvh, rsm, vct
-  // The --gi / --vpl-source pair a mode stands for, and back.
-  static std::string modeOf(const std::string& gi, const std::string& vplSource);
+  static const std::vector<std::string>& modes();  // off and every technique: the --gi values but path
+  static std::string modeOf(const std::string& gi);  // the mode a --gi value starts in
+
 
   const std::string& mode() const { return mode_; }
   void setMode(const std::string& mode);  // a name from modes()

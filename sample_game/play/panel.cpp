@@ -26,9 +26,24 @@ void helpTooltip(const char* help) {
 
 double roundToPowerOfTwo(double v) { return v <= 1.0 ? 1.0 : std::exp2(std::round(std::log2(v))); }
 
-// One option from a technique's table: a checkbox, an integer slider or a float drag over its range.
-// Returns true when an edit ended (the GI is rebuilt then, not on every step of a drag).
+// A named-value option: its name, then a radio button per value (remembered as "name value").
+bool choiceWidget(PanelContext& p, const gi::OptionRef& r) {
+  bool done = false;
+  ImGui::TextUnformatted(r.spec->name.c_str());
+  helpTooltip(r.spec->help);
+  for (size_t i = 0; i < r.spec->choices.size(); ++i) {
+    ImGui::SameLine();
+    const std::string choice = r.spec->choices[i];
+    if (ImGui::RadioButton((choice + "##" + r.spec->name).c_str(), r.get() == double(i))) r.set(double(i)), done = true;
+    remember(p, r.spec->name + " " + choice);
+  }
+  return done;
+}
+
+// One option from a technique's table: a checkbox, radio buttons, an integer slider or a float drag over
+// its range. Returns true when an edit ended (the GI is rebuilt then, not on every step of a drag).
 bool optionWidget(PanelContext& p, const gi::OptionRef& r) {
+  if (r.isChoice()) return choiceWidget(p, r);
   const std::string label = r.spec->name;
   bool done = false;
   if (r.isBool()) {

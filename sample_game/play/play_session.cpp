@@ -14,7 +14,7 @@ PlaySession::PlaySession(const Options& o, render::VulkanContext& ctx, render::R
       renderer_(renderer),
       window_(window),
       script_(std::move(script)),
-      gi_(ctx, renderer, scheduler, assets, gi, o.giSettings, GiControl::modeOf(o.gi, o.vplSource)) {
+      gi_(ctx, renderer, scheduler, assets, gi, o.giSettings, GiControl::modeOf(o.gi)) {
   if (o.showsUi()) {
     ui_ = std::make_unique<ImGuiOverlay>(ctx);
     renderer.addFeature(ui_.get());

@@ -1,6 +1,7 @@
 #pragma once
 // Scenes the project builds in code, so the default run needs no files.
 #include <string>
+#include <vector>
 
 #include "dyngi/engine/ecs/world.h"
 #include "dyngi/engine/scene/assets.h"
@@ -38,6 +39,8 @@ struct TwoRoomsLayout {
 };
 
 bool isBuiltinScene(const std::string& name);
+const std::vector<std::string>& builtinSceneNames();   // what --scene NAME takes besides a file
+const std::vector<std::string>& animatedSceneNames();  // what --animate takes (buildAnimatedScene)
 // One mesh entity of a built-in scene: transform, mesh, a diffuse material of `albedo`, a name, and the
 // static or dynamic tag.
 scene::Entity addSceneMesh(ecs::World& world, scene::AssetStore& assets, scene::MeshData mesh, const glm::vec3& albedo,

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <glm/gtc/quaternion.hpp>
 #include <unordered_set>
 
@@ -23,8 +24,20 @@ Light cornellSpot(glm::vec3 color) {
 }
 }  // namespace
 
+const std::vector<std::string>& builtinSceneNames() {
+  static const std::vector<std::string> names = {"cornell", "cornell-dynamic", "showcase", "two-rooms", "two-rooms-door"};
+  return names;
+}
+
+const std::vector<std::string>& animatedSceneNames() {
+  static const std::vector<std::string> names = {"static",      "moving-spot",  "rotating-object",  "moving-camera",
+                                                 "walking-fox", "fox-and-spot", "fox-spot-light-on"};
+  return names;
+}
+
 bool isBuiltinScene(const std::string& name) {
-  return name == "cornell" || name == "cornell-dynamic" || name == "showcase" || name == "two-rooms" || name == "two-rooms-door";
+  const std::vector<std::string>& names = builtinSceneNames();
+  return std::find(names.begin(), names.end(), name) != names.end();
 }
 
 Entity addSceneMesh(ecs::World& w, AssetStore& assets, MeshData mesh, const glm::vec3& albedo, const Transform& t, bool dynamic,

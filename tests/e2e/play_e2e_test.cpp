@@ -293,7 +293,7 @@ TEST(SamplePlay, ResizeMidSessionKeepsTheSceneAndThePanel) {
     std::ofstream(dir.file("resize.txt")) << "3 resize 640 400\n8 screenshot " << shot << "\n9 quit\n";
     const SampleRun r = dyngi::test::runSample(
         (window ? "env DISPLAY=" + xvfb.display() + " " : std::string()) + DYNGI_SAMPLE_EXE,
-        std::string(window ? "" : "--headless --ui on") + " --scene cornell --gi svo --size 320x320 --validation --input-script " + dir.file("resize.txt"),
+        std::string(window ? "" : "--headless --ui on") + " --scene cornell --gi temporal --size 320x320 --validation --input-script " + dir.file("resize.txt"),
         dir, 300);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const Png p = readPng(shot);

@@ -14,6 +14,7 @@
 
 #include "dyngi/engine/render/image_io.h"
 #include "support/gltf_writer.h"
+#include "dyngi/gi/technique.h"
 #include "support/sample_run.h"
 #include "support/shared_scenes.h"
 #include "support/temp_dir.h"
@@ -138,9 +139,9 @@ TEST_P(SampleGiMode, WritesAGoodFrame) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Sample, SampleGiMode,
-                         ::testing::Values(GiCase{"off", "--gi off", false}, GiCase{"svo", "--gi svo", true},
-                                           GiCase{"bvh", "--gi bvh", true},
-                                           GiCase{"svo_rsm", "--gi svo --vpl-source rsm --vpls 64", false},
+                         ::testing::Values(GiCase{"off", "--gi off", false}, GiCase{"temporal", "--gi temporal", true},
+                                           GiCase{"temporal_bvh", "--gi temporal --visibility bvh", true},
+                                           GiCase{"many_lights", "--gi many-lights --vpls 64", false},
                                            GiCase{"vct", "--gi vct", false}, GiCase{"path", "--gi path --spp 4", false}),
                          [](const auto& p) { return std::string(p.param.name); });
 
@@ -150,7 +151,7 @@ INSTANTIATE_TEST_SUITE_P(Sample, SampleGiMode,
 TEST(ImageCompare, RegionMeansAndBadRegions) {
   TempDir dir;
   for (const char* gi : {"off", "vct"}) {
-    SampleRun r = runSample(std::string("--headless --frames 2 --size 32x32 --voxel-res 64 --gi ") + gi + " --hdr-out " +
+    SampleRun r = runSample(std::string("--headless --frames 2 --size 32x32 --voxel-resolution 64 --gi ") + gi + " --hdr-out " +
                                 dir.file(std::string(gi) + ".exr"),
                             dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -184,7 +185,7 @@ TEST(ImageCompare, RegionMeansAndBadRegions) {
 // --gi vct with its options: every stage it declares is timed, and its own figures are in the stats.
 TEST(SampleVct, TimesEveryStageAndReportsItsSettings) {
   TempDir dir;
-  SampleRun r = runSample("--headless --validation --size 64x64 --frames 4 --gi vct --bounces 2 --voxel-res 64 --cones 4 --trace-scale 1" +
+  SampleRun r = runSample("--headless --validation --size 64x64 --frames 4 --gi vct --bounces 2 --voxel-resolution 64 --diffuse-cones 4 --trace-scale 1" +
                               withOutputs(dir),
                           dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -195,7 +196,7 @@ TEST(SampleVct, TimesEveryStageAndReportsItsSettings) {
   ASSERT_TRUE(o.stats.contains("vct")) << o.stats.dump();
   EXPECT_EQ(o.stats["vct"].value("trace_width", 0.0), 64.0);
   EXPECT_EQ(o.stats["settings"].value("bounces", 0.0), 2.0) << o.stats["settings"].dump();
-  EXPECT_EQ(o.stats["settings"].value("cones", 0.0), 4.0);
+  EXPECT_EQ(o.stats["settings"].value("diffuse-cones", 0.0), 4.0);
   // Its volumes at 64^3 with 2 bounces, by hand: the radiance chain (299593 RGBA16F texels), the atlas
   // (192 x 32 x 32 and 5 levels below, 224694), the direct image and the bounce's (64^3 each):
   // 8388600 bytes, 8 MiB.
@@ -207,9 +208,9 @@ TEST(SampleVct, TimesEveryStageAndReportsItsSettings) {
   EXPECT_LT(cleared, 0.5 * 64 * 64 * 64);
   // A value out of its range is one clear error line and exit 2.
   TempDir bad;
-  SampleRun b = runSample("--headless --frames 1 --size 32x32 --gi vct --cones 0" + withOutputs(bad), bad);
+  SampleRun b = runSample("--headless --frames 1 --size 32x32 --gi vct --diffuse-cones 0" + withOutputs(bad), bad);
   EXPECT_EQ(b.exitCode, 2);
-  EXPECT_NE(b.err.find("--cones"), std::string::npos) << b.err;
+  EXPECT_NE(b.err.find("--diffuse-cones"), std::string::npos) << b.err;
 }
 
 // --stage-times fenced times each pass by the CPU clock between fences at its ends. Its truth is the
@@ -222,7 +223,7 @@ TEST(SampleStats, FencedStageTimesAccountForTheFrame) {
   };
   auto run = [](const char* traceFrames) {
     TempDir dir;
-    SampleRun r = runSample(std::string("--headless --size 128x128 --frames 10 --warmup 4 --gi vct --voxel-res 64 --stage-times fenced "
+    SampleRun r = runSample(std::string("--headless --size 128x128 --frames 10 --warmup 4 --gi vct --voxel-resolution 64 --stage-times fenced "
                                         "--trace-frames ") + traceFrames + " --stats " + dir.file("stats.json"), dir);
     EXPECT_EQ(r.exitCode, 0) << r.err;
     nlohmann::json j = nlohmann::json::parse(std::ifstream(dir.file("stats.json")), nullptr, false);
@@ -257,11 +258,11 @@ TEST(SampleAnimate, EveryScriptedSceneRendersAGoodFrame) {
       DYNGI_SHARED_SCENE_OR_SKIP(fox, "Fox.glb");
     }
     TempDir dir;
-    SampleRun r = runSample(std::string("--headless --validation --size 64x64 --frames 4 --gi svo --animate ") + scene + withOutputs(dir), dir);
+    SampleRun r = runSample(std::string("--headless --validation --size 64x64 --frames 4 --gi temporal --animate ") + scene + withOutputs(dir), dir);
     ASSERT_EQ(r.exitCode, 0) << scene << ": " << r.err;
     Outputs o = readOutputs(dir, 64, 64);
     expectAGoodImage(o, std::string("--animate ") + scene);
-    expectDocumentedKeys(o.stats, "svo", true);
+    expectDocumentedKeys(o.stats, "temporal", true);
     EXPECT_EQ(o.stats.value("scene", ""), std::string("animate:") + scene);
   }
 }
@@ -270,7 +271,7 @@ TEST(SampleAnimate, EveryScriptedSceneRendersAGoodFrame) {
 // level can meet ends at the floor, says so once on stderr, and still renders a good image.
 TEST(SampleBudget, AnUnreachableBudgetEndsAtTheFloorAndSaysSo) {
   TempDir dir;
-  SampleRun r = runSample("--headless --validation --size 64x64 --frames 40 --gi svo --gi-budget-ms 0.001" + withOutputs(dir), dir);
+  SampleRun r = runSample("--headless --validation --size 64x64 --frames 40 --gi temporal --gi-budget-ms 0.001" + withOutputs(dir), dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("the GI budget of 0.001 ms was not met"), std::string::npos) << r.err;
   Outputs o = readOutputs(dir, 64, 64);
@@ -287,26 +288,28 @@ TEST(SampleBudget, AnUnreachableBudgetEndsAtTheFloorAndSaysSo) {
   EXPECT_NEAR(o.stats["settings"]["gi-budget-ms"].get<double>(), 0.001, 1e-9);
 }
 
+// Every view of every technique, as the registry lists them (final and indirect for each, then its
+// own), and the voxel scene's without GI.
 TEST(SampleView, EveryDebugViewWritesAnImage) {
-  struct View {
-    const char* view;
-    const char* gi;
-  };
-  for (View v : {View{"final", "--gi svo"}, View{"voxels", "--gi off"}, View{"svo-steps", "--gi svo"},
-                 View{"indirect", "--gi svo --vpl-source rsm --vpls 64"}, View{"vpls", "--gi svo --vpl-source rsm --vpls 64"},
-                 View{"subimages", "--gi svo --vpl-source rsm --vpls 64"}, View{"radiance", "--gi vct"}, View{"opacity", "--gi vct"},
-                 View{"ao", "--gi vct"}, View{"indirect", "--gi vct"}, View{"specular", "--gi vct"}}) {
+  std::vector<std::pair<std::string, std::string>> cases = {{"voxels", "off"}, {"svo-steps", "temporal"}};
+  for (const dyngi::gi::TechniqueEntry& e : dyngi::gi::techniqueRegistry()) {
+    cases.push_back({"final", e.name});
+    cases.push_back({"indirect", e.name});
+    for (const char* view : e.debugViews) cases.push_back({view, e.name});
+  }
+  for (const auto& [view, gi] : cases) {
     TempDir dir;
-    SampleRun r = runSample(std::string("--headless --validation --size 64x64 --frames 3 --view ") + v.view + " " + v.gi + withOutputs(dir), dir);
-    ASSERT_EQ(r.exitCode, 0) << v.view << ": " << r.err;
+    const std::string fewerVpls = gi == "many-lights" ? " --vpls 64" : "";
+    SampleRun r = runSample("--headless --validation --size 64x64 --frames 3 --view " + view + " --gi " + gi + fewerVpls + withOutputs(dir), dir);
+    ASSERT_EQ(r.exitCode, 0) << view << " of " << gi << ": " << r.err;
     Outputs o = readOutputs(dir, 64, 64);
-    const bool fraction = std::string(v.view) == "ao" || std::string(v.view) == "opacity";
-    expectAGoodImage(o, std::string("--view ") + v.view, 2.0, fraction ? 245.0 : 200.0);
+    const bool fraction = view == "ao" || view == "opacity";
+    expectAGoodImage(o, "--view " + view + " --gi " + gi, 2.0, fraction ? 245.0 : 200.0);
   }
 }
 
 TEST(SampleHostileInput, SceneFilesEndInOneLineOrRenderNeverHangOrAbort) {
-  // Each file once crashed, hung or aborted a GI run (issue 14); each now gets its answer in seconds.
+  // Each file once crashed, hung or aborted a GI run; each now gets its answer in seconds.
   using dyngi::test::GltfSpec;
   struct Case {
     const char* name;
@@ -333,7 +336,7 @@ TEST(SampleHostileInput, SceneFilesEndInOneLineOrRenderNeverHangOrAbort) {
   cases.push_back({"huge_coordinates", quad(), 2, "beyond the coordinate range"});
   for (auto& p : cases.back().spec.meshes[0][0].positions) p *= 3e38f;
   for (const Case& c : cases) {
-    for (const char* gi : {"off", "svo", "bvh", "vct"}) {
+    for (const char* gi : {"off", "temporal", "temporal --visibility bvh", "vct"}) {
       TempDir dir;
       std::string file = dir.write(std::string(c.name) + ".glb", dyngi::test::writeGlb(c.spec));
       SampleRun r = runSample(std::string("--headless --validation --frames 2 --size 32x32 --gi ") + gi + " --scene " + file +
@@ -354,7 +357,7 @@ TEST(SampleHostileInput, RenderSizeBeyondDeviceMemoryIsRefusedWithoutLeaks) {
   // 8192^2 with GI needs more than a software device's heap: refused with the limit named, exit 2, and
   // the validation layer (on) sees every object released on the way out.
   TempDir dir;
-  SampleRun r = runSample("--headless --validation --frames 1 --size 8192x8192 --gi svo", dir, 300);
+  SampleRun r = runSample("--headless --validation --frames 1 --size 8192x8192 --gi temporal", dir, 300);
   if (r.exitCode == 0) GTEST_SKIP() << "this device holds an 8192^2 GI frame";
   EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_NE(r.err.find("device memory"), std::string::npos) << r.err;
@@ -365,7 +368,7 @@ TEST(SampleHostileInput, RenderSizeBeyondDeviceMemoryIsRefusedWithoutLeaks) {
 TEST(SampleOptions, AdjustedVplCountIsReportedAsUsed) {
   // 100 VPLs over 3 bounces cannot split evenly: the technique uses 99, the stats say 99 (and what was
   // asked), and one line says why. Both VPL techniques round the same way.
-  for (const char* technique : {"--gi svo", "--gi svo --vpl-source rsm"}) {
+  for (const char* technique : {"--gi temporal", "--gi many-lights"}) {
     TempDir dir;
     SampleRun r = runSample(std::string("--headless --size 32x32 --frames 2 --vpls 100 --bounces 3 ") + technique + " --stats " +
                                 dir.file("stats.json"),
@@ -381,6 +384,6 @@ TEST(SampleOptions, AdjustedVplCountIsReportedAsUsed) {
     ASSERT_TRUE(j.contains("settings")) << j.dump();
     EXPECT_EQ(j["settings"].value("vpls", 0.0), 99.0);
     EXPECT_EQ(j["settings"].value("bounces", 0.0), 3.0);
-    EXPECT_TRUE(j["settings"].contains("interleave") && j["settings"].contains("clamp") && j["settings"].contains("voxel-res")) << j.dump();
+    EXPECT_TRUE(j["settings"].contains("interleave") && j["settings"].contains("distance-clamp") && j["settings"].contains("voxel-resolution")) << j.dump();
   }
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "support/report.h"
 #include "indirect/clamp_spread.h"
 #include "shaders/shared/clamp_spread.h"
 
@@ -55,7 +56,7 @@ TEST(ClampSpread, GivesBackOnAPlaneWhatTheClampDrops) {
         const double exact = lightOnPlane(table, h, c, 0.0, 0.0, half, n);
         const double clamped = lightOnPlane(table, h, c, B, 0.0, half, n);
         const double spreadBack = lightOnPlane(table, h, c, B, spread, half, n);
-        std::printf("c %+.1f h %.3f stretch %.0f: unclamped %.4f, clamped %.4f, with the spread %.4f\n", c, h, spread, exact, clamped,
+        dyngi::test::report("c %+.1f h %.3f stretch %.0f: unclamped %.4f, clamped %.4f, with the spread %.4f\n", c, h, spread, exact, clamped,
                     spreadBack);
         EXPECT_NEAR(spreadBack / exact, 1.0, 0.01) << "c " << c << " h " << h << " stretch " << spread;
         if (c >= 0.0 && h < 0.03) {

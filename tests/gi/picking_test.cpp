@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "support/report.h"
 #include "dyngi/engine/render/frame_uniforms.h"
 #include "dyngi/engine/render/snapshot.h"
 #include "dyngi/engine/scene/components.h"
@@ -129,7 +130,7 @@ TEST(Picking, AlphaCutOutsArePickedThroughAsEmbreeSeesThem) {
         EXPECT_EQ(pick->entity, fence.floor) << x << "," << y;
       }
     }
-  std::printf("fence picked at %d pixels; %d pixels picked the floor through the cut half\n", onFence, throughTheCut);
+  dyngi::test::report("fence picked at %d pixels; %d pixels picked the floor through the cut half\n", onFence, throughTheCut);
   EXPECT_GT(onFence, 200);
   EXPECT_GT(throughTheCut, 50);
 }

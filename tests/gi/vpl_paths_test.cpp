@@ -5,8 +5,9 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtx/quaternion.hpp>
 
+#include "support/report.h"
 #include "dyngi/engine/scene/transform_system.h"
-#include "dyngi/gi/vpl_paths.h"
+#include "techniques/temporal/vpl_paths.h"
 #include "scenes/builtin_scenes.h"
 #include "support/scene_triangles.h"
 #include "gi/skinned_bar_room.h"
@@ -48,7 +49,7 @@ struct Fixture {
 // point of the staleness tests.
 constexpr uint32_t kStaleSets = 4;
 gi::VplPaths freshPaths(Fixture& f, const render::RenderSnapshot& snap) {
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 256, .bounces = 1}, .temporalSets = kStaleSets});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 256, .bounces = 1}, .temporalSets = kStaleSets});
   paths.update(snap, f.bvh, f.assets, {});
   EXPECT_EQ(paths.stats().valid, 256u);
   for (uint32_t s = 0; s < kStaleSets; ++s) paths.markSetRendered(s);
@@ -73,7 +74,7 @@ TEST_P(VplPathsOccluder, InvalidatesExactlyWhatItBlocksAndDescendants) {
   f.world.add(occ, Material{});
   std::unordered_set<ecs::Entity> moved;
   auto snap = f.frame(&moved);
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 3000, .bounces = 3, .bounceTail = tail}, .reshootBudget = 100000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 3000, .bounces = 3, .bounceTail = tail}, .reshootBudget = 100000});
   paths.update(snap, f.bvh, f.assets, moved);
   ASSERT_EQ(paths.stats().valid, 3000u);
   std::vector<gi::PathVpl> before = paths.vpls();
@@ -128,7 +129,7 @@ TEST_P(VplPathsOccluder, InvalidatesExactlyWhatItBlocksAndDescendants) {
     invalid += isInvalid;
     mismatches += isInvalid != expectInvalid[i];
   }
-  std::printf("occluder: %d VPLs blocked directly (%d from a parent VPL), %d escaped rays it now stands in, %d probes blocked, %d invalid "
+  dyngi::test::report("occluder: %d VPLs blocked directly (%d from a parent VPL), %d escaped rays it now stands in, %d probes blocked, %d invalid "
               "with descendants, %d mismatches\n",
               blocked, blockedAfterBounce, escapedNowBlocked, probesBlocked, invalid, mismatches);
   EXPECT_EQ(mismatches, 0);
@@ -143,7 +144,7 @@ TEST(VplPaths, AnUnchangedSceneInvalidatesNothing) {
     Fixture f;
     f.world.each<Light>([&](Entity e, const Light&) { f.world.write<Light>(e).type = type; });
     auto snap = f.frame();
-    gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 30000, .bounces = 3, .bounceTail = true}, .reshootBudget = 100000});
+    gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 30000, .bounces = 3, .bounceTail = true}, .reshootBudget = 100000});
     paths.update(snap, f.bvh, f.assets, {});
     ASSERT_EQ(paths.stats().valid, 30000u);
     std::unordered_set<ecs::Entity> none;
@@ -163,7 +164,7 @@ TEST(VplPaths, AnUnchangedSceneInvalidatesNothing) {
 TEST(VplPaths, AProbesSurfaceMovingInvalidatesItsVpl) {
   Fixture f;
   auto snap = f.frame();
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 3000, .bounces = 3, .bounceTail = true}, .reshootBudget = 100000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 3000, .bounces = 3, .bounceTail = true}, .reshootBudget = 100000});
   paths.update(snap, f.bvh, f.assets, {});
   ASSERT_EQ(paths.stats().valid, 3000u);
   const std::vector<gi::PathVpl> before = paths.vpls();
@@ -198,7 +199,7 @@ TEST(VplPaths, BudgetIsRespectedRestoreIsTimelyAndCursorIsFair) {
   Fixture f;
   auto snap = f.frame();
   const uint32_t budget = 37;
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 600, .bounces = 2}, .reshootBudget = budget, .reshootBurst = 0});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 600, .bounces = 2}, .reshootBudget = budget, .reshootBurst = 0});
   std::unordered_set<ecs::Entity> none;
   // From empty: valid grows by exactly the budget per frame and is complete after ceil(600/37) frames.
   uint32_t frames = 0;
@@ -238,10 +239,10 @@ TEST(VplPaths, ABurstRefillsThePoolAtOnceUpToItsLimit) {
   Fixture f;
   auto snap = f.frame();
   std::unordered_set<ecs::Entity> none;
-  gi::VplPaths unlimited(gi::TemporalOptions{.vpl = {.vplCount = 600, .bounces = 2}, .reshootBudget = 37, .reshootBurst = 4096});
+  gi::VplPaths unlimited(gi::TemporalOptions{.vpl = {.vpls = 600, .bounces = 2}, .reshootBudget = 37, .reshootBurst = 4096});
   unlimited.update(snap, f.bvh, f.assets, none);
   EXPECT_EQ(unlimited.stats().valid, 600u) << "one frame";
-  gi::VplPaths limited(gi::TemporalOptions{.vpl = {.vplCount = 600, .bounces = 2}, .reshootBudget = 37, .reshootBurst = 100});
+  gi::VplPaths limited(gi::TemporalOptions{.vpl = {.vpls = 600, .bounces = 2}, .reshootBudget = 37, .reshootBurst = 100});
   uint32_t frames = 0;
   while (limited.stats().valid < 600 && frames < 100) {
     limited.update(snap, f.bvh, f.assets, none);
@@ -329,7 +330,7 @@ TEST(VplPaths, ASecondLightSwitchedOnRedrawsEveryPath) {
 }
 
 TEST(VplPaths, TemporalSetsPartitionThePool) {
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 512, .bounces = 1}, .temporalSets = 16});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 512, .bounces = 1}, .temporalSets = 16});
   std::vector<int> seen(512, 0);
   for (uint32_t set = 0; set < 16; ++set)
     for (uint32_t i = set; i < 512; i += 16) {
@@ -342,7 +343,7 @@ TEST(VplPaths, TemporalSetsPartitionThePool) {
 TEST(VplPaths, LightSwitchedOffLeavesNoValidVpl) {
   Fixture f;
   auto snap = f.frame();
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 256, .bounces = 2}, .reshootBudget = 1000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 256, .bounces = 2}, .reshootBudget = 1000});
   std::unordered_set<ecs::Entity> none;
   paths.update(snap, f.bvh, f.assets, none);
   ASSERT_EQ(paths.stats().valid, 256u);
@@ -380,7 +381,7 @@ TEST(VplPaths, DeformingSkinnedMeshInvalidatesExactlyWhatItBlocksAndWhatLiesOnIt
   // Hold the animation at t = 0 while the paths are shot: the bar stands straight.
   world.write<Animator>(bar.animator).playing = false;
   auto snap = frame(0.0, 0, moved);
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 3000, .bounces = 3}, .reshootBudget = 100000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 3000, .bounces = 3}, .reshootBudget = 100000});
   paths.update(snap, bvh, assets, moved);
   ASSERT_EQ(paths.stats().valid, 3000u);
   const std::vector<gi::PathVpl> before = paths.vpls();
@@ -437,7 +438,7 @@ TEST(VplPaths, DeformingSkinnedMeshInvalidatesExactlyWhatItBlocksAndWhatLiesOnIt
     invalid += isInvalid;
     mismatches += isInvalid != expectInvalid[i];
   }
-  std::printf("skinned bar: %d VPLs on it, %d newly blocked, %d escaped rays it now stands in, %d invalid with descendants, %d mismatches\n",
+  dyngi::test::report("skinned bar: %d VPLs on it, %d newly blocked, %d escaped rays it now stands in, %d invalid with descendants, %d mismatches\n",
               surface, blocked, escapedNowBlocked, invalid, mismatches);
   EXPECT_EQ(mismatches, 0);
 }
@@ -465,7 +466,7 @@ TEST(VplPaths, BounceTailRatioIsTheAlbedoInAClosedBoxAndZeroOverALoneFloor) {
     gi::EmbreeScene bvh;
     bvh.sync(world, assets, 0);
     const auto snap = render::extractSnapshot(world, assets, 0);
-    gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 600, .bounces = 2, .bounceTail = true}, .reshootBudget = 100000});
+    gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 600, .bounces = 2, .bounceTail = true}, .reshootBudget = 100000});
     paths.update(snap, bvh, assets, {});
     EXPECT_EQ(paths.stats().valid, 600u);
     return paths.bounceTailScale();
@@ -520,7 +521,7 @@ struct EmitterRoom {
 TEST(VplPaths, EmissivePanelStartsPathsOnItselfWithItsExactFlux) {
   EmitterRoom room(false);
   auto snap = room.frame();
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 2000, .bounces = 2}, .reshootBudget = 100000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 2000, .bounces = 2}, .reshootBudget = 100000});
   paths.update(snap, room.bvh, room.assets, {});
   ASSERT_EQ(paths.stats().valid, 2000u);
   glm::dvec3 flux(0.0);
@@ -546,7 +547,7 @@ TEST(VplPaths, EmitterPathsShareByPowerAndFollowTheEmitter) {
   EmitterRoom room(true);
   std::unordered_set<ecs::Entity> moved;
   auto snap = room.frame(&moved);
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 4000, .bounces = 1}, .reshootBudget = 100000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 4000, .bounces = 1}, .reshootBudget = 100000});
   paths.update(snap, room.bvh, room.assets, moved);
   auto fromPanel = [&] {
     uint32_t n = 0;
@@ -599,7 +600,7 @@ TEST(VplPaths, TexturedEmitterStartsItsLightWhereItsTextureEmits) {
     }
   room.world.write<Material>(room.panel).emissiveTexture = room.assets.addTexture(t);
   auto snap = room.frame();
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 4000, .bounces = 1}, .reshootBudget = 100000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 4000, .bounces = 1}, .reshootBudget = 100000});
   paths.update(snap, room.bvh, room.assets, {});
   glm::dvec3 flux(0.0);
   for (const gi::PathVpl& v : paths.vpls()) {
@@ -628,7 +629,7 @@ TEST(VplPaths, AnAlphaCutToggledRedrawsThePathsItChanges) {
   tracker.compute(w, assets, 0);
   gi::EmbreeScene bvh;
   bvh.sync(w, assets, 0);
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 4000, .bounces = 2}, .reshootBudget = 100000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 4000, .bounces = 2}, .reshootBudget = 100000});
   paths.update(render::extractSnapshot(w, assets, 0), bvh, assets, {});
   auto onCutHalf = [](const glm::vec3& p) { return std::abs(p.y - test::kFenceHeight) < 1e-3f && p.x < 0.0f; };
   auto underHole = [](const glm::vec3& p) { return std::abs(p.y) < 1e-3f && test::underTheFence(p) == test::Under::Hole; };
@@ -675,7 +676,7 @@ TEST(VplPaths, AnAlphaCutToggledRedrawsThePathsItChanges) {
     for (size_t i = 0; i < a.size(); ++i) n += a[i].placed != b[i].placed || glm::distance(a[i].position, b[i].position) > 1e-5f;
     return n;
   };
-  gi::VplPaths fresh(gi::TemporalOptions{.vpl = {.vplCount = 4000, .bounces = 2}, .reshootBudget = 100000});
+  gi::VplPaths fresh(gi::TemporalOptions{.vpl = {.vpls = 4000, .bounces = 2}, .reshootBudget = 100000});
   fresh.update(render::extractSnapshot(w, assets, 0), bvh, assets, {});
   EXPECT_EQ(differences(paths.vpls(), fresh.vpls()), 0) << "VPLs not where a fresh shot puts them";
 

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "support/report.h"
 #include "dyngi/engine/render/image_metrics.h"
 #include "render/cornell_regions.h"
 #include "render/gi_run.h"
@@ -27,7 +28,7 @@ gi::GiSettings settingsFor(const char* technique, uint32_t bounces, bool tail, u
   s.technique = technique;
   gi::VplOptions& v = std::string(technique) == "temporal" ? s.temporal.vpl : s.manyLights.vpl;
   v.seed = seed;
-  v.vplCount = 1024 * bounces;
+  v.vpls = 1024 * bounces;
   v.bounces = bounces;
   v.bounceTail = tail;
   s.temporal.temporalSets = 1;
@@ -50,7 +51,7 @@ Measure compare(const Frame& f, const render::ImageRgba& ref, const scene::Asset
     for (uint8_t b : mask) n += b;
     if (n < 60) continue;
     double a = luminance(render::meanOver(f.hdr, &mask)), b = luminance(render::meanOver(ref, &mask));
-    if (print) std::printf("    %-16s %.4f / %.4f = %.3f\n", name.c_str(), a, b, a / b);
+    if (print) dyngi::test::report("    %-16s %.4f / %.4f = %.3f\n", name.c_str(), a, b, a / b);
     if (std::abs(a / b - 1.0) > m.worstRegion) m.worstRegion = std::abs(a / b - 1.0), m.worstName = name;
   }
   return m;
@@ -59,7 +60,7 @@ Measure compare(const Frame& f, const render::ImageRgba& ref, const scene::Asset
 
 TEST_F(RenderTest, BounceTailBringsBothVplTechniquesToThePathTracersManyBounces) {
   render::ImageRgba reference;
-  for (const char* technique : {"temporal", "many_lights"})
+  for (const char* technique : {"temporal", "many-lights"})
     for (uint32_t bounces : {1u, 2u, 3u}) {
       Measure off, on;
       for (bool tail : {false, true}) {
@@ -79,7 +80,7 @@ TEST_F(RenderTest, BounceTailBringsBothVplTechniquesToThePathTracersManyBounces)
         }
         for (glm::vec4& c : mean->hdr) c /= float(seeds);
         Measure m = compare(*mean, reference, run->assets, bounces == 3);
-        std::printf("%-11s bounces %u tail %-3s: image %.3f of the path tracer's (%u bounces), worst region %s off by %.1f%%\n", technique,
+        dyngi::test::report("%-11s bounces %u tail %-3s: image %.3f of the path tracer's (%u bounces), worst region %s off by %.1f%%\n", technique,
                     bounces, tail ? "on" : "off", m.mean, kReferenceBounces, m.worstName.c_str(), 100 * m.worstRegion);
         (tail ? on : off) = m;
       }
@@ -93,15 +94,9 @@ TEST_F(RenderTest, BounceTailBringsBothVplTechniquesToThePathTracersManyBounces)
       if (bounces == 3) {
         EXPECT_LT(off.mean, 0.95) << technique << ": without the tail 3 bounces miss the later ones";  // measured 0.92
         EXPECT_NEAR(on.mean, 1.0, 0.03) << technique;
-        // Regions (issue 16: each within 10 percent). Temporal, its paths' first directions from the R3
-        // sequence, its probes gathered: 4.2% off at worst (the tall box's face to the red wall; 6.4% when
-        // it scaled its last bounce, 18% without the tail). Many
-        // lights: 5.1% (the short box's front, dark). Before its seed turned the bounces' Halton points
-        // every seed shot the same directions, and the short box's front kept one fixed error: 12.4%
-        // dark; before it gathered the tail's probes (scaling its last bounce instead), the tall box's
-        // face to the red wall was 13.7% bright. Its bounces once drew each bounce's direction from the
-        // same Halton point shifted, and the third put 10x the path tracer's share on the short box's
-        // front: 24% then.
+        // Regions (each within 10 percent). Temporal, its paths' first directions from the R3 sequence, its
+        // probes gathered: 4.2% off at worst (the tall box's face to the red wall). Many lights: 5.1% (the
+        // short box's front, dark), its seed turning the bounces' Halton points so no error is fixed.
         EXPECT_LE(on.worstRegion, 0.10) << technique << ": " << on.worstName;
       }
     }

@@ -4,6 +4,7 @@
 // changes nothing. How well it holds a budget is measured by scripts/budget_run.sh, not here (timing).
 #include <gtest/gtest.h>
 
+#include "support/report.h"
 #include "render/gi_run.h"
 #include "render/render_fixture.h"
 
@@ -54,7 +55,7 @@ TEST_F(RenderTest, EveryQualityKnobAtItsFloorKeepsTheMeanIndirectLight) {
       }
       lowered.step(kFrames);
       const double mean = luminance(render::meanOver(lowered.indirect()));
-      std::printf("knob floor| %s seed %u: mean indirect %.5f with every VPL, %.5f at the floor (%+.1f%%)\n", e.name, seed, fullMean, mean,
+      dyngi::test::report("knob floor| %s seed %u: mean indirect %.5f with every VPL, %.5f at the floor (%+.1f%%)\n", e.name, seed, fullMean, mean,
                   100 * (mean / fullMean - 1));
       meanRatio += mean / fullMean / seeds;
     }

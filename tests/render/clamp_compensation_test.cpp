@@ -1,4 +1,4 @@
-// The distance clamp without its lost energy (issue 16): the gather's G = cos cos / max(B, d^2) drops the
+// The distance clamp without its lost energy: the gather's G = cos cos / max(B, d^2) drops the
 // light of VPLs closer than sqrt(B); the compensation (indirect/shaders/compensate.comp, added by the
 // merge filter's second pass) gives it back from short screen-space rays. Checked against the path
 // tracer: the room's corner strips (where the clamp takes most), and the tail of the per-pixel error
@@ -7,6 +7,7 @@
 
 #include <cstdio>
 
+#include "support/report.h"
 #include "dyngi/engine/render/image_metrics.h"
 #include "dyngi/engine/scene/scripted_motion.h"
 #include "render/cornell_regions.h"
@@ -25,10 +26,10 @@ gi::GiSettings vplSettings(const std::string& technique, uint32_t bounces, float
   gi::GiSettings s;
   s.technique = technique;
   gi::VplOptions& v = technique == "temporal" ? s.temporal.vpl : s.manyLights.vpl;
-  v.vplCount = 1024;
+  v.vpls = 1024;
   v.bounces = bounces;
   v.distanceClamp = clamp;
-  v.compensationRays = rays;
+  v.clampCompensation = rays;
   v.clampSpread = spread;
   return s;
 }
@@ -66,7 +67,7 @@ TEST_F(RenderTest, ClampCompensationGivesTheCornersTheirLightBack) {
   // One bounce: the VPLs stand for the direct light where they lie, which the compensation's rays read
   // from the same surfaces (emission + shadowed direct light). Both VPL techniques share the pass.
   render::ImageRgba reference;
-  for (const char* technique : {"temporal", "many_lights"}) {
+  for (const char* technique : {"temporal", "many-lights"}) {
     SCOPED_TRACE(technique);
     double corner[2] = {0, 0}, image[2] = {0, 0};
     for (uint32_t rays : {0u, 8u}) {
@@ -79,7 +80,7 @@ TEST_F(RenderTest, ClampCompensationGivesTheCornersTheirLightBack) {
       ASSERT_GT(n, 500u);
       corner[rays > 0] = ratioOver(f.hdr, reference, strips);
       image[rays > 0] = luminance(render::meanOver(f.hdr)) / luminance(render::meanOver(reference));
-      std::printf("%-11s compensation rays %u: corner strips (%zu px) %.3f, image %.3f of the path tracer's\n", technique, rays, n,
+      dyngi::test::report("%-11s compensation rays %u: corner strips (%zu px) %.3f, image %.3f of the path tracer's\n", technique, rays, n,
                   corner[rays > 0], image[rays > 0]);
     }
     // Measured: temporal 0.857 -> 0.927 of the path tracer in the strips, image 0.970 -> 0.981; many
@@ -123,7 +124,7 @@ TEST_F(RenderTest, VplImageErrorTailStaysWithinTwiceThePathTracersOwnNoise) {
   const double tailDefaults = render::relativeLuminanceErrorQuantile(defaults, refs[0], 0.99);
   const double tailCompensated = render::relativeLuminanceErrorQuantile(compensated, refs[0], 0.99);
   const double relMseDefaults = render::relativeMse(defaults, refs[0]), relMseCompensated = render::relativeMse(compensated, refs[0]);
-  std::printf("p99 relative luminance error: defaults %.3f, B 0.08 with compensation %.3f; path tracer seed to seed %.3f; relMSE %.5f, %.5f\n",
+  dyngi::test::report("p99 relative luminance error: defaults %.3f, B 0.08 with compensation %.3f; path tracer seed to seed %.3f; relMSE %.5f, %.5f\n",
               tailDefaults, tailCompensated, noise, relMseDefaults, relMseCompensated);
   EXPECT_LE(tailDefaults, 2.0 * noise);
   EXPECT_LE(tailCompensated, 2.0 * noise);
@@ -139,7 +140,7 @@ TEST_F(RenderTest, VplImageErrorTailStaysWithinTwiceThePathTracersOwnNoise) {
 // ClampSpreadLeavesABoxFaceBesideLitFloorDark; docs/QUALITY.md).
 TEST_F(RenderTest, ClampSpreadGivesTheCornersTheirLightBack) {
   render::ImageRgba reference;
-  for (const char* technique : {"temporal", "many_lights"}) {
+  for (const char* technique : {"temporal", "many-lights"}) {
     SCOPED_TRACE(technique);
     double corner[2] = {0, 0}, image[2] = {0, 0};
     for (bool spread : {false, true}) {
@@ -154,7 +155,7 @@ TEST_F(RenderTest, ClampSpreadGivesTheCornersTheirLightBack) {
       std::vector<uint8_t> strips = cornerStrips(f, 0.15f, n);
       corner[spread] = ratioOver(f.hdr, reference, strips);
       image[spread] = luminance(render::meanOver(f.hdr)) / luminance(render::meanOver(reference));
-      std::printf("%-11s clamp spread %d: corner strips (%zu px) %.3f, image %.3f of the path tracer's\n", technique, int(spread), n,
+      dyngi::test::report("%-11s clamp spread %d: corner strips (%zu px) %.3f, image %.3f of the path tracer's\n", technique, int(spread), n,
                   corner[spread], image[spread]);
     }
     EXPECT_GT(corner[1], corner[0] + 0.015) << "the spread gives the corners light back";
@@ -176,7 +177,7 @@ TEST_F(RenderTest, ClampSpreadGivesTheCornersTheirLightBack) {
 TEST_F(RenderTest, ClampSpreadLeavesABoxFaceBesideLitFloorDark) {
   constexpr uint32_t size = 192;
   gi::GiSettings s = vplSettings("temporal", 1, gi::VplOptions{}.distanceClamp, 0);
-  s.temporal.vpl.vplCount = gi::VplOptions{}.vplCount;  // the main job's
+  s.temporal.vpl.vpls = gi::VplOptions{}.vpls;  // the main job's
   GiRun run(context(), s, "cornell-dynamic", size, size);
   run.scheduler.add(ecs::Phase::Update, std::make_unique<scene::ScriptedMotionSystem>());  // the boxes and the spot move
   run.step(60);
@@ -196,7 +197,7 @@ TEST_F(RenderTest, ClampSpreadLeavesABoxFaceBesideLitFloorDark) {
   size_t nCorners = 0;
   const std::vector<uint8_t> corners = cornerStrips(f, 0.15f, nCorners);
   const double baseRatio = ratioOver(f.hdr, reference, base), cornerRatio = ratioOver(f.hdr, reference, corners);
-  std::printf("short box's front face, base strip (%zu px): %.3f of the path tracer; corner strips (%zu px) %.3f\n", n, baseRatio,
+  dyngi::test::report("short box's front face, base strip (%zu px): %.3f of the path tracer; corner strips (%zu px) %.3f\n", n, baseRatio,
               nCorners, cornerRatio);
   EXPECT_NEAR(baseRatio, 1.0, 0.25) << "no smear along the base";
   EXPECT_NEAR(cornerRatio, 1.0, 0.05) << "the room's corners keep their light";

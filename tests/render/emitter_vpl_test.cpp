@@ -5,6 +5,7 @@
 
 #include <cstdio>
 
+#include "support/report.h"
 #include "dyngi/engine/render/image_metrics.h"
 #include "dyngi/engine/scene/gltf_import.h"
 #include "render/cornell_regions.h"
@@ -37,11 +38,11 @@ struct Case {
 };
 std::vector<Case> cases(uint32_t bounces) {
   std::vector<Case> out;
-  for (const char* name : {"svo", "bvh", "many_lights"}) {
+  for (const char* name : {"svo", "bvh", "many-lights"}) {
     gi::GiSettings s;
-    s.technique = std::string(name) == "many_lights" ? "many_lights" : "temporal";
+    s.technique = std::string(name) == "many-lights" ? "many-lights" : "temporal";
     s.temporal.visibility = std::string(name) == "bvh" ? gi::VisibilityBackend::Bvh : gi::VisibilityBackend::Svo;
-    for (gi::VplOptions* v : {&s.temporal.vpl, &s.manyLights.vpl}) v->vplCount = 1024 * bounces, v->bounces = bounces;
+    for (gi::VplOptions* v : {&s.temporal.vpl, &s.manyLights.vpl}) v->vpls = 1024 * bounces, v->bounces = bounces;
     s.temporal.temporalSets = 1;
     s.temporal.reshootBudget = 1024 * bounces;
     out.push_back({name, s});
@@ -69,7 +70,7 @@ TEST_F(RenderTest, EmissivePanelLightsTheRoomThroughBothVplTechniques) {
         for (uint8_t m : mask) n += m;
         const double a = luminance(render::meanOver(f.hdr, &mask)), b = luminance(render::meanOver(reference, &mask));
         if (n < 60 || b < 1e-3) continue;  // too small to average, or unlit (the boxes' faces the panel is behind)
-        std::printf("%-11s bounces %u  %-16s %.4f / %.4f = %.3f\n", c.name, bounces, name.c_str(), a, b, a / b);
+        dyngi::test::report("%-11s bounces %u  %-16s %.4f / %.4f = %.3f\n", c.name, bounces, name.c_str(), a, b, a / b);
         worst = std::max(worst, std::abs(a / b - 1.0));
         // 15 percent (measured: 3.6% at worst with one bounce for the temporal paths, 6.5% for many
         // lights; with two, 6.2% and 12%). The faces only the second bounce reaches (the short box's
@@ -80,7 +81,7 @@ TEST_F(RenderTest, EmissivePanelLightsTheRoomThroughBothVplTechniques) {
         EXPECT_NEAR(a / b, 1.0, tolerance) << c.name << ", " << bounces << " bounce(s): " << name;
       }
       const double rel = render::relativeMse(f.hdr, reference);
-      std::printf("%-11s bounces %u  worst region %.1f%% off, relMSE %.4f\n", c.name, bounces, 100 * worst, rel);
+      dyngi::test::report("%-11s bounces %u  worst region %.1f%% off, relMSE %.4f\n", c.name, bounces, 100 * worst, rel);
     }
   }
 }
@@ -112,7 +113,7 @@ TEST_F(RenderTest, SharedEmissiveCornellBoxLightsTheRoomThroughBothVplTechniques
       const std::vector<uint8_t> mask = surfaceFacing(f, reference, normal, n);
       const double a = luminance(render::meanOver(f.hdr, &mask)), b = luminance(render::meanOver(reference, &mask));
       if (n < 100 || b < 1e-3) continue;
-      std::printf("shared CornellBox.glb %-11s %-10s %.4f / %.4f = %.3f (%zu px)\n", c.name, name, a, b, a / b, n);
+      dyngi::test::report("shared CornellBox.glb %-11s %-10s %.4f / %.4f = %.3f (%zu px)\n", c.name, name, a, b, a / b, n);
       EXPECT_NEAR(a / b, 1.0, 0.15) << c.name << ": " << name;
       ++checked;
     }
@@ -123,7 +124,7 @@ TEST_F(RenderTest, SharedEmissiveCornellBoxLightsTheRoomThroughBothVplTechniques
 // The panel switched off (its emission set to 0, a material edit): the indirect light it made is gone
 // within a few frames in both techniques at their defaults (the temporal one: 16 sets, stale sets dropped).
 TEST_F(RenderTest, EmissivePanelSwitchedOffTakesItsIndirectLightAway) {
-  for (const char* technique : {"temporal", "many_lights"}) {
+  for (const char* technique : {"temporal", "many-lights"}) {
     gi::GiSettings s;
     s.technique = technique;
     GiRun run(context(), s, cornellWithALamp, 64, 64);
@@ -134,7 +135,7 @@ TEST_F(RenderTest, EmissivePanelSwitchedOffTakesItsIndirectLightAway) {
     int frames = 0;
     double now = lit;
     while (frames < 10 && now > 0.01 * lit) run.step(), ++frames, now = luminance(render::meanOver(run.indirect()));
-    std::printf("%-11s indirect %.4f -> under 1%% after %d frame(s) (%.5f)\n", technique, lit, frames, now);
+    dyngi::test::report("%-11s indirect %.4f -> under 1%% after %d frame(s) (%.5f)\n", technique, lit, frames, now);
     EXPECT_LE(frames, 2) << technique;
   }
 }

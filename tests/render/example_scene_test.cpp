@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "support/report.h"
 #include "dyngi/engine/scene/gltf_import.h"
 #include "render/gi_run.h"
 #include "support/example_scene.h"
@@ -25,7 +26,7 @@ TEST(ExampleScene, CommittedGltfIsItsGeneratorsOutput) {
 // orientation and the camera all survive the trip through glTF.
 TEST_F(RenderTest, ExampleGltfRendersAsTheBuiltinCornellBox) {
   gi::GiSettings s;
-  s.technique = "many_lights";  // no history: one frame is its image
+  s.technique = "many-lights";  // no history: one frame is its image
   GiRun builtin(context(), s, "cornell", 96, 96);
   GiRun imported(
       context(), s,
@@ -48,7 +49,7 @@ TEST_F(RenderTest, ExampleGltfRendersAsTheBuiltinCornellBox) {
 // most of what is lit on screen gets more light from the GI than from the lamp.
 TEST_F(RenderTest, ShowcaseSceneIsLitMostlyByBounceLight) {
   gi::GiSettings s;
-  s.technique = "many_lights";
+  s.technique = "many-lights";
   for (const char* scene : {"showcase", "cornell-dynamic"}) {
     GiRun run(context(), s, scene, 96, 96);
     run.step(2);
@@ -63,7 +64,7 @@ TEST_F(RenderTest, ShowcaseSceneIsLitMostlyByBounceLight) {
       bounce += fromGi > total - fromGi;
     }
     const double share = double(bounce) / double(lit);
-    std::printf("%s: %.1f%% of the lit pixels get more bounce light than direct light\n", scene, 100 * share);
+    dyngi::test::report("%s: %.1f%% of the lit pixels get more bounce light than direct light\n", scene, 100 * share);
     if (std::string(scene) == "showcase") {
       EXPECT_GT(share, 0.85);
     }

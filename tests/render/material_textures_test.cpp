@@ -8,10 +8,11 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtx/quaternion.hpp>
 
+#include "support/report.h"
 #include "dyngi/engine/render/image_metrics.h"
-#include "dyngi/gi/many_lights.h"
+#include "techniques/many_lights/many_lights.h"
 #include "dyngi/gi/path_tracer.h"
-#include "dyngi/gi/vpl_paths.h"
+#include "techniques/temporal/vpl_paths.h"
 #include "render/gi_run.h"
 #include "render/render_fixture.h"
 #include "support/fence_scene.h"
@@ -75,7 +76,7 @@ struct ManyLightsRun {
   gi::ManyLights ml;
   render::Renderer renderer;
   ManyLightsRun(render::VulkanContext& ctx, const ecs::World& w, const scene::AssetStore& a, uint32_t vplCount)
-      : voxels(ctx, gi::VoxelSettings{.resolution = 64}), ml(ctx, voxels, gi::ManyLightsOptions{.vpl = {.vplCount = vplCount}}), renderer(ctx) {
+      : voxels(ctx, gi::VoxelSettings{.resolution = 64}), ml(ctx, voxels, gi::ManyLightsOptions{.vpl = {.vpls = vplCount}}), renderer(ctx) {
     renderer.addFeature(&voxels);
     renderer.addFeature(&ml);
     renderer.resize(32, 32);
@@ -115,7 +116,7 @@ TEST_F(RenderTest, MetallicRoughnessTextureReachesTheGBufferTheLightingAndThePat
     const double raster = luminance(render::meanOver(f.hdr, &mask)), path = luminance(render::meanOver(ref, &mask));
     // Lambert under the sun: E x base x (1 - metallic) / pi.
     const double expected = 2.0 * luminance(glm::dvec3(0.7, 0.6, 0.5)) * (1.0 - (right ? kMetallic : 0.0)) / 3.14159265358979;
-    std::printf("%s half: raster %.4f  path tracer %.4f  analytic %.4f\n", right ? "metallic" : "rough", raster, path, expected);
+    dyngi::test::report("%s half: raster %.4f  path tracer %.4f  analytic %.4f\n", right ? "metallic" : "rough", raster, path, expected);
     EXPECT_NEAR(raster / expected, 1.0, 0.01);
     EXPECT_NEAR(path / expected, 1.0, 0.01);
   }
@@ -134,7 +135,7 @@ TEST_F(RenderTest, MetallicRoughnessTextureSetsTheVplsDiffuseShare) {
   for (const gi::VplReadback& v : gi::readbackVpls(run.ml))
     if (v.bounce == 0 && std::abs(v.position.x) > 0.25f && std::abs(v.position.x) < 0.8f && std::abs(v.position.y) < 0.8f)
       (v.position.x < 0 ? left : right) += luminance(glm::dvec3(v.flux));
-  std::printf("many lights: VPL flux right / left %.3f (expected %.3f)\n", right / left, 1.0 - kMetallic);
+  dyngi::test::report("many lights: VPL flux right / left %.3f (expected %.3f)\n", right / left, 1.0 - kMetallic);
   EXPECT_NEAR(right / left, 1.0 - kMetallic, 0.05);
   // The voxels' albedo: the diffuse share per texel too (what VCT injects and many lights' bounces reflect).
   size_t voxelsChecked = 0;
@@ -148,7 +149,7 @@ TEST_F(RenderTest, MetallicRoughnessTextureSetsTheVplsDiffuseShare) {
   gi::EmbreeScene bvh;
   bvh.sync(w, assets, 0);
   const auto snap = render::extractSnapshot(w, assets, 0);
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 2000}, .reshootBudget = 100000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 2000}, .reshootBudget = 100000});
   paths.update(snap, bvh, assets, {});
   size_t checked = 0;
   for (const gi::PathVpl& v : paths.vpls()) {
@@ -192,7 +193,7 @@ TEST_F(RenderTest, OcclusionTextureScalesTheIndirectLightOnly) {
     }
     (onFloor ? floor : other) += 1;
   }
-  std::printf("occlusion %.4f: %zu floor and %zu other pixels, worst relative difference %.2e\n", occlusion, floor, other, worst);
+  dyngi::test::report("occlusion %.4f: %zu floor and %zu other pixels, worst relative difference %.2e\n", occlusion, floor, other, worst);
   EXPECT_GT(floor, 1000u);
   EXPECT_LT(worst, 2e-3);
 }
@@ -238,7 +239,7 @@ TEST_F(RenderTest, TextureTransformTurnsTheTextureInEveryConsumer) {
   int fragments = 0;
   for (const auto& [p, albedo] : run.voxelAlbedos()) fragments += expectTurned("voxel fragment", p, albedo);
   EXPECT_GT(fragments, 100);
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 2000}, .reshootBudget = 100000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 2000}, .reshootBudget = 100000});
   paths.update(render::extractSnapshot(w, assets, 0), bvh, assets, {});
   int pathVpls = 0;
   for (const gi::PathVpl& v : paths.vpls()) pathVpls += v.placed ? expectTurned("path VPL", v.position, v.albedo) : 0;
@@ -275,7 +276,7 @@ TEST_F(RenderTest, AlphaMaskCutsTheSurfaceInEveryConsumer) {
     // The path tracer (primary rays and shadow rays through Embree's alpha filter) sees the same.
     disagree += std::abs(luminance(glm::dvec3(f.hdr[i])) - luminance(glm::dvec3(ref[i]))) > 0.05;
   }
-  std::printf("fence %zu px; floor under the hole %zu (lit %zu), under the solid half %zu (lit %zu), open %zu (lit %zu); "
+  dyngi::test::report("fence %zu px; floor under the hole %zu (lit %zu), under the solid half %zu (lit %zu), open %zu (lit %zu); "
               "raster and path tracer disagree on %zu of %zu px\n",
               fencePixels, floorPixels[0], litFloor[0], floorPixels[1], litFloor[1], floorPixels[2], litFloor[2], disagree, covered);
   EXPECT_GT(fencePixels, 300u);
@@ -306,7 +307,7 @@ TEST_F(RenderTest, AlphaMaskCutsTheSurfaceInEveryConsumer) {
   }
   EXPECT_GT(rsmOnFence, 50u);
   EXPECT_EQ(rsmUnderSolid, 0u) << "the RSM sees the fence's solid half, not the floor under it";
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 3000}, .reshootBudget = 100000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 3000}, .reshootBudget = 100000});
   paths.update(render::extractSnapshot(w, assets, 0), bvh, assets, {});
   size_t pathsThroughHole = 0;
   for (const gi::PathVpl& v : paths.vpls()) {
@@ -358,7 +359,7 @@ TEST_F(RenderTest, NormalTextureTurnsTheShadingNormalInEveryConsumer) {
     ASSERT_GT(n, 500u);
     const double raster = luminance(render::meanOver(f.hdr, &mask)), path = luminance(render::meanOver(ref, &mask));
     const double expected = 2.0 * luminance(glm::dvec3(0.7, 0.6, 0.5)) * glm::dot(expectedNormal, toSun) / 3.14159265358979;
-    std::printf("%s half: raster %.4f  path tracer %.4f  analytic %.4f\n", right ? "flat" : "turned", raster, path, expected);
+    dyngi::test::report("%s half: raster %.4f  path tracer %.4f  analytic %.4f\n", right ? "flat" : "turned", raster, path, expected);
     EXPECT_NEAR(raster / expected, 1.0, 0.01);
     EXPECT_NEAR(path / expected, 1.0, 0.01);
   }
@@ -382,14 +383,14 @@ TEST_F(RenderTest, NormalTextureTurnsTheShadingNormalInEveryConsumer) {
     ++voxelsChecked;
     EXPECT_LT(glm::length(fr.normal - expectedAt(c)), 0.02f) << "voxel fragment at x " << c.x;  // snorm8
   }
-  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vplCount = 2000}, .reshootBudget = 100000});
+  gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 2000}, .reshootBudget = 100000});
   paths.update(render::extractSnapshot(w, assets, 0), bvh, assets, {});
   for (const gi::PathVpl& v : paths.vpls()) {
     if (!v.placed || !inHalf(v.position)) continue;
     ++pathsChecked;
     EXPECT_LT(glm::length(v.normal - expectedAt(v.position)), 0.01f) << "path VPL at x " << v.position.x;
   }
-  std::printf("normals checked: %zu RSM VPLs, %zu voxel fragments, %zu path VPLs\n", rsmChecked, voxelsChecked, pathsChecked);
+  dyngi::test::report("normals checked: %zu RSM VPLs, %zu voxel fragments, %zu path VPLs\n", rsmChecked, voxelsChecked, pathsChecked);
   EXPECT_GT(rsmChecked, 200u);
   EXPECT_GT(voxelsChecked, 100u);
   EXPECT_GT(pathsChecked, 200u);

@@ -2,6 +2,7 @@
 // off compute the same direct light; the CPU tone map equals the GPU one.
 #include <gtest/gtest.h>
 
+#include "support/report.h"
 #include "dyngi/engine/render/image_metrics.h"
 #include "dyngi/gi/path_tracer.h"
 #include "render/render_fixture.h"
@@ -53,7 +54,7 @@ TEST_F(RenderTest, PathTracerDirectMatchesRasterizerPerRegion) {
     glm::dvec3 a = render::meanOver(raster.hdr, &mask), b = render::meanOver(pt, &mask);
     double la = a.x + a.y + a.z, lb = b.x + b.y + b.z;
     ASSERT_GT(lb, 1e-4) << r.name << " is lit";
-    std::printf("%-10s raster/path-tracer mean radiance = %.4f (%d px)\n", r.name, la / lb, count);
+    dyngi::test::report("%-10s raster/path-tracer mean radiance = %.4f (%d px)\n", r.name, la / lb, count);
     EXPECT_NEAR(la / lb, 1.0, 0.02) << r.name << ": raster " << la << " vs path tracer " << lb;
   }
 }

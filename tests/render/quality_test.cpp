@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "support/report.h"
 #include "dyngi/engine/render/frame_uniforms.h"
 #include "render/gi_run.h"
 #include "render/render_fixture.h"
@@ -51,39 +52,24 @@ std::vector<Config> configs() {
   gi::GiSettings bvh = svo;
   bvh.temporal.visibility = gi::VisibilityBackend::Bvh;
   gi::GiSettings rsm;
-  rsm.technique = "many_lights";
-  // The temporal technique: a light switched on or moved 0.6 m (a jump) reshoots every VPL at once (the
-  // burst), drops the sets it made stale and gathers four sets a frame until every set is fresh: 3
-  // frames (it took 26 before the burst and the catch-up). A box moving into the light invalidates part
-  // of the pool: those VPLs are reshot at once too, but the sets keep their light until each is gathered
-  // again, one a frame: 14 frames (T = 16). Many lights rebuilds everything every frame.
-  // The temporal technique's trail is 27-28 percent dark when the box stops (its sets keep what they
-  // gathered while the box was beside it until each is gathered again, one a frame), and T = 16 frames
-  // later exactly the still run's: the invalidated paths are traced again with their own random streams,
-  // so the moving run's pool is the still run's, VPL for VPL. With new streams it measured 15-17 percent
-  // at the stop and never came back exactly: the moved region kept only the share of the reshot paths
-  // that fell there, a bias that partly offset the lag. Many lights has no history: 0.
-  // Under a slow pan the indirect light changes 4.4 (temporal) and 3.5 (many lights) percent a frame
-  // where the direct light changes 0.95 by resampling alone: most of it is the K x K pattern (K = 1 gives
-  // 1.9 and 1.1).
+  rsm.technique = "many-lights";
+  // The temporal technique: a light switched on or jumping reshoots every VPL at once (the burst), drops
+  // the sets it made stale and gathers four sets a frame until every set is fresh. A box moving into the
+  // light invalidates part of the pool: those VPLs are reshot at once, but each set keeps its light until
+  // it is gathered again, one a frame (T = 16). Its trail is dark when the box stops and, T frames later,
+  // exactly the still run's: invalidated paths are traced again with their own random streams, so the
+  // pool is the still run's VPL for VPL. Many lights rebuilds everything every frame: no history.
   // Voxel cone tracing re-injects every frame and traces a quarter of its pixels (trace-frames 4), the
-  // rest carried over from the frames before: up to 3 frames old. A light switched or a jump (the light
-  // moved 0.6 m, the box put under the spot) drops them: nothing to settle. A box sliding 3 cm a frame is
-  // no jump: the trail's indirect light is 7.6 percent off while it moves (0 when every pixel is traced
-  // every frame; 4.6 with session 27's 6 wide cones and no far narrowing, 6.6 with the 12 narrowed cones
-  // all on every pixel: narrower far samples see the box's old place darker; 2.0 before session 25 put a
-  // coarse sample's most opaque slab in front), while the final image's ghosting stays 0.2 percent.
-  // Under the pan its indirect light changes 2.0 percent a frame (1.35 tracing every pixel every frame,
-  // session 16: the upsample's choice of traced pixels moves with the image). It leaks 4.9 percent
-  // (final) and 12.6 (indirect) through the 0.05 m wall: a coarse texel straddling the wall shows a cone
-  // from room B room A's lit floor under it; the far samples' narrowing (VctOptions::farNarrowing) keeps
-  // the final image under the goal of 5 percent (8.3 and 22.5 without it; vct_test.cpp compares the
-  // mip chains and 256^3).
+  // rest carried over from up to 3 frames before; a light switched or a jump drops them. A box sliding
+  // 3 cm a frame is no jump: its trail's indirect light lags while it moves, the final image's ghosting
+  // stays small. Through the 0.05 m wall it leaks under the goal of 5 percent thanks to the far samples'
+  // narrowing (VctOptions::farNarrowing; vct_test.cpp compares the mip chains and 256^3). The figures
+  // each technique measures here are in docs/QUALITY.md (scripts/quality_report.sh).
   gi::GiSettings vct;
   vct.technique = "vct";
   return {{"temporal (svo)", svo, 18, 5, 0.32, 0.055},
           {"temporal (bvh)", bvh, 18, 5, 0.32, 0.055},
-          {"many_lights", rsm, 1, 1, 0.01, 0.045, 0.05, kNoHistoryFrames},
+          {"many-lights", rsm, 1, 1, 0.01, 0.045, 0.05, kNoHistoryFrames},
           {"vct", vct, 1, 1, 0.09, 0.035, 0.15, kNoHistoryFrames}};
 }
 
@@ -130,9 +116,9 @@ RoomLight roomB(render::VulkanContext& ctx, const Config& c, const std::string& 
 }
 
 // Light leaking through a wall thinner than two voxels: room B (no light of its own) with the wall
-// closed against room B with a doorway in it. The goal (issue 17) is under 5 percent.
+// closed against room B with a doorway in it. The goal is under 5 percent.
 TEST_F(RenderTest, QualityLeakThroughAThinWallPerTechnique) {
-  std::printf("quality-leak| technique | room B closed (final, indirect) | room B with a doorway (final, indirect) | leak final | leak indirect\n");
+  dyngi::test::report("quality-leak| technique | room B closed (final, indirect) | room B with a doorway (final, indirect) | leak final | leak indirect\n");
   for (const Config& c : configs()) {
     SCOPED_TRACE(c.label);
     const RoomLight closed = roomB(context(), c, "two-rooms");
@@ -141,7 +127,7 @@ TEST_F(RenderTest, QualityLeakThroughAThinWallPerTechnique) {
     ASSERT_GT(door.pixels, size_t(kSize * kSize / 2));
     ASSERT_GT(door.indirect, 0.0) << "light reaches room B through the doorway";
     const double leakFinal = closed.final / door.final, leakIndirect = closed.indirect / door.indirect;
-    std::printf("quality-leak| %s | %.5f, %.5f | %.5f, %.5f | %.2f%% | %.2f%%\n", c.label, closed.final, closed.indirect, door.final,
+    dyngi::test::report("quality-leak| %s | %.5f, %.5f | %.5f, %.5f | %.2f%% | %.2f%%\n", c.label, closed.final, closed.indirect, door.final,
                 door.indirect, 100 * leakFinal, 100 * leakIndirect);
     EXPECT_LT(leakFinal, c.maxLeak);
     EXPECT_LT(leakIndirect, c.maxLeak);
@@ -149,7 +135,7 @@ TEST_F(RenderTest, QualityLeakThroughAThinWallPerTechnique) {
 }
 
 TEST_F(RenderTest, QualityFlickerAndSettleTimePerTechnique) {
-  std::printf("quality| technique | flicker final | flicker indirect | light on: frames, first-frame error | light moved 0.6 m | box moved into the light\n");
+  dyngi::test::report("quality| technique | flicker final | flicker indirect | light on: frames, first-frame error | light moved 0.6 m | box moved into the light\n");
   for (const Config& c : configs()) {
     SCOPED_TRACE(c.label);
     // Flicker: a still scene and camera, after convergence.
@@ -170,7 +156,7 @@ TEST_F(RenderTest, QualityFlickerAndSettleTimePerTechnique) {
         settleAfter(context(), c, [](GiRun& r) { r.world.write<scene::Transform>(r.named("spot")).translation.x += 0.6f; });
     const SettleFigures box =
         settleAfter(context(), c, [](GiRun& r) { r.world.write<scene::Transform>(r.named("tall_box")).translation = {0.0f, 0.6f, 0.1f}; });
-    std::printf("quality| %s | %.3f%% | %.3f%% | %zu, %.1f%% | %zu, %.1f%% | %zu, %.1f%%\n", c.label, 100 * flickerFinal, 100 * flickerIndirect,
+    dyngi::test::report("quality| %s | %.3f%% | %.3f%% | %zu, %.1f%% | %zu, %.1f%% | %zu, %.1f%%\n", c.label, 100 * flickerFinal, 100 * flickerIndirect,
                 on.frames, 100 * on.firstError, moved.frames, 100 * moved.firstError, box.frames, 100 * box.firstError);
     // Both techniques converge to a fixed image in a still scene (fixed seeds, no per-frame jitter): any
     // flicker is a regression.
@@ -190,7 +176,7 @@ TEST_F(RenderTest, QualityFlickerAndSettleTimePerTechnique) {
 TEST_F(RenderTest, QualityFlickerUnderACameraPanPerTechnique) {
   constexpr int kPanFrames = 60;
   constexpr float kDegreesPerFrame = 0.25f, kSamePoint = 0.08f;  // metres: two pixel footprints here (a tap one pixel away)
-  std::printf("quality-pan| technique | final | indirect | direct (resampling floor)\n");
+  dyngi::test::report("quality-pan| technique | final | indirect | direct (resampling floor)\n");
   for (const Config& c : configs()) {
     SCOPED_TRACE(c.label);
     GiRun run(context(), c.settings, "cornell", kSize, kSize);
@@ -233,7 +219,7 @@ TEST_F(RenderTest, QualityFlickerUnderACameraPanPerTechnique) {
       direct += change(&Shot::direct);
       previous = now;
     }
-    std::printf("quality-pan| %s | %.3f%% | %.3f%% | %.3f%%\n", c.label, 100 * final, 100 * indirect, 100 * direct);
+    dyngi::test::report("quality-pan| %s | %.3f%% | %.3f%% | %.3f%%\n", c.label, 100 * final, 100 * indirect, 100 * direct);
     EXPECT_GT(direct, 0.0) << "the camera moved";
     // A black indirect image would change by nothing: the GI must be there to be measured.
     const glm::dvec3 lit = render::meanOver(previous.indirect);
@@ -267,13 +253,13 @@ TEST_F(RenderTest, QualityGhostingBehindAMovingBoxPerTechnique) {
     return mask;
   };
   auto lum = [](const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
-  std::printf("quality-ghost| technique | trail vs path tracer, moving | same, box there all along | ghosting (final) | trail's indirect, moving vs all along | the same, another seed vs all along\n");
+  dyngi::test::report("quality-ghost| technique | trail vs path tracer, moving | same, box there all along | ghosting (final) | trail's indirect, moving vs all along | the same, another seed vs all along\n");
   double reference = -1;
   for (Config c : configs()) {
     SCOPED_TRACE(c.label);
     // 4096 VPLs: with 512 the trail's indirect light differs by 15-22 percent between two seeds, which
     // would hide any lag.
-    c.settings.temporal.vpl.vplCount = c.settings.manyLights.vpl.vplCount = 4096;
+    c.settings.temporal.vpl.vpls = c.settings.manyLights.vpl.vpls = 4096;
     GiRun moving(context(), c.settings, "cornell", kSize, kSize);
     place(moving, {kStartX, 0.3f, kBoxZ});
     moving.step(c.frames.converge);
@@ -309,7 +295,7 @@ TEST_F(RenderTest, QualityGhostingBehindAMovingBoxPerTechnique) {
     // The GI's own lag: the trail's indirect light against the run where the box stood there all along.
     const double lag = lum(render::meanOver(movingIndirect, &mask)) / lum(render::meanOver(stillIndirect, &mask)) - 1.0;
     const double seedToSeed = lum(render::meanOver(still2Indirect, &mask)) / lum(render::meanOver(stillIndirect, &mask)) - 1.0;
-    std::printf("quality-ghost| %s | %+.1f%% | %+.1f%% | %.1f%% | %+.1f%% | %+.1f%%\n", c.label, 100 * errMoving, 100 * errStill,
+    dyngi::test::report("quality-ghost| %s | %+.1f%% | %+.1f%% | %.1f%% | %+.1f%% | %+.1f%%\n", c.label, 100 * errMoving, 100 * errStill,
                 100 * std::abs(errMoving - errStill), 100 * lag, 100 * seedToSeed);
     EXPECT_LT(std::abs(errMoving - errStill), 0.03) << "ghosting in the final image";
     EXPECT_LT(std::abs(lag), c.maxTrailLag) << "the trail's indirect light lags";
@@ -317,7 +303,7 @@ TEST_F(RenderTest, QualityGhostingBehindAMovingBoxPerTechnique) {
     // the run where the box stood there all along.
     moving.step(c.settings.temporal.temporalSets);
     const double settled = lum(render::meanOver(moving.indirect(), &mask)) / lum(render::meanOver(stillIndirect, &mask)) - 1.0;
-    std::printf("quality-ghost| %s | %u frames later: %+.2f%%\n", c.label, c.settings.temporal.temporalSets, 100 * settled);
+    dyngi::test::report("quality-ghost| %s | %u frames later: %+.2f%%\n", c.label, c.settings.temporal.temporalSets, 100 * settled);
     EXPECT_LT(std::abs(settled), 0.005) << "the motion left a lasting difference";
   }
 }

@@ -7,11 +7,12 @@
 #include <map>
 #include <tuple>
 
+#include "support/report.h"
 #include "dyngi/engine/render/image_io.h"
 #include "dyngi/engine/render/image_metrics.h"
 #include "dyngi/gi/gi_system.h"
-#include "dyngi/gi/vct_cpu.h"
-#include "dyngi/gi/voxel_cone_tracing.h"
+#include "techniques/vct/vct_cpu.h"
+#include "techniques/vct/voxel_cone_tracing.h"
 #include "render/cornell_regions.h"
 #include "render/gi_run.h"
 #include "render/render_fixture.h"
@@ -35,7 +36,7 @@ gi::GiSettings vctSettings() {
   if (const char* e = std::getenv("VCT_SCALE")) s.vct.traceScale = std::atoi(e);
   if (const char* e = std::getenv("VCT_CONES")) s.vct.diffuseCones = std::atoi(e);
   if (const char* e = std::getenv("VCT_OFFSET")) s.vct.coneOffset = float(std::atof(e));
-  if (const char* e = std::getenv("VCT_STEP")) s.vct.stepScale = float(std::atof(e));
+  if (const char* e = std::getenv("VCT_STEP")) s.vct.coneStep = float(std::atof(e));
   if (const char* e = std::getenv("VCT_RES")) s.voxels.resolution = uint32_t(std::atoi(e));
   if (const char* e = std::getenv("VCT_REACH")) s.vct.maxDistance = float(std::atof(e));
   if (const char* e = std::getenv("VCT_FILTER")) s.vct.diffuseFilterRadius = uint32_t(std::atoi(e));
@@ -77,7 +78,7 @@ TEST_F(RenderTest, VctCornellMatchesPathTracerPerRegionWithColourBleeding) {
   std::vector<render::ImageRgba> images;
   for (const auto& [label, settings] : {std::pair<const char*, gi::GiSettings>{"default", s}, {"every cone on every pixel", everyCone}}) {
     SCOPED_TRACE(label);
-    std::printf("%s\n", label);
+    dyngi::test::report("%s\n", label);
     GiRun run(context(), settings, "cornell", kSize, kSize);
     run.step(4);
     Frame f = run.readFrame();
@@ -96,7 +97,7 @@ TEST_F(RenderTest, VctCornellMatchesPathTracerPerRegionWithColourBleeding) {
       for (uint8_t m : mask) n += m;
       if (n < 60) continue;
       const double a = lum(render::meanOver(f.hdr, &mask)), b = lum(render::meanOver(ref, &mask));
-      std::printf("%-16s vct %.4f  path %.4f  ratio %.3f  (%zu px)\n", name.c_str(), a, b, a / b, n);
+      dyngi::test::report("%-16s vct %.4f  path %.4f  ratio %.3f  (%zu px)\n", name.c_str(), a, b, a / b, n);
       // The issue's goal: 20 percent for every region. The tight one is the tall box's face to the red
       // wall (96 pixels in its own shadow): 0.82 (0.86 with 6 wide cones and no far narrowing, session
       // 27's defaults), where six cones the same on every pixel gave 0.53 (the light it gets comes
@@ -112,7 +113,7 @@ TEST_F(RenderTest, VctCornellMatchesPathTracerPerRegionWithColourBleeding) {
         firstRatios[name] = a / b;
     }
     const double rel = render::relativeMse(f.hdr, ref);
-    std::printf("relMSE %.4f\n", rel);
+    dyngi::test::report("relMSE %.4f\n", rel);
     EXPECT_LE(rel, 0.05);
     auto redness = [&](const render::ImageRgba& img, const char* face) {
       const glm::dvec3 c = render::meanOver(img, &regions.masks.at(face));
@@ -121,13 +122,13 @@ TEST_F(RenderTest, VctCornellMatchesPathTracerPerRegionWithColourBleeding) {
     ASSERT_TRUE(regions.masks.count("tall_box -x") && regions.masks.count("tall_box +z"));
     const double ours = redness(f.hdr, "tall_box -x") / redness(f.hdr, "tall_box +z");
     const double theirs = redness(ref, "tall_box -x") / redness(ref, "tall_box +z");
-    std::printf("colour bleeding (red/green of the face to the red wall over the front face): vct %.3f path %.3f\n", ours, theirs);
+    dyngi::test::report("colour bleeding (red/green of the face to the red wall over the front face): vct %.3f path %.3f\n", ours, theirs);
     EXPECT_GT(ours, 1.2) << "the face turned to the red wall is redder";
     EXPECT_NEAR(ours / theirs, 1.0, 0.2);
   }
   ASSERT_EQ(images.size(), 2u);
   const double splitAgainstEvery = render::relativeMse(images[0], images[1]);
-  std::printf("rows' halves against every cone on every pixel: relMSE %.6f\n", splitAgainstEvery);
+  dyngi::test::report("rows' halves against every cone on every pixel: relMSE %.6f\n", splitAgainstEvery);
   EXPECT_GT(splitAgainstEvery, 1e-7) << "the rows march half the cones each, not all of them";
   EXPECT_LT(splitAgainstEvery, 0.001);
 }
@@ -153,7 +154,7 @@ TEST_F(RenderTest, VctTurnedConesApproachADenseConeSet) {
   const double relFixed = render::relativeMse(fixed, dense), relTurned = render::relativeMse(turned, dense);
   const double p99Fixed = render::relativeLuminanceErrorQuantile(fixed, dense, 0.99);
   const double p99Turned = render::relativeLuminanceErrorQuantile(turned, dense, 0.99);
-  std::printf("against 32 fixed cones: 6 fixed relMSE %.4f p99 %.3f; 6 turned and filtered relMSE %.4f p99 %.3f\n", relFixed,
+  dyngi::test::report("against 32 fixed cones: 6 fixed relMSE %.4f p99 %.3f; 6 turned and filtered relMSE %.4f p99 %.3f\n", relFixed,
               p99Fixed, relTurned, p99Turned);
   EXPECT_GT(relFixed, 0.008) << "the fixed six are far from the dense set (else this test shows nothing)";
   EXPECT_LT(relTurned, 0.4 * relFixed);
@@ -164,12 +165,8 @@ TEST_F(RenderTest, VctTurnedConesApproachADenseConeSet) {
 // over from the frame before at their surface point). Against the every-frame trace, its truth:
 //  - a still view: once every pixel has had its turn the image is the every-frame one, bit for bit;
 //  - a camera pan: the carried-over values follow their surfaces, so the image stays close to the
-//    every-frame trace of the same frame. Measured here: relMSE 0.0003, p99 0.32 (0.0005 and 0.36 with
-//    the diffuse filter's radius 3: a value carried over to a pixel of the other row came from the other
-//    half of the cone set; 0.0002 and 0.28 with 6 wide cones and no far narrowing, session 27's defaults);
-//    carried over from the same traced pixel instead (last frame's camera taken as this frame's) 0.0017
-//    and 0.41 (session 27), the values the surface test then drops leaving holes the filter fills; the
-//    every-frame image of 3 frames before, 0.029 and 17.
+//    every-frame trace of the same frame. Measured here: relMSE 0.0003, p99 0.32; against the every-frame
+//    image of 3 frames before, 0.029 and 17.
 TEST_F(RenderTest, VctTraceSpreadOverFramesMatchesTheEveryFrameTrace) {
   constexpr int kFrames = 12;
   constexpr float kDegreesPerFrame = 0.5f;  // 1.4 pixels a frame at 128^2
@@ -194,7 +191,7 @@ TEST_F(RenderTest, VctTraceSpreadOverFramesMatchesTheEveryFrameTrace) {
   double stillDifference = 0;
   for (size_t i = 0; i < still1.back().size(); ++i)
     stillDifference = std::max(stillDifference, double(glm::length(glm::vec3(still1.back()[i] - still4.back()[i]))));
-  std::printf("still view after %d frames: largest difference %.3g\n", kFrames, stillDifference);
+  dyngi::test::report("still view after %d frames: largest difference %.3g\n", kFrames, stillDifference);
   EXPECT_EQ(stillDifference, 0.0) << "a still view converges to the every-frame image";
 
   const std::vector<render::ImageRgba> every = pan(1, true), spread = pan(4, true);
@@ -204,7 +201,7 @@ TEST_F(RenderTest, VctTraceSpreadOverFramesMatchesTheEveryFrameTrace) {
   const double rel = render::relativeMse(spread.back(), truth), relStale = render::relativeMse(every[kFrames - 4], truth);
   const double p99 = render::relativeLuminanceErrorQuantile(spread.back(), truth, 0.99);
   const double p99Stale = render::relativeLuminanceErrorQuantile(every[kFrames - 4], truth, 0.99);
-  std::printf("pan, against the every-frame trace: spread over 4 frames relMSE %.5f p99 %.3f; every-frame image 3 frames old relMSE %.5f p99 %.3f\n",
+  dyngi::test::report("pan, against the every-frame trace: spread over 4 frames relMSE %.5f p99 %.3f; every-frame image 3 frames old relMSE %.5f p99 %.3f\n",
               rel, p99, relStale, p99Stale);
   EXPECT_LT(rel, 0.0005);
   EXPECT_LT(p99, 0.36);
@@ -293,7 +290,7 @@ TEST_F(RenderTest, VctConeMarchEqualsCpuTwin) {
     gi::GiSettings s = vctSettings();
     s.voxels.resolution = 64;
     s.vct.anisotropic = aniso;
-    s.vct.stepScale = step;
+    s.vct.coneStep = step;
     s.vct.farNarrowing = narrowing;
     GiRun run(context(), s, "cornell", 64, 64);
     run.step(2);
@@ -306,7 +303,7 @@ TEST_F(RenderTest, VctConeMarchEqualsCpuTwin) {
     p.maxDistance = vct.settings().maxDistance * 64.0f;
     p.aoDistance = vct.settings().aoDistance * 64.0f;
     p.coneOffset = vct.settings().coneOffset;
-    p.stepScale = vct.settings().stepScale;
+    p.coneStep = vct.settings().coneStep;
     p.farNarrowing = vct.settings().farNarrowing;
     p.anisotropic = aniso;
     // Rays from inside the box in every direction, narrow and wide cones.
@@ -329,7 +326,7 @@ TEST_F(RenderTest, VctConeMarchEqualsCpuTwin) {
         sum += e;
         lit += glm::length(glm::vec3(cpu)) > 0.01 ? 1.0 : 0.0;
       }
-      std::printf("anisotropic %d step %.2f far narrowing %.2f tan %.1f: cone march GPU vs CPU twin: worst %.4f, mean %.5f over %zu rays (%.0f lit)\n",
+      dyngi::test::report("anisotropic %d step %.2f far narrowing %.2f tan %.1f: cone march GPU vs CPU twin: worst %.4f, mean %.5f over %zu rays (%.0f lit)\n",
                   int(aniso), double(step), double(narrowing), double(tanHalf), worst, sum / double(rays.size()), rays.size(), lit);
       EXPECT_GT(lit, 20.0);
       EXPECT_LT(sum / double(rays.size()), 0.01);
@@ -365,7 +362,7 @@ TEST_F(RenderTest, VctInjectedRadianceEqualsTheDirectLight) {
   const double median = ratios[ratios.size() / 2];
   size_t within = 0;
   for (double r : ratios) within += std::abs(r - 1.0) < 0.25;
-  std::printf("voxel radiance / direct radiance over %zu lit pixels: median %.3f, %.1f%% within 25%%\n", ratios.size(), median,
+  dyngi::test::report("voxel radiance / direct radiance over %zu lit pixels: median %.3f, %.1f%% within 25%%\n", ratios.size(), median,
               100.0 * double(within) / double(ratios.size()));
   EXPECT_NEAR(median, 1.0, 0.05);
   EXPECT_GT(double(within) / double(ratios.size()), 0.9);
@@ -401,7 +398,7 @@ TEST_F(RenderTest, VctLeakThroughAThinWallPerMipChain) {
       const double closed = roomBMean(context(), s, "two-rooms"), door = roomBMean(context(), s, "two-rooms-door");
       ASSERT_GT(door, 0.0);
       leak[{res, mode}] = closed / door;
-      std::printf("vct-leak| %u^3 | %s | room B closed %.5f | with a doorway %.5f | leak %.1f%%\n", res, names[mode], closed, door,
+      dyngi::test::report("vct-leak| %u^3 | %s | room B closed %.5f | with a doorway %.5f | leak %.1f%%\n", res, names[mode], closed, door,
                   100.0 * closed / door);
     }
   // The mean halves a thin wall's opacity at every level: light passes. The opaque axis keeps the wall
@@ -409,13 +406,13 @@ TEST_F(RenderTest, VctLeakThroughAThinWallPerMipChain) {
   // its normal, but room A's lit floor runs under the wall and a texel straddling the wall shows it to a
   // room-B cone travelling down and towards the wall through the -y slab. The far samples' narrowing
   // (VctOptions::farNarrowing 0.75, with 12 cones, 6 a pixel) straddles the wall less: 4.9 percent at
-  // 128^3, 5.4 at 256^3; without it, with 6 wide cones (session 27's defaults), 8.3 and 10.5 percent.
+  // 128^3, 5.4 at 256^3; without it, with 6 wide cones, 8.3 and 10.5 percent.
   gi::GiSettings wide = vctSettings();
   wide.vct.farNarrowing = 0.0f;
   wide.vct.diffuseCones = 6;
   wide.vct.coneInterleave = 1;
   const double wideClosed = roomBMean(context(), wide, "two-rooms"), wideDoor = roomBMean(context(), wide, "two-rooms-door");
-  std::printf("vct-leak| 128^3 | anisotropic, no far narrowing, 6 cones a pixel | room B closed %.5f | with a doorway %.5f | leak %.1f%%\n",
+  dyngi::test::report("vct-leak| 128^3 | anisotropic, no far narrowing, 6 cones a pixel | room B closed %.5f | with a doorway %.5f | leak %.1f%%\n",
               wideClosed, wideDoor, 100.0 * wideClosed / wideDoor);
   for (uint32_t res : resolutions) {
     const double mean = leak[{res, 0}], opaqueAxis = leak[{res, 1}], aniso = leak[{res, 2}];
@@ -455,7 +452,7 @@ TEST_F(RenderTest, VctEmissiveOnlySceneLightsTheRoom) {
     const std::vector<uint8_t> mask = surfaceFacing(f, ref, normal, n);
     if (n < 100) continue;
     const double a = lum(render::meanOver(f.hdr, &mask)), b = lum(render::meanOver(ref, &mask));
-    std::printf("emissive-only %-11s vct %.4f  path %.4f  ratio %.3f  (%zu px)\n", name, a, b, a / b, n);
+    dyngi::test::report("emissive-only %-11s vct %.4f  path %.4f  ratio %.3f  (%zu px)\n", name, a, b, a / b, n);
     // The issue's goal: 30 percent. The floor, 125 voxels under the panel, is the tight one (0.76): with a
     // cone reach of one volume side it was 0.63, its cones stopping short of the ceiling.
     EXPECT_NEAR(a / b, 1.0, 0.30) << name;
@@ -519,7 +516,7 @@ TEST_F(RenderTest, VctAmbientOcclusionFallsWithDistanceFromABox) {
     }
     ASSERT_GT(n, 3) << "floor pixels " << band[0] << ".." << band[1] << " m from the box";
     ao.push_back(sum / n);
-    std::printf("AO %.2f..%.2f m from the box: %.3f (%d px)\n", band[0], band[1], ao.back(), n);
+    dyngi::test::report("AO %.2f..%.2f m from the box: %.3f (%d px)\n", band[0], band[1], ao.back(), n);
   }
   for (size_t b = 1; b < ao.size(); ++b) EXPECT_GT(ao[b], ao[b - 1]) << "band " << b;
   EXPECT_LT(ao.front(), 0.85 * ao.back()) << "the box darkens the floor beside it";
@@ -578,7 +575,7 @@ TEST_F(RenderTest, VctSpecularReflectsTheRedWallAndBlursWithRoughness) {
       }
     ASSERT_GT(n, 500);
     sharpness[roughness] = steps / std::max(mean, 1e-9);
-    std::printf("roughness %.1f: floor near the red wall r/g %.3f (its reflection alone %.3f), reflection sharpness %.4f\n",
+    dyngi::test::report("roughness %.1f: floor near the red wall r/g %.3f (its reflection alone %.3f), reflection sharpness %.4f\n",
                 double(roughness), redness[roughness], reflectionRedness[roughness], sharpness[roughness]);
   }
   // A white dielectric floor reflects 4 percent at normal incidence: the final image's tint is small but
@@ -615,7 +612,7 @@ TEST_F(RenderTest, VctSpecularFromTheIndirectImageMatchesTheSpecularImage) {
     worstImage = std::max(worstImage, double(glm::length(x - y) / std::max(glm::length(y), 1e-3f)));
   }
   ASSERT_GT(n, 1000u);
-  std::printf("specular image against the diffuse light: worst %.2e; final images: worst %.2e\n", worstSpecular, worstImage);
+  dyngi::test::report("specular image against the diffuse light: worst %.2e; final images: worst %.2e\n", worstSpecular, worstImage);
   EXPECT_LT(worstSpecular, 1e-3) << "the specular image holds each pixel's diffuse light";
   EXPECT_LT(worstImage, 1e-4) << "either way the lighting adds the same specular light";
 }
@@ -636,7 +633,7 @@ TEST_F(RenderTest, VctFollowsMovedLightsAndObjectsAndSwitchedLights) {
   const std::vector<glm::vec4> after = render::readbackImageLevel(context(), vct.directVolume(), 0);
   double change = 0, total = 0;
   for (size_t i = 0; i < after.size(); ++i) change += std::abs(double(after[i].g - before[i].g)), total += double(before[i].g);
-  std::printf("light moved 0.3 m: injected radiance changed by %.1f%% (relative L1)\n", 100 * change / total);
+  dyngi::test::report("light moved 0.3 m: injected radiance changed by %.1f%% (relative L1)\n", 100 * change / total);
   EXPECT_GT(change / total, 0.05);
 
   // The tall box's top face (y = 1.2 m) moves away: its voxels are empty the next frame.
@@ -666,7 +663,7 @@ TEST_F(RenderTest, VctFollowsMovedLightsAndObjectsAndSwitchedLights) {
   run.world.write<scene::Light>(run.named("spot")).enabled = false;
   run.step();
   const double off = lum(render::meanOver(run.indirect()));
-  std::printf("spot switched off: indirect light %.5f -> %.5f one frame later (%.2f%%)\n", lit, off, 100 * off / lit);
+  dyngi::test::report("spot switched off: indirect light %.5f -> %.5f one frame later (%.2f%%)\n", lit, off, 100 * off / lit);
   EXPECT_LT(off, 0.01 * lit) << "within one frame";
 }
 
@@ -702,7 +699,7 @@ TEST_F(RenderTest, VctVolumesAfterMotionHoldExactlyTheVoxelsOfAFreshBuild) {
         const bool x = held(la[m].texels[i]), y = held(lb[m].texels[i]);
         both += x && y, onlyMoving += x && !y, onlyFresh += !x && y;
       }
-      std::printf("%s level %zu: %zu texels hold something in both, %zu only after the motion, %zu only fresh\n", name, m, both, onlyMoving,
+      dyngi::test::report("%s level %zu: %zu texels hold something in both, %zu only after the motion, %zu only fresh\n", name, m, both, onlyMoving,
                   onlyFresh);
       EXPECT_GT(both, 0u) << name << " level " << m;
       EXPECT_EQ(onlyMoving, 0u) << name << " level " << m << ": texels the boxes left still hold something";
@@ -741,7 +738,7 @@ TEST_F(RenderTest, VctEmissiveChangeReinjectsTheSameFrame) {
   run.step();
   EXPECT_TRUE(run.gi->voxels()->fragmentsEmit());
   const double glowing = topRadiance(), indirectGlowing = lum(render::meanOver(run.indirect()));
-  std::printf("tall box made emissive (4): its top's direct radiance %.3f -> %.3f the same frame; indirect light %.5f -> %.5f\n", before,
+  dyngi::test::report("tall box made emissive (4): its top's direct radiance %.3f -> %.3f the same frame; indirect light %.5f -> %.5f\n", before,
               glowing, indirectBefore, indirectGlowing);
   EXPECT_NEAR(glowing - before, lum(glm::dvec3(glow)), 0.1 * lum(glm::dvec3(glow))) << "its emission, taken at once (no blending)";
   EXPECT_GT(indirectGlowing, 1.5 * indirectBefore) << "the glowing box lights the room";
@@ -749,7 +746,7 @@ TEST_F(RenderTest, VctEmissiveChangeReinjectsTheSameFrame) {
   run.step();
   EXPECT_FALSE(run.gi->voxels()->fragmentsEmit());
   const double after = topRadiance();
-  std::printf("and back: %.3f\n", after);
+  dyngi::test::report("and back: %.3f\n", after);
   EXPECT_NEAR(after, before, 0.05 * lum(glm::dvec3(glow)));
 }
 
@@ -782,7 +779,7 @@ TEST_F(RenderTest, VctTemporalBlendingCutsFlickerWithoutLag) {
         mean += lum(glm::dvec3(frames[t][i]));
       }
     flicker[blend] = change / mean;
-    std::printf("temporal blend %.1f: indirect light's change a frame under a +-10%% flickering light %.2f%%\n", double(blend),
+    dyngi::test::report("temporal blend %.1f: indirect light's change a frame under a +-10%% flickering light %.2f%%\n", double(blend),
                 100 * flicker[blend]);
     if (blend > 0.0f) {
       run.world.write<scene::Light>(run.named("spot")).enabled = false;
@@ -805,7 +802,7 @@ TEST_F(RenderTest, VctSecondBounceApproachesThePathTracer) {
     const render::ImageRgba& ref = cornellReference(run, 2);
     error[bounces] = render::relativeMse(run.hdr(), ref);
     mean[bounces] = lum(render::meanOver(run.hdr())) / lum(render::meanOver(ref));
-    std::printf("vct bounces %u against the path tracer's 2: relMSE %.4f, mean ratio %.3f\n", bounces, error[bounces], mean[bounces]);
+    dyngi::test::report("vct bounces %u against the path tracer's 2: relMSE %.4f, mean ratio %.3f\n", bounces, error[bounces], mean[bounces]);
   }
   EXPECT_GT(mean[2], mean[1]) << "a second bounce adds light";
   EXPECT_LT(error[2], error[1]);
@@ -832,20 +829,40 @@ void emissiveRoom(ecs::World& w, scene::AssetStore& a) {
 }
 }  // namespace
 
-// What the diffuse cones lose against an analytic truth. The six cones' weights (their projected solid
-// angles over pi) add up to 0.80, not 1: the cones tilted furthest are narrowed to stay above the horizon
-// and the band they leave uncovered is not made up for (0.93 with 32 cones); the cones themselves bring
-// back 95 percent of the light inside their weight. Dividing by the weights' sum gives 0.95 here and
-// takes the emissive-only scene to within 7 percent of the path tracer, but the spot-lit Cornell box to
-// 22-44 percent over it: there something else gives too much light, which the missing weight hides today
-// (docs/QUALITY.md, "Voxel cone tracing's energy"). The bound is 30 percent, today 0.76.
+// The diffuse cones' weights (projected solid angle over pi) as vct_cone.glsl's vctDiffuseConeWeight
+// computes them: the cones tilted furthest are narrowed to stay above the horizon, so the weights of n
+// cones add up to less than 1 (0.80 for 6, 0.88 for 12, 0.93 for 32).
+namespace {
+double coneWeightSum(uint32_t n) {
+  double sum = 0;
+  for (uint32_t k = 0; k < n; ++k) {
+    const double u = (k + 0.5) / n, z = std::sqrt(std::max(1.0 - u, 0.0));
+    const double cosHalf = std::max(1.0 - 1.0 / (2.0 * n * std::max(z, 1e-3)), 0.0);
+    double coneTan = std::sqrt(1.0 - cosHalf * cosHalf) / std::max(cosHalf, 1e-3);
+    coneTan = std::min(coneTan, 0.9 * z / std::max(std::sqrt(u), 1e-4));
+    sum += 2.0 * (1.0 - 1.0 / std::sqrt(1.0 + coneTan * coneTan)) * z;
+  }
+  return sum;
+}
+}  // namespace
+
+// What the diffuse cones lose against an analytic truth: in a closed room whose walls all emit radiance
+// 1, E / pi is 1 everywhere. The cones' weights add up to coneWeightSum(12) = 0.88 and the band they
+// leave uncovered is not made up for: normalising by the weights' sum takes the spot-lit Cornell box
+// over the path tracer, where something else gives too much light (docs/QUALITY.md, "Voxel cone
+// tracing's energy"). Inside their weight the cones bring back 95 percent (each sample's opacity a
+// little under 1 at the walls): 0.84, held here to 92-99 percent of the weights' sum.
 TEST_F(RenderTest, VctFurnaceRoomGivesItsRadiance) {
   gi::GiSettings s = vctSettings();
   s.vct.specular = false;
   GiRun run(context(), s, emissiveRoom, 64, 64);
   run.step(3);
   const glm::dvec3 m = render::meanOver(run.indirect());
-  std::printf("furnace: E / pi %.4f %.4f %.4f (exact 1)\n", m.r, m.g, m.b);
-  EXPECT_NEAR(m.g, 1.0, 0.3);
+  dyngi::test::report("furnace: E / pi %.4f %.4f %.4f (exact 1, the cones' weights %.4f)\n", m.r, m.g, m.b, coneWeightSum(s.vct.diffuseCones));
+  const double weights = coneWeightSum(s.vct.diffuseCones);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_GT(m[c], 0.92 * weights) << "channel " << c;
+    EXPECT_LT(m[c], 0.99 * weights) << "channel " << c;
+  }
 }
 

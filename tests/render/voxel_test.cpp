@@ -6,6 +6,7 @@
 #include <glm/gtx/component_wise.hpp>
 #include <random>
 
+#include "support/report.h"
 #include "dyngi/engine/ecs/scheduler.h"
 #include "dyngi/engine/render/image_metrics.h"
 #include "dyngi/engine/scene/scripted_motion.h"
@@ -113,7 +114,7 @@ TEST_F(VoxelTest, VoxelizationCoversExactOverlapAndSvoLeavesEqualIt) {
   gi::DenseVoxelGrid gpu = gi::VoxelProbe(*voxels).readbackFragmentGrid();
   gi::DenseVoxelGrid brute = gi::voxelizeBruteForce(voxelSpaceTriangles(snapshot, voxels->volume()), 128);
   GridDiff d = diff(gpu, brute);
-  std::printf("voxelization 128^3: %zu voxels by exact overlap, GPU missed %zu, extra %zu\n", d.reference, d.missing, d.extra);
+  dyngi::test::report("voxelization 128^3: %zu voxels by exact overlap, GPU missed %zu, extra %zu\n", d.reference, d.missing, d.extra);
   EXPECT_GT(d.reference, 50000u);
   EXPECT_EQ(d.missing, 0u) << "no occupied voxel missed";
   EXPECT_LE(d.extra, d.reference / 100) << "extras (touching within 1e-4 voxel) stay rare";
@@ -122,7 +123,7 @@ TEST_F(VoxelTest, VoxelizationCoversExactOverlapAndSvoLeavesEqualIt) {
   GridDiff l = diff(svo.leaves(), gpu);
   EXPECT_EQ(l.missing + l.extra, 0u) << "the SVO's leaves are exactly the voxelized set";
   EXPECT_EQ(st.leaves, gpu.count());
-  std::printf("svo: %llu nodes, %llu bytes, %llu leaves\n", (unsigned long long)st.nodes, (unsigned long long)st.svoBytes,
+  dyngi::test::report("svo: %llu nodes, %llu bytes, %llu leaves\n", (unsigned long long)st.nodes, (unsigned long long)st.svoBytes,
               (unsigned long long)st.leaves);
 }
 
@@ -154,7 +155,7 @@ TEST_F(VoxelTest, SvoMarchEqualsDenseDdaAndGpuEqualsCppTwin) {
   double ms = probe.marchSegments(worldSegs, gpu);
   int disagreeGpu = 0;
   for (int i = 0; i < n; ++i) disagreeGpu += gpu[size_t(i)] != cpu[size_t(i)];
-  std::printf("GPU march: %d segments in %.2f ms (timestamps), %.2f ms (submit to fence), %d disagreements with the C++ twin\n", n, ms,
+  dyngi::test::report("GPU march: %d segments in %.2f ms (timestamps), %.2f ms (submit to fence), %d disagreements with the C++ twin\n", n, ms,
               probe.lastMarchWallMs(), disagreeGpu);
   EXPECT_LE(disagreeGpu, n / 1000);
 
@@ -193,7 +194,7 @@ TEST_F(VoxelTest, AgreesWithEmbreeAwayFromSurfaces) {
     embreeOnly += e && !s;
   }
   double rate = double(agree) / double(segs.size());
-  std::printf("SVO vs Embree: %.3f%% agree; %d blocked only by voxels (grazing: voxels are fatter than triangles), "
+  dyngi::test::report("SVO vs Embree: %.3f%% agree; %d blocked only by voxels (grazing: voxels are fatter than triangles), "
               "%d blocked only by triangles\n", 100.0 * rate, svoOnly, embreeOnly);
   EXPECT_GE(rate, 0.98);
   EXPECT_EQ(embreeOnly, 0) << "voxelization is conservative: a triangle in the way always occupies a voxel";
@@ -217,7 +218,7 @@ static void expectLeafListIsTheOccupiedLeaves(gi::VoxelScene& voxels, const std:
 // voxel, summed on the CPU; in a build that overflowed the node pool too, for the leaves it has.
 static void expectLeafAttributesSumTheirFragments(gi::VoxelScene& voxels, const std::string& when) {
   const gi::VoxelProbe::LeafAttributesCheck c = gi::VoxelProbe(voxels).checkLeafAttributes();
-  std::printf("%s: %llu leaves, attributes wrong: count %llu, albedo %llu, normal %llu; leaf sum words left %llu\n", when.c_str(),
+  dyngi::test::report("%s: %llu leaves, attributes wrong: count %llu, albedo %llu, normal %llu; leaf sum words left %llu\n", when.c_str(),
               (unsigned long long)c.leaves, (unsigned long long)c.wrongCount, (unsigned long long)c.wrongAlbedo, (unsigned long long)c.wrongNormal,
               (unsigned long long)c.sumsLeft);
   EXPECT_GT(c.leaves, 1000u) << when;
@@ -277,7 +278,7 @@ TEST_F(VoxelTest, StaleBoxesHoldEveryVoxelThatEmptied) {
         for (uint32_t x = 0; x < 64; ++x)
           if (before.get(x, y, z) && !after.get(x, y, z)) ++emptied, outside += !inAStaleBox(x, y, z);
     for (const gi::VoxelBox& b : voxels->staleBoxes()) boxVoxels += b.voxels();
-    std::printf("frame %llu: %llu voxels emptied, %llu outside the %zu stale boxes (%llu voxels)\n", (unsigned long long)frame,
+    dyngi::test::report("frame %llu: %llu voxels emptied, %llu outside the %zu stale boxes (%llu voxels)\n", (unsigned long long)frame,
                 (unsigned long long)emptied, (unsigned long long)outside, voxels->staleBoxes().size(), (unsigned long long)boxVoxels);
     EXPECT_GT(emptied, 0u) << "frame " << frame << ": the test means voxels to empty";
     EXPECT_EQ(outside, 0u) << "frame " << frame;
@@ -349,7 +350,7 @@ TEST_F(VoxelTest, FragmentRangesAreCompactedWithoutLosingVoxels) {
   gi::DenseVoxelGrid before = leaves();
   step();  // compacts: nothing moved, the SVO is rebuilt from the moved fragments
   const uint64_t compactCapacity = voxels->stats().fragmentCapacity;
-  std::printf("fragments %llu: slots %llu -> %llu after compaction; total %.1f MB\n", (unsigned long long)fragments,
+  dyngi::test::report("fragments %llu: slots %llu -> %llu after compaction; total %.1f MB\n", (unsigned long long)fragments,
               (unsigned long long)firstCapacity, (unsigned long long)compactCapacity, double(voxels->stats().totalBytes) / (1 << 20));
   EXPECT_LT(compactCapacity * 2, firstCapacity);
   EXPECT_LE(fragments, compactCapacity);
@@ -394,7 +395,7 @@ TEST_F(VoxelTest, MeshScaledUpInOneFrameKeepsAllItsVoxels) {
   world.write<scene::Transform>(sphere).scale = glm::vec3(2.5f);
   step();
   const uint64_t after = voxels->stats().fragments - walls;
-  std::printf("sphere scaled 5x: %llu -> %llu fragments, %u entities overflowed\n", (unsigned long long)before,
+  dyngi::test::report("sphere scaled 5x: %llu -> %llu fragments, %u entities overflowed\n", (unsigned long long)before,
               (unsigned long long)after, voxels->stats().overflowedEntities);
   EXPECT_GT(after, 2 * before + 64) << "more than a moving range's slack: sized from the old count it overflows";
   EXPECT_EQ(voxels->stats().overflowedEntities, 0u);
@@ -441,7 +442,7 @@ TEST_F(VoxelTest, NodePoolGrowsWhenTheSceneNeedsMore) {
   step();
   gi::DenseVoxelGrid exact = gi::voxelizeBruteForce(voxelSpaceTriangles(snapshot, voxels->volume()), 128);
   GridDiff first = diff(leaves(), exact);
-  std::printf("pool %.2f MB after the first build; sheets added: overflow %d, %zu missing, %zu extra\n",
+  dyngi::test::report("pool %.2f MB after the first build; sheets added: overflow %d, %zu missing, %zu extra\n",
               double(smallPool) / (1 << 20), int(voxels->stats().poolOverflow), first.missing, first.extra);
   EXPECT_TRUE(voxels->stats().poolOverflow) << "the test means to overflow the shrunken pool";
   EXPECT_EQ(first.missing, 0u) << "an overflowing build is conservative";

@@ -44,17 +44,18 @@ TEST(Options, ParsesEverything) {
 
 TEST(Options, ParsesGiOptions) {
   std::string err;
-  auto o = parse({"--gi", "bvh", "--temporal", "8", "--reshoot", "20", "--vpls", "1024", "--interleave", "2", "--clamp", "0.05",
-                  "--animate", "moving-spot", "--vpl-source", "paths", "--voxel-res", "256", "--view", "voxels", "--seed", "7"},
+  auto o = parse({"--gi", "temporal", "--visibility", "bvh", "--temporal-sets", "8", "--reshoot-budget", "20", "--vpls", "1024",
+                  "--interleave", "2", "--distance-clamp", "0.05", "--animate", "moving-spot", "--voxel-resolution", "256", "--view",
+                  "voxels", "--seed", "7"},
                  err);
   ASSERT_TRUE(o) << err;
-  EXPECT_EQ(o->gi, "bvh");
+  EXPECT_EQ(o->gi, "temporal");
   const dyngi::gi::GiSettings& g = o->giSettings;
   EXPECT_EQ(g.technique, "temporal");
   EXPECT_EQ(g.temporal.visibility, dyngi::gi::VisibilityBackend::Bvh);
   EXPECT_EQ(g.temporal.temporalSets, 8u);
   EXPECT_EQ(g.temporal.reshootBudget, 20u);
-  EXPECT_EQ(g.temporal.vpl.vplCount, 1024u);
+  EXPECT_EQ(g.temporal.vpl.vpls, 1024u);
   EXPECT_EQ(g.temporal.vpl.interleave, 2u);
   EXPECT_FLOAT_EQ(g.temporal.vpl.distanceClamp, 0.05f);
   EXPECT_EQ(o->animate, "moving-spot");
@@ -67,21 +68,21 @@ TEST(Options, ParsesGiOptions) {
 // and a default is the struct's member initializer: nothing in the sample restates it.
 TEST(Options, GiSettingsComeFromTheTechniquesTables) {
   std::string err;
-  auto o = parse({"--gi", "svo", "--vpl-source", "rsm", "--vpls", "2048", "--bounces", "3", "--rsm-res", "128", "--indirect-shadows", "off"},
-                 err);
+  auto o = parse({"--gi", "many-lights", "--vpls", "2048", "--bounces", "3", "--rsm-resolution", "128", "--visibility", "none"}, err);
   ASSERT_TRUE(o) << err;
-  EXPECT_EQ(o->giSettings.technique, "many_lights");
-  EXPECT_EQ(o->giSettings.manyLights.vpl.vplCount, 2048u);
+  EXPECT_EQ(o->giSettings.technique, "many-lights");
+  EXPECT_EQ(o->giSettings.manyLights.vpl.vpls, 2048u);
   EXPECT_EQ(o->giSettings.manyLights.vpl.bounces, 3u);
   EXPECT_EQ(o->giSettings.manyLights.rsmResolution, 128u);
-  EXPECT_FALSE(o->giSettings.manyLights.visibility);
+  EXPECT_EQ(o->giSettings.manyLights.visibility, dyngi::gi::VisibilityBackend::None);
   // Untouched values are the structs' defaults.
-  auto d = parse({"--gi", "svo"}, err);
+  auto d = parse({"--gi", "temporal"}, err);
   ASSERT_TRUE(d) << err;
-  EXPECT_EQ(d->giSettings.temporal.vpl.vplCount, dyngi::gi::VplOptions{}.vplCount);
+  EXPECT_EQ(d->giSettings.temporal.vpl.vpls, dyngi::gi::VplOptions{}.vpls);
+  EXPECT_EQ(d->giSettings.temporal.visibility, dyngi::gi::VisibilityBackend::Svo);
   EXPECT_EQ(d->giSettings.temporal.temporalSets, dyngi::gi::TemporalOptions{}.temporalSets);
   EXPECT_EQ(d->giSettings.budget.budgetMs, 0.0f) << "no GI budget unless asked for";
-  auto b = parse({"--gi", "bvh", "--gi-budget-ms", "12.5"}, err);
+  auto b = parse({"--gi", "vct", "--gi-budget-ms", "12.5"}, err);
   ASSERT_TRUE(b) << err;
   EXPECT_EQ(b->giSettings.budget.budgetMs, 12.5f);
   auto p = parse({"--gi", "path", "--spp", "9", "--bounces", "12", "--seed", "3"}, err);
@@ -97,19 +98,22 @@ TEST(Options, ATableOptionOutsideItsRangeOrTechniqueIsOneClearLine) {
     const char* mentions;
   };
   const Case cases[] = {
-      {{"--gi", "svo", "--vpls", "3"}, "--vpls wants an integer in 16..65536, got '3'"},
-      {{"--gi", "svo", "--bounces", "4"}, "--bounces wants an integer in 1..3"},
+      {{"--gi", "temporal", "--vpls", "3"}, "--vpls wants an integer in 16..65536, got '3'"},
+      {{"--gi", "temporal", "--bounces", "4"}, "--bounces wants an integer in 1..3"},
       {{"--gi", "path", "--bounces", "65"}, "--bounces wants an integer in 0..64"},
-      {{"--gi", "svo", "--voxel-res", "100"}, "--voxel-res wants a power of two in 64..512"},
-      {{"--gi", "svo", "--clamp", "nan"}, "--clamp wants a number in 0..100"},
-      {{"--gi", "svo", "--incremental", "maybe"}, "--incremental wants on or off"},
-      {{"--gi", "svo", "--rsm-res", "256"}, "--rsm-res is an option of --gi svo --vpl-source rsm"},
-      {{"--gi", "off", "--vpls", "64"}, "--vpls is an option of"},
-      {{"--gi", "svo", "--spp", "4"}, "--spp is an option of --gi path"},
-      {{"--gi", "svo", "--vpls"}, "--vpls needs a value"},
-      {{"--gi", "bvh", "--view", "vpls"}, "--view vpls needs --gi svo --vpl-source rsm"},
-      {{"--gi", "svo", "--gi-budget-ms", "-1"}, "--gi-budget-ms wants a number in 0..10000"},
-      {{"--gi", "path", "--gi-budget-ms", "10"}, "--gi-budget-ms is an option of --gi svo | --gi bvh"},
+      {{"--gi", "temporal", "--voxel-resolution", "100"}, "--voxel-resolution wants a power of two in 64..512"},
+      {{"--gi", "temporal", "--distance-clamp", "nan"}, "--distance-clamp wants a number in 0..100"},
+      {{"--gi", "temporal", "--incremental-accumulation", "maybe"}, "--incremental-accumulation wants on or off"},
+      {{"--gi", "temporal", "--visibility", "rays"}, "--visibility wants one of svo, bvh, none, got 'rays'"},
+      {{"--gi", "many-lights", "--visibility", "bvh"}, "--visibility wants one of svo, none, got 'bvh'"},
+      {{"--gi", "temporal", "--rsm-resolution", "256"}, "--rsm-resolution is an option of --gi many-lights, not of --gi temporal"},
+      {{"--gi", "off", "--vpls", "64"}, "--vpls is an option of --gi temporal|many-lights"},
+      {{"--gi", "temporal", "--spp", "4"}, "--spp is an option of --gi path"},
+      {{"--gi", "temporal", "--vpls"}, "--vpls needs a value"},
+      {{"--gi", "temporal", "--view", "vpls"}, "--view vpls is a view of --gi many-lights, not of --gi temporal"},
+      {{"--gi", "off", "--view", "indirect"}, "--view indirect needs a GI technique (--gi temporal|many-lights|vct)"},
+      {{"--gi", "temporal", "--gi-budget-ms", "-1"}, "--gi-budget-ms wants a number in 0..10000"},
+      {{"--gi", "path", "--gi-budget-ms", "10"}, "--gi-budget-ms is an option of --gi temporal|many-lights|vct, not of --gi path"},
   };
   for (const Case& c : cases) {
     std::string err;
@@ -124,7 +128,7 @@ TEST(Options, HelpListsEveryTableOptionWithItsDefault) {
   const std::string help = dyngi::sample::usage();
   dyngi::gi::GiSettings defaults;
   for (const dyngi::gi::TechniqueEntry& e : dyngi::gi::techniqueRegistry()) {
-    EXPECT_NE(help.find(std::string("Technique ") + e.name), std::string::npos) << e.name;
+    EXPECT_NE(help.find(std::string("--gi ") + e.name + ": " + e.summary), std::string::npos) << e.name;
     for (const dyngi::gi::OptionRef& r : e.options(defaults)) {
       const std::string flag = std::string("--") + r.spec->name + " ";
       EXPECT_NE(help.find(flag), std::string::npos) << flag;
@@ -133,6 +137,61 @@ TEST(Options, HelpListsEveryTableOptionWithItsDefault) {
   }
   EXPECT_NE(help.find("VPLs over all bounces (rounded down to a multiple of the bounces) (default 512, 16..65536)"), std::string::npos)
       << help;
+}
+
+// The spellings the command line used to take are refused with one line naming the one that replaced
+// them, so a script written for them fails loudly instead of running something else.
+TEST(Options, OldSpellingsAreRefusedNamingTheNewOne) {
+  struct Case {
+    std::vector<const char*> args;
+    const char* names;
+  };
+  const Case cases[] = {
+      {{"--gi", "svo"}, "--gi temporal"},
+      {{"--gi", "bvh"}, "--gi temporal --visibility bvh"},
+      {{"--gi", "temporal", "--vpl-source", "rsm"}, "--gi many-lights"},
+      {{"--gi", "temporal", "--temporal", "8"}, "--temporal-sets"},
+      {{"--gi", "temporal", "--reshoot", "8"}, "--reshoot-budget"},
+      {{"--gi", "temporal", "--clamp", "0.1"}, "--distance-clamp"},
+      {{"--gi", "many-lights", "--rsm-res", "64"}, "--rsm-resolution"},
+      {{"--gi", "many-lights", "--indirect-shadows", "0"}, "--visibility svo|none"},
+      {{"--gi", "vct", "--cones", "6"}, "--diffuse-cones"},
+      {{"--gi", "vct", "--diffuse-filter", "2"}, "--diffuse-filter-radius"},
+      {{"--voxel-res", "64"}, "--voxel-resolution"},
+  };
+  for (const Case& c : cases) {
+    std::string err;
+    EXPECT_FALSE(parse(c.args, err)) << c.names;
+    EXPECT_NE(err.find(std::string("is now ") + c.names), std::string::npos) << err;
+    EXPECT_EQ(err.find('\n'), std::string::npos) << err;
+  }
+}
+
+// A table option's flag is its member's name with dashes, after the table's prefix.
+TEST(OptionTable, AFlagIsItsMembersName) {
+  EXPECT_EQ(dyngi::gi::optionName("", "vpls"), "vpls");
+  EXPECT_EQ(dyngi::gi::optionName("", "temporalSets"), "temporal-sets");
+  EXPECT_EQ(dyngi::gi::optionName("", "coneStep"), "cone-step");
+  EXPECT_EQ(dyngi::gi::optionName("voxel", "resolution"), "voxel-resolution");
+  EXPECT_EQ(dyngi::gi::optionName("gi", "budgetMs"), "gi-budget-ms");
+  dyngi::gi::GiSettings s;
+  EXPECT_TRUE(dyngi::gi::findOption(dyngi::gi::bindOptions(s.vct), "diffuse-filter-radius"));
+  EXPECT_TRUE(dyngi::gi::findOption(dyngi::gi::bindOptions(s.temporal), "incremental-accumulation"));
+}
+
+TEST(Options, EveryGiModeIsOffATechniqueOrThePathTracer) {
+  const std::vector<std::string>& modes = dyngi::sample::giModes();
+  ASSERT_EQ(modes.size(), dyngi::gi::techniqueRegistry().size() + 2);
+  EXPECT_EQ(modes.front(), "off");
+  EXPECT_EQ(modes.back(), "path");
+  for (const dyngi::gi::TechniqueEntry& e : dyngi::gi::techniqueRegistry()) {
+    std::string err;
+    auto o = parse({"--gi", e.name, "--view", "indirect"}, err);
+    ASSERT_TRUE(o) << e.name << ": " << err;
+    EXPECT_EQ(o->giSettings.technique, e.name);
+    EXPECT_TRUE(o->usesGiSystem());
+    for (const char* view : e.debugViews) EXPECT_TRUE(parse({"--gi", e.name, "--view", view}, err)) << err;
+  }
 }
 
 TEST(Options, WarmupFramesAreLeftOutOfTheMedians) {
@@ -151,8 +210,9 @@ TEST(Options, RejectsBadValuesClearly) {
   const std::vector<std::vector<const char*>> bad = {
       {"--gi", "magic"}, {"--size", "0x0"}, {"--size", "12"}, {"--size", "axb"}, {"--frames", "-3"},
       {"--frames"},      {"--bogus"},       {"--exposure", "nan"}, {"--exposure", "-1"},
-      {"--temporal", "0"}, {"--temporal", "33"}, {"--animate", "dance"}, {"--vpl-source", "magic"},
-      {"--vpls", "3"},   {"--interleave", "9"}, {"--clamp", "-1"}, {"--voxel-res", "100"}, {"--view", "xray"},
+      {"--gi", "temporal", "--temporal-sets", "0"}, {"--gi", "temporal", "--temporal-sets", "33"}, {"--animate", "dance"},
+      {"--gi", "temporal", "--vpls", "3"}, {"--gi", "temporal", "--interleave", "9"}, {"--gi", "temporal", "--distance-clamp", "-1"},
+      {"--voxel-resolution", "100"}, {"--view", "xray"},
       {"--seed", "-4"},  {"--warmup", "x"},    {"--frames", "5", "--warmup", "5"}, {"--headless", "--warmup", "60"}};
   for (auto& args : bad) {
     std::string err;
@@ -174,10 +234,10 @@ TEST(OptionTable, ParsesChecksAndReportsAdjustedValues) {
     uint32_t size = 64;
     static const dyngi::gi::OptionTable<Knobs>& table() {
       static const auto t = dyngi::gi::OptionTable<Knobs>()
-                                .add({"count", "how many", 1, 100}, &Knobs::count)
-                                .add({"scale", "how much", 0, 2}, &Knobs::scale)
-                                .add({"on", "whether", 0, 1}, &Knobs::on)
-                                .add({"size", "how big", 16, 256, true}, &Knobs::size);
+                                .add(DYNGI_OPTION(Knobs, count), "how many", 1, 100)
+                                .add(DYNGI_OPTION(Knobs, scale), "how much", 0, 2)
+                                .add(DYNGI_OPTION(Knobs, on), "whether", 0, 1)
+                                .add(DYNGI_OPTION(Knobs, size), "how big", 16, 256, true);
       return t;
     }
   };

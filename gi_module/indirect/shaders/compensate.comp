@@ -1,5 +1,5 @@
 #version 460
-// The distance clamp's lost light, given back (issue 16): the gather's G = cos cos / max(B, d^2) drops
+// The distance clamp's lost light, given back: the gather's G = cos cos / max(B, d^2) drops
 // the fraction 1 - d^2 / B of the light from VPLs closer than sqrt(B), so corners and contact regions
 // come out dark. That light comes from surfaces within sqrt(B) of the pixel, which the screen shows, so
 // (Kollig and Keller 2004's compensation, estimated in screen space as Novak et al. 2011 do) pixels
@@ -21,7 +21,7 @@
 // filter_input.glsl (the traced pixel's depth and normal, the light).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
-#include "shared/gi_gpu_types.h"
+#include "indirect_shared.h"
 #include "shared/lighting.glsl"
 #include "shared/hemisphere.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -5,7 +5,7 @@
 // turns of the ray spiral.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
-#include "shared/gi_gpu_types.h"
+#include "indirect_shared.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = DYNGI_COMPENSATE_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = DYNGI_COMPENSATE_BINDING_TRACED, rgba32ui) uniform readonly uimage2D traced;

@@ -5,7 +5,7 @@
 // surface (the tent's test); where none does (a sliver) nothing is added.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
-#include "shared/gi_gpu_types.h"
+#include "indirect_shared.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const uint K = 4u;
 layout(constant_id = 1) const bool kCompensate = false;

@@ -3,7 +3,7 @@
 // pass (filter_columns.comp) reads, with the pixel's own depth and normal.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
-#include "shared/gi_gpu_types.h"
+#include "indirect_shared.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const uint K = 4u;
 layout(set = 0, binding = DYNGI_FILTER_BINDING_FRAME) uniform Frame { FrameUniforms frame; };

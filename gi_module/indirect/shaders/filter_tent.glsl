@@ -4,10 +4,10 @@
 //
 // Why a tent: the taps of each residue mod K sum to K, so every sub-image of the K x K interleaving gets
 // the same weight and the pattern cancels as with a K x K box; but a hot pixel of one sub-image (a VPL
-// close to a surface) spreads as a smooth pyramid, where a box made a K x K square with hard edges, the
-// "tiles" of issue 16. Rows then columns: 2 (2K - 1) taps instead of (2K - 1)^2 (14 against 49 at K = 4,
-// fewer than the old box's 16), the surface test applied in each pass. The taps are branch-free (lavapipe
-// runs 8 pixels in lock step); each is one fetch of the packed input (filter_input.glsl).
+// close to a surface) spreads as a smooth pyramid, where a box makes a K x K square with hard edges
+// (tiles). Rows then columns: 2 (2K - 1) taps instead of (2K - 1)^2 (14 against 49 at K = 4), the
+// surface test applied in each pass. The taps are branch-free (a SIMD device runs neighbouring pixels in
+// lock step); each is one fetch of the packed input (filter_input.glsl).
 // Needs `K` (specialization constant), FrameUniforms `frame`, `planeTolerance` and the readonly rgba32ui
 // image `filterInput` declared before inclusion.
 #include "filter_input.glsl"

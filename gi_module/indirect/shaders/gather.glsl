@@ -13,7 +13,8 @@
 // main() around gatherPixel().
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
-#include "shared/gi_gpu_types.h"
+#include "voxel_shared.h"
+#include "indirect_shared.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = DYNGI_GATHER_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = DYNGI_GATHER_BINDING_POSITION, rgba32f) uniform readonly image2D gPosition;

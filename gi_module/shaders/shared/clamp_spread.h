@@ -1,4 +1,4 @@
-// The distance clamp's lost light, spread near where it lands (issue 16), shared by C++ and GLSL.
+// The distance clamp's lost light, spread near where it lands, shared by C++ and GLSL.
 //
 // The gather's G = cos_x cos_y / max(B, d^2) drops, for a VPL y closer than sqrt(B) to the receiver x,
 // the part cos_x cos_y (1 / d^2 - 1 / B): the singular spike that makes hot spots, and with it the light

@@ -1,11 +1,11 @@
-#include "dyngi/gi/many_lights.h"
+#include "techniques/many_lights/many_lights.h"
 
 #include <algorithm>
 #include <cstring>
 
 #include "dyngi/engine/render/draw_pass.h"
 #include "dyngi/engine/render/light_views.h"
-#include "shaders/shared/gi_gpu_types.h"
+#include "techniques/many_lights/shaders/many_lights_shared.h"
 #include "indirect/indirect_passes.h"
 #include "spirv/many_lights_debug.comp.spv.h"
 #include "spirv/rsm.frag.spv.h"
@@ -19,7 +19,7 @@
 
 #include "gpu_aliases.h"
 #include "sampling.h"
-#include "vpl/emitters.h"
+#include "indirect/emitters.h"
 
 namespace dyngi::gi {
 
@@ -31,7 +31,7 @@ ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const Man
   // Bounced VPLs (and the bounce tail's probes) take the albedo and normal of the voxel they land on.
   if (settings_.vpl.bounces > 1 || settings_.vpl.bounceTail) voxels_.enableLeafAttributes();
   settings_.vpl.interleave = std::clamp(settings_.vpl.interleave, 1u, 8u);
-  settings_.vpl.vplCount = settings_.vpl.effectiveVplCount();
+  settings_.vpl.vpls = settings_.vpl.effectiveVplCount();
   const Binding rowsB[] = {{DYNGI_VPL_CDF_ROWS_BINDING_RSM_FLUX, kSampled, kCS},
                            {DYNGI_VPL_CDF_ROWS_BINDING_ROW_PREFIX, kSSBO, kCS},
                            {DYNGI_VPL_CDF_ROWS_BINDING_ROW_SUMS, kSSBO, kCS}};
@@ -56,7 +56,6 @@ ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const Man
   filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
   const Binding debugB[] = {{DYNGI_MANY_LIGHTS_DEBUG_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
                             {DYNGI_MANY_LIGHTS_DEBUG_BINDING_G_ALBEDO, kSampled, kCS},
-                            {DYNGI_MANY_LIGHTS_DEBUG_BINDING_INDIRECT, kStorageImage, kCS},
                             {DYNGI_MANY_LIGHTS_DEBUG_BINDING_RAW, kStorageImage, kCS},
                             {DYNGI_MANY_LIGHTS_DEBUG_BINDING_VPLS, kSSBO, kCS},
                             {DYNGI_MANY_LIGHTS_DEBUG_BINDING_HDR, kStorageImage, kCS}};
@@ -202,141 +201,155 @@ render::Pipeline& ManyLights::rsmPipelineFor(uint32_t textureBits) {
 
 bool ManyLights::record(render::FrameContext& frame) {
   if (!voxels_.hasVolume() || !raw_.valid()) return false;
+  recordReflectiveShadowMaps(frame);
+  recordVplGeneration(frame);
+  recordVplBounces(frame);
+  recordGatherAndFilter(frame);
+  return true;
+}
+
+// "rsm": one reflective shadow map layer per light view (position, normal, flux).
+void ManyLights::recordReflectiveShadowMaps(render::FrameContext& frame) {
   VkCommandBuffer cmd = frame.cmd;
   const uint32_t res = settings_.rsmResolution;
-  const uint32_t vplTotal = gatheredVplCount();
-  const VoxelVolume& vol = voxels_.volume();
-
-  {  // 1. reflective shadow maps
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "rsm");
-    for (Image* img : {&rsmPosition_, &rsmNormal_, &rsmFlux_})
-      img->transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-    rsmDepth_.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-    for (uint32_t layer = 0; layer < rsmLayers_; ++layer) {
-      // Unused layers are cleared too: their flux must read as zero.
-      render::RenderingScope rendering(cmd, res, res,
-                                       {render::colorAttachment(rsmPosition_.layerView(layer)), render::colorAttachment(rsmNormal_.layerView(layer)),
-                                        render::colorAttachment(rsmFlux_.layerView(layer))},
-                                       render::depthAttachment(rsmDepth_.layerView(layer), VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_DONT_CARE));
-      if (layer < rsmLayersUsed_) {
-        auto pipelineFor = [&](const render::DrawItem& dr) -> const Pipeline& {
-          return rsmPipelineFor(render::drawTextureBits(frame, dr));
-        };
-        render::drawEach(frame, std::nullopt, pipelineFor, [&](VkCommandBuffer c, const render::DrawItem& dr, const Pipeline& pipeline) {
-          gpu::RsmPush pc{};
-          pc.model = dr.model;
-          pc.baseColor = glm::vec4(glm::vec3(dr.material.baseColor), dr.material.metallic);
-          pc.uvLinear = dr.material.uvTransform.linear();
-          pc.uvOffset = glm::vec4(dr.material.uvTransform.offset, render::alphaMaskThreshold(dr.material), dr.material.normalScale);
-          pc.layer = layer;
-          DescriptorWrites()
-              .storageBuffer(DYNGI_RSM_BINDING_LAYERS, layers_.handle())
-              .storageBuffer(DYNGI_RSM_BINDING_LIGHTS, lights_.handle())
-              .sampledImage(DYNGI_RSM_BINDING_BASE_COLOR_TEX, frame.textureView(dr.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-              .sampledImage(DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX, frame.textureView(dr.material.metallicRoughnessTexture), frame.linearSampler,
-                            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-              .sampledImage(DYNGI_RSM_BINDING_NORMAL_TEX, frame.textureView(dr.material.normalTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-              .push(ctx_, c, pipeline);
-          vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
-        });
-      }
+  render::ScopedPass scope(ctx_, frame.timer, cmd, "rsm");
+  for (Image* img : {&rsmPosition_, &rsmNormal_, &rsmFlux_})
+    img->transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                    VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  rsmDepth_.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                       VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+  for (uint32_t layer = 0; layer < rsmLayers_; ++layer) {
+    // Unused layers are cleared too: their flux must read as zero.
+    render::RenderingScope rendering(cmd, res, res,
+                                     {render::colorAttachment(rsmPosition_.layerView(layer)), render::colorAttachment(rsmNormal_.layerView(layer)),
+                                      render::colorAttachment(rsmFlux_.layerView(layer))},
+                                     render::depthAttachment(rsmDepth_.layerView(layer), VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_DONT_CARE));
+    if (layer < rsmLayersUsed_) {
+      auto pipelineFor = [&](const render::DrawItem& dr) -> const Pipeline& {
+        return rsmPipelineFor(render::drawTextureBits(frame, dr));
+      };
+      render::drawEach(frame, std::nullopt, pipelineFor, [&](VkCommandBuffer c, const render::DrawItem& dr, const Pipeline& pipeline) {
+        gpu::RsmPush pc{};
+        pc.model = dr.model;
+        pc.baseColor = glm::vec4(glm::vec3(dr.material.baseColor), dr.material.metallic);
+        pc.uvLinear = dr.material.uvTransform.linear();
+        pc.uvOffset = glm::vec4(dr.material.uvTransform.offset, render::alphaMaskThreshold(dr.material), dr.material.normalScale);
+        pc.layer = layer;
+        DescriptorWrites()
+            .storageBuffer(DYNGI_RSM_BINDING_LAYERS, layers_.handle())
+            .storageBuffer(DYNGI_RSM_BINDING_LIGHTS, lights_.handle())
+            .sampledImage(DYNGI_RSM_BINDING_BASE_COLOR_TEX, frame.textureView(dr.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+            .sampledImage(DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX, frame.textureView(dr.material.metallicRoughnessTexture), frame.linearSampler,
+                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+            .sampledImage(DYNGI_RSM_BINDING_NORMAL_TEX, frame.textureView(dr.material.normalTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+            .push(ctx_, c, pipeline);
+        vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+      });
     }
-    for (Image* img : {&rsmPosition_, &rsmNormal_, &rsmFlux_})
-      img->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   }
+  for (Image* img : {&rsmPosition_, &rsmNormal_, &rsmFlux_})
+    img->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+}
 
-  {  // 2. VPLs by importance sampling the RSM flux
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "vpl_generate");
-    constexpr VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    uint32_t rows = res * rsmLayers_;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cdfRows_.handle());
+// "vpl_generate": the first bounce's VPLs, importance-sampled from the RSM flux (row CDFs, then samples),
+// then the emitters' VPLs sampled on the CPU after them.
+void ManyLights::recordVplGeneration(render::FrameContext& frame) {
+  VkCommandBuffer cmd = frame.cmd;
+  const uint32_t res = settings_.rsmResolution;
+  render::ScopedPass scope(ctx_, frame.timer, cmd, "vpl_generate");
+  constexpr VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  uint32_t rows = res * rsmLayers_;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cdfRows_.handle());
+  DescriptorWrites()
+      .sampledImage(DYNGI_VPL_CDF_ROWS_BINDING_RSM_FLUX, rsmFlux_.view(), frame.nearestSampler, ro)
+      .storageBuffer(DYNGI_VPL_CDF_ROWS_BINDING_ROW_PREFIX, rowPrefix_.handle())
+      .storageBuffer(DYNGI_VPL_CDF_ROWS_BINDING_ROW_SUMS, rowCdf_.handle())
+      .push(ctx_, cmd, cdfRows_);
+  const gpu::VplCdfRowsPush rp{res, rsmLayers_};
+  vkCmdPushConstants(cmd, cdfRows_.layout(), kCS, 0, sizeof(rp), &rp);
+  vkCmdDispatch(cmd, dispatchGroups(rows, 64), 1, 1);
+  render::computeWriteBarrier(cmd);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cdfTotal_.handle());
+  DescriptorWrites().storageBuffer(DYNGI_VPL_CDF_TOTAL_BINDING_ROW_SUMS, rowCdf_.handle()).push(ctx_, cmd, cdfTotal_);
+  const gpu::VplCdfTotalPush tp{rows};
+  vkCmdPushConstants(cmd, cdfTotal_.layout(), kCS, 0, sizeof(tp), &tp);
+  vkCmdDispatch(cmd, 1, 1, 1);
+  render::computeWriteBarrier(cmd);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, sample_.handle());
+  DescriptorWrites()
+      .sampledImage(DYNGI_VPL_SAMPLE_BINDING_RSM_POSITION, rsmPosition_.view(), frame.nearestSampler, ro)
+      .sampledImage(DYNGI_VPL_SAMPLE_BINDING_RSM_NORMAL, rsmNormal_.view(), frame.nearestSampler, ro)
+      .sampledImage(DYNGI_VPL_SAMPLE_BINDING_RSM_FLUX, rsmFlux_.view(), frame.nearestSampler, ro)
+      .storageBuffer(DYNGI_VPL_SAMPLE_BINDING_ROW_PREFIX, rowPrefix_.handle())
+      .storageBuffer(DYNGI_VPL_SAMPLE_BINDING_ROW_CDF, rowCdf_.handle())
+      .storageBuffer(DYNGI_VPL_SAMPLE_BINDING_VPLS, vpls_.handle())
+      .push(ctx_, cmd, sample_);
+  const uint32_t fromEmitters = uint32_t(emitterVpls_.size()), fromLights = perBounce_ - fromEmitters;
+  const gpu::VplSamplePush sp{res, rsmLayers_, fromLights, settings_.vpl.seed * 7919u};
+  vkCmdPushConstants(cmd, sample_.layout(), kCS, 0, sizeof(sp), &sp);
+  if (fromLights > 0) vkCmdDispatch(cmd, dispatchGroups(fromLights, 64), 1, 1);
+  if (fromEmitters > 0) {  // the emitters' VPLs, sampled on the CPU, after the lights'
+    const VkBufferCopy region{0, VkDeviceSize(fromLights) * sizeof(gpu::GpuVpl), VkDeviceSize(fromEmitters) * sizeof(gpu::GpuVpl)};
+    vkCmdCopyBuffer(cmd, emitterUpload_.handle(), vpls_.handle(), 1, &region);
+  }
+  render::computeWriteBarrier(cmd);  // compute and transfer writes
+}
+
+// "vpl_bounce": each further bounce through the voxel scene, then the bounce tail's probes.
+void ManyLights::recordVplBounces(render::FrameContext& frame) {
+  const uint32_t bounceLevels = gatheredVplCount() / perBounce_;  // with the tail, its probes: one more
+  if (bounceLevels <= 1) return;
+  VkCommandBuffer cmd = frame.cmd;
+  const VoxelVolume& vol = voxels_.volume();
+  render::ScopedPass scope(ctx_, frame.timer, cmd, "vpl_bounce");
+  for (uint32_t b = 1; b < bounceLevels; ++b) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bounce_.handle());
     DescriptorWrites()
-        .sampledImage(DYNGI_VPL_CDF_ROWS_BINDING_RSM_FLUX, rsmFlux_.view(), frame.nearestSampler, ro)
-        .storageBuffer(DYNGI_VPL_CDF_ROWS_BINDING_ROW_PREFIX, rowPrefix_.handle())
-        .storageBuffer(DYNGI_VPL_CDF_ROWS_BINDING_ROW_SUMS, rowCdf_.handle())
-        .push(ctx_, cmd, cdfRows_);
-    const gpu::VplCdfRowsPush rp{res, rsmLayers_};
-    vkCmdPushConstants(cmd, cdfRows_.layout(), kCS, 0, sizeof(rp), &rp);
-    vkCmdDispatch(cmd, dispatchGroups(rows, 64), 1, 1);
+        .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_VPLS, vpls_.handle())
+        .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_NODES, voxels_.nodes().handle())
+        .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_NODE_CELLS, voxels_.nodeCells().handle())
+        .storageImage(DYNGI_VPL_BOUNCE_BINDING_VOXEL_ATTRIBUTES, voxels_.voxelAttributes().view())
+        .push(ctx_, cmd, bounce_);
+    const gpu::VplBouncePush pc{glm::vec4(vol.origin, 1.0f / vol.voxelSize), (b - 1) * perBounce_, perBounce_, b, vol.depth(),
+                                float(vol.resolution), settings_.vpl.liftVoxels, settings_.vpl.seed};
+    vkCmdPushConstants(cmd, bounce_.layout(), kCS, 0, sizeof(pc), &pc);
+    vkCmdDispatch(cmd, dispatchGroups(perBounce_, 64), 1, 1);
     render::computeWriteBarrier(cmd);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cdfTotal_.handle());
-    DescriptorWrites().storageBuffer(DYNGI_VPL_CDF_TOTAL_BINDING_ROW_SUMS, rowCdf_.handle()).push(ctx_, cmd, cdfTotal_);
-    const gpu::VplCdfTotalPush tp{rows};
-    vkCmdPushConstants(cmd, cdfTotal_.layout(), kCS, 0, sizeof(tp), &tp);
+  }
+  if (settings_.vpl.bounceTail) {  // the probes' bounce, gathered, carries every later one (vpl_tail.comp)
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tail_.handle());
+    DescriptorWrites().storageBuffer(DYNGI_VPL_TAIL_BINDING_VPLS, vpls_.handle()).push(ctx_, cmd, tail_);
+    const gpu::VplTailPush tp{(settings_.vpl.bounces - 1) * perBounce_, perBounce_};
+    vkCmdPushConstants(cmd, tail_.layout(), kCS, 0, sizeof(tp), &tp);
     vkCmdDispatch(cmd, 1, 1, 1);
     render::computeWriteBarrier(cmd);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, sample_.handle());
-    DescriptorWrites()
-        .sampledImage(DYNGI_VPL_SAMPLE_BINDING_RSM_POSITION, rsmPosition_.view(), frame.nearestSampler, ro)
-        .sampledImage(DYNGI_VPL_SAMPLE_BINDING_RSM_NORMAL, rsmNormal_.view(), frame.nearestSampler, ro)
-        .sampledImage(DYNGI_VPL_SAMPLE_BINDING_RSM_FLUX, rsmFlux_.view(), frame.nearestSampler, ro)
-        .storageBuffer(DYNGI_VPL_SAMPLE_BINDING_ROW_PREFIX, rowPrefix_.handle())
-        .storageBuffer(DYNGI_VPL_SAMPLE_BINDING_ROW_CDF, rowCdf_.handle())
-        .storageBuffer(DYNGI_VPL_SAMPLE_BINDING_VPLS, vpls_.handle())
-        .push(ctx_, cmd, sample_);
-    const uint32_t fromEmitters = uint32_t(emitterVpls_.size()), fromLights = perBounce_ - fromEmitters;
-    const gpu::VplSamplePush sp{res, rsmLayers_, fromLights, settings_.vpl.seed * 7919u};
-    vkCmdPushConstants(cmd, sample_.layout(), kCS, 0, sizeof(sp), &sp);
-    if (fromLights > 0) vkCmdDispatch(cmd, dispatchGroups(fromLights, 64), 1, 1);
-    if (fromEmitters > 0) {  // the emitters' VPLs, sampled on the CPU, after the lights'
-      const VkBufferCopy region{0, VkDeviceSize(fromLights) * sizeof(gpu::GpuVpl), VkDeviceSize(fromEmitters) * sizeof(gpu::GpuVpl)};
-      vkCmdCopyBuffer(cmd, emitterUpload_.handle(), vpls_.handle(), 1, &region);
-    }
-    render::computeWriteBarrier(cmd);  // compute and transfer writes
   }
+}
 
-  const uint32_t bounceLevels = gatheredVplCount() / perBounce_;  // with the tail, its probes: one more
-  if (bounceLevels > 1) {  // 3. further bounces through the voxel scene
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "vpl_bounce");
-    for (uint32_t b = 1; b < bounceLevels; ++b) {
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bounce_.handle());
-      DescriptorWrites()
-          .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_VPLS, vpls_.handle())
-          .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_NODES, voxels_.nodes().handle())
-          .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_NODE_CELLS, voxels_.nodeCells().handle())
-          .storageImage(DYNGI_VPL_BOUNCE_BINDING_VOXEL_ATTRIBUTES, voxels_.voxelAttributes().view())
-          .push(ctx_, cmd, bounce_);
-      const gpu::VplBouncePush pc{glm::vec4(vol.origin, 1.0f / vol.voxelSize), (b - 1) * perBounce_, perBounce_, b, vol.depth(),
-                                  float(vol.resolution), settings_.vpl.liftVoxels, settings_.vpl.seed};
-      vkCmdPushConstants(cmd, bounce_.layout(), kCS, 0, sizeof(pc), &pc);
-      vkCmdDispatch(cmd, dispatchGroups(perBounce_, 64), 1, 1);
-      render::computeWriteBarrier(cmd);
-    }
-    if (settings_.vpl.bounceTail) {  // the probes' bounce, gathered, carries every later one (vpl_tail.comp)
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tail_.handle());
-      DescriptorWrites().storageBuffer(DYNGI_VPL_TAIL_BINDING_VPLS, vpls_.handle()).push(ctx_, cmd, tail_);
-      const gpu::VplTailPush tp{(settings_.vpl.bounces - 1) * perBounce_, perBounce_};
-      vkCmdPushConstants(cmd, tail_.layout(), kCS, 0, sizeof(tp), &tp);
-      vkCmdDispatch(cmd, 1, 1, 1);
-      render::computeWriteBarrier(cmd);
-    }
-  }
-
+// "indirect", "filter": the interleaved gather with SVO visibility, then the merge and geometry-aware filter.
+void ManyLights::recordGatherAndFilter(render::FrameContext& frame) {
   const uint32_t K = settings_.vpl.interleave;
-  {  // 4. interleaved gather with SVO visibility, 5. merge + geometry-aware filter
-    IndirectGatherPass::Inputs in;
-    in.vpls = vpls_.handle();
-    in.nodes = voxels_.nodes().handle();
-    in.bits = vpls_.handle();  // unused: SVO visibility or none
-    gpu::GatherPush& pc = in.push;
-    pc.worldToVoxel = glm::vec4(vol.origin, 1.0f / vol.voxelSize);
-    pc.distanceClamp = settings_.vpl.distanceClamp;
-    pc.clampSpread = settings_.vpl.clampSpreadStretch();
-    pc.luminanceThreshold = settings_.vpl.luminanceThreshold;
-    pc.liftVoxels = settings_.vpl.liftVoxels;
-    pc.voxelResolution = float(vol.resolution);
-    pc.vplCount = vplTotal;
-    pc.estimatedCount = vplTotal;  // every VPL of the frame is gathered (its flux is its share of the lights')
-    pc.interleave = K;
-    pc.visibility = settings_.visibility ? DYNGI_VISIBILITY_SVO : DYNGI_VISIBILITY_NONE;
-    pc.svoDepth = vol.depth();
-    gatherPass_->record(frame, raw_, in);
-    filterPass_->record(frame, raw_, K, settings_.vpl);
-  }
-  return true;
+  const uint32_t vplTotal = gatheredVplCount();
+  const VoxelVolume& vol = voxels_.volume();
+  IndirectGatherPass::Inputs in;
+  in.vpls = vpls_.handle();
+  in.nodes = voxels_.nodes().handle();
+  in.bits = vpls_.handle();  // unused: SVO visibility or none
+  gpu::GatherPush& pc = in.push;
+  pc.worldToVoxel = glm::vec4(vol.origin, 1.0f / vol.voxelSize);
+  pc.distanceClamp = settings_.vpl.distanceClamp;
+  pc.clampSpread = settings_.vpl.clampSpreadStretch();
+  pc.luminanceThreshold = settings_.vpl.luminanceThreshold;
+  pc.liftVoxels = settings_.vpl.liftVoxels;
+  pc.voxelResolution = float(vol.resolution);
+  pc.vplCount = vplTotal;
+  pc.estimatedCount = vplTotal;  // every VPL of the frame is gathered (its flux is its share of the lights')
+  pc.interleave = K;
+  pc.visibility = settings_.visibility == VisibilityBackend::Svo ? DYNGI_VISIBILITY_SVO : DYNGI_VISIBILITY_NONE;
+  pc.svoDepth = vol.depth();
+  gatherPass_->record(frame, raw_, in);
+  filterPass_->record(frame, raw_, K, settings_.vpl);
 }
 
 void ManyLights::recordAfterLighting(render::FrameContext& frame) {
@@ -345,22 +358,20 @@ void ManyLights::recordAfterLighting(render::FrameContext& frame) {
   render::RenderTargets& t = frame.targets;
   t.hdr.transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  t.indirect.transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   raw_.transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, debug_.handle());
   DescriptorWrites()
       .uniformBuffer(DYNGI_MANY_LIGHTS_DEBUG_BINDING_FRAME, frame.frameUniforms.handle())
       .sampledImage(DYNGI_MANY_LIGHTS_DEBUG_BINDING_G_ALBEDO, t.albedo.view(), frame.nearestSampler)
-      .storageImage(DYNGI_MANY_LIGHTS_DEBUG_BINDING_INDIRECT, t.indirect.view())
       .storageImage(DYNGI_MANY_LIGHTS_DEBUG_BINDING_RAW, raw_.view())
       .storageBuffer(DYNGI_MANY_LIGHTS_DEBUG_BINDING_VPLS, vpls_.handle())
       .storageImage(DYNGI_MANY_LIGHTS_DEBUG_BINDING_HDR, t.hdr.view())
       .push(ctx_, frame.cmd, debug_);
-  uint32_t mode = settings_.view == ManyLightsView::Indirect ? 0u : settings_.view == ManyLightsView::Vpls ? 1u : 2u;
+  const uint32_t mode = settings_.view == ManyLightsView::Vpls ? 0u : 1u;
   const uint32_t vplTotal = gatheredVplCount();
   const gpu::ManyLightsDebugPush pc{mode, settings_.vpl.interleave, vplTotal};
   vkCmdPushConstants(frame.cmd, debug_.layout(), kCS, 0, sizeof(pc), &pc);
-  uint32_t n = mode == 1 ? vplTotal : t.width * t.height;
+  const uint32_t n = mode == 0 ? vplTotal : t.width * t.height;
   vkCmdDispatch(frame.cmd, dispatchGroups(n, 64), 1, 1);
 }
 

@@ -46,6 +46,10 @@ class ManyLights final : public render::RenderFeature {
  private:
   friend std::vector<VplReadback> readbackVpls(ManyLights&, bool);  // tests (gi_module/testing)
   void ensureRsm(uint32_t layers);
+  void recordReflectiveShadowMaps(render::FrameContext& frame);
+  void recordVplGeneration(render::FrameContext& frame);
+  void recordVplBounces(render::FrameContext& frame);
+  void recordGatherAndFilter(render::FrameContext& frame);
   // The VPLs a frame gathers: every simulated bounce's, and with the bounce tail its probes' bounce.
   uint32_t gatheredVplCount() const { return perBounce_ * (settings_.vpl.bounces + (settings_.vpl.bounceTail ? 1u : 0u)); }
 

@@ -1,6 +1,6 @@
 // The many-lights technique in the GI system's contract: VPLs from RSMs every frame, SVO visibility.
 #include "dyngi/gi/gi_settings.h"
-#include "dyngi/gi/many_lights.h"
+#include "techniques/many_lights/many_lights.h"
 #include "techniques/registry_entries.h"
 
 namespace dyngi::gi {
@@ -9,9 +9,9 @@ const OptionTable<ManyLightsOptions>& ManyLightsOptions::table() {
   static const OptionTable<ManyLightsOptions> t =
       OptionTable<ManyLightsOptions>()
           .include(&ManyLightsOptions::vpl)
-          .add({"rsm-res", "reflective shadow map texels per side and light", 16, 2048, /*powerOfTwo=*/true},
-               &ManyLightsOptions::rsmResolution)
-          .add({"indirect-shadows", "SVO visibility of the VPLs (off: V = 1, for comparisons)", 0, 1}, &ManyLightsOptions::visibility);
+          .add(DYNGI_OPTION(ManyLightsOptions, rsmResolution), "reflective shadow map texels per side and light", 16, 2048, /*powerOfTwo=*/true)
+          .addChoice(DYNGI_OPTION(ManyLightsOptions, visibility), "whether a VPL sees a pixel: marched through the SVO, or none (V = 1, for comparisons)",
+                     {{"svo", VisibilityBackend::Svo}, {"none", VisibilityBackend::None}});
   return t;
 }
 
@@ -27,7 +27,6 @@ class ManyLightsTechnique final : public Technique {
   bool setDebugView(std::string_view name) override {
     ManyLightsView& v = feature_.settings().view;
     if (name == "final") v = ManyLightsView::Final;
-    else if (name == "indirect") v = ManyLightsView::Indirect;
     else if (name == "vpls") v = ManyLightsView::Vpls;
     else if (name == "subimages") v = ManyLightsView::SubImages;
     else return false;
@@ -53,9 +52,9 @@ class ManyLightsTechnique final : public Technique {
 }  // namespace
 
 TechniqueEntry manyLightsTechniqueEntry() {
-  return {"many_lights",
+  return {"many-lights",
           "VPLs importance-sampled from reflective shadow maps every frame, bounced and gathered with SVO visibility",
-          {"indirect", "vpls", "subimages"},
+          {"vpls", "subimages"},
           [](GiSettings& s) { return bindOptions(s.manyLights); },
           [](const GiSettings&) { return true; },
           [](const TechniqueServices& services, const GiSettings& s) -> std::unique_ptr<Technique> {

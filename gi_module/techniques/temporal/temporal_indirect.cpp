@@ -1,11 +1,11 @@
-#include "dyngi/gi/temporal_indirect.h"
+#include "techniques/temporal/temporal_indirect.h"
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 
 #include "dyngi/gi/job_pool.h"
-#include "shaders/shared/gi_gpu_types.h"
+#include "techniques/temporal/shaders/temporal_shared.h"
 #include "spirv/temporal_reproject.comp.spv.h"
 #include "indirect/indirect_passes.h"
 #include "spirv/temporal_gather.comp.spv.h"
@@ -20,7 +20,7 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
   if (settings.visibility == VisibilityBackend::Svo && !voxels) throw std::invalid_argument("SVO visibility needs a VoxelScene");
   if (settings.visibility == VisibilityBackend::Bvh && !bvh) throw std::invalid_argument("BVH visibility needs an EmbreeScene");
   sets_ = std::min(paths.settings().temporalSets, uint32_t(DYNGI_MAX_TEMPORAL_SETS));
-  perSet_ = (paths.settings().vpl.vplCount + sets_ - 1) / sets_;
+  perSet_ = (paths.settings().vpl.vpls + sets_ - 1) / sets_;
   gathered_ = perSet_;
   lastRendered_.assign(sets_, -1);
   const Binding accumulate[] = {{DYNGI_TEMPORAL_GATHER_BINDING_SET_SAMPLES, kStorageImage, kCS},

@@ -21,7 +21,7 @@
 #include "dyngi/gi/bvh.h"
 #include "dyngi/gi/temporal_options.h"
 #include "dyngi/gi/voxel_scene.h"
-#include "dyngi/gi/vpl_paths.h"
+#include "techniques/temporal/vpl_paths.h"
 
 namespace dyngi::gi {
 

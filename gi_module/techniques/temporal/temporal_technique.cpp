@@ -1,9 +1,9 @@
 // The temporal technique in the GI system's contract: incremental VPL paths on the CPU (VplPaths),
 // temporal sets gathered one a frame and reprojected (TemporalIndirect), SVO or Embree visibility.
 #include "dyngi/gi/gi_settings.h"
-#include "dyngi/gi/temporal_indirect.h"
-#include "dyngi/gi/vpl_paths.h"
-#include "shaders/shared/gi_gpu_types.h"
+#include "techniques/temporal/temporal_indirect.h"
+#include "techniques/temporal/vpl_paths.h"
+#include "techniques/temporal/shaders/temporal_shared.h"
 #include "techniques/registry_entries.h"
 
 namespace dyngi::gi {
@@ -12,23 +12,17 @@ const OptionTable<TemporalOptions>& TemporalOptions::table() {
   static const OptionTable<TemporalOptions> t =
       OptionTable<TemporalOptions>()
           .include(&TemporalOptions::vpl)
-          .add({"temporal", "T temporal VPL sets, one gathered a frame (1: every VPL every frame)", 1, DYNGI_MAX_TEMPORAL_SETS},
-               &TemporalOptions::temporalSets)
-          .add({"reshoot", "VPLs reshot per frame (0: VPLs / T)", 0, 1000000}, &TemporalOptions::reshootBudget)
-          .add({"reshoot-burst", "all invalid VPLs up to this many are reshot at once when more than the budget are (0: off)", 0, 1000000},
-               &TemporalOptions::reshootBurst)
-          .add({"drop-stale-sets", "a set more than this fraction stale leaves the average until regathered (1: never)", 0, 1},
-               &TemporalOptions::dropStaleSets)
-          .add({"catch-up-sets", "sets gathered in one frame while some hold no light (start, after a light change)", 1,
-                DYNGI_MAX_TEMPORAL_SETS},
-               &TemporalOptions::catchUpSets)
-          .add({"reprojection-cutoff", "a stored sample counts within this fraction of the view distance", 0, 1},
-               &TemporalOptions::reprojectionCutoff)
-          .add({"light-move-tolerance", "a light's VPLs live until it moved this fraction of the scene diagonal", 0, 1},
-               &TemporalOptions::lightMoveTolerance)
-          .add({"light-turn-tolerance", "... or turned this many radians", 0, 3.2}, &TemporalOptions::lightTurnTolerance)
-          .add({"incremental", "O(1) accumulation while the camera is still (off: full reprojection every frame)", 0, 1},
-               &TemporalOptions::incrementalAccumulation);
+          .addChoice(DYNGI_OPTION(TemporalOptions, visibility), "whether a VPL sees a pixel: SVO march on the GPU, Embree rays on the CPU (exact), or none (V = 1)",
+                     {{"svo", VisibilityBackend::Svo}, {"bvh", VisibilityBackend::Bvh}, {"none", VisibilityBackend::None}})
+          .add(DYNGI_OPTION(TemporalOptions, temporalSets), "T temporal VPL sets, one gathered a frame (1: every VPL every frame)", 1, DYNGI_MAX_TEMPORAL_SETS)
+          .add(DYNGI_OPTION(TemporalOptions, reshootBudget), "VPLs reshot per frame (0: VPLs / T)", 0, 1000000)
+          .add(DYNGI_OPTION(TemporalOptions, reshootBurst), "all invalid VPLs up to this many are reshot at once when more than the budget are (0: off)", 0, 1000000)
+          .add(DYNGI_OPTION(TemporalOptions, dropStaleSets), "a set more than this fraction stale leaves the average until regathered (1: never)", 0, 1)
+          .add(DYNGI_OPTION(TemporalOptions, catchUpSets), "sets gathered in one frame while some hold no light (start, after a light change)", 1, DYNGI_MAX_TEMPORAL_SETS)
+          .add(DYNGI_OPTION(TemporalOptions, reprojectionCutoff), "a stored sample counts within this fraction of the view distance", 0, 1)
+          .add(DYNGI_OPTION(TemporalOptions, lightMoveTolerance), "a light's VPLs live until it moved this fraction of the scene diagonal", 0, 1)
+          .add(DYNGI_OPTION(TemporalOptions, lightTurnTolerance), "... or turned this many radians", 0, 3.2)
+          .add(DYNGI_OPTION(TemporalOptions, incrementalAccumulation), "O(1) accumulation while the camera is still (off: full reprojection every frame)", 0, 1);
   return t;
 }
 

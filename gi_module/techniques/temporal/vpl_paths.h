@@ -136,11 +136,32 @@ class VplPaths {
   void replaceWith(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
                    const class EmitterSet& emitters);
   void invalidateIndex(uint32_t index, bool hard = false);
+  // What invalidate() checks each VPL against this frame.
+  struct FrameChecks {
+    const render::RenderSnapshot& snapshot;
+    const EmbreeScene& bvh;
+    const std::unordered_set<ecs::Entity>& moved;
+    float scale = 1.0f, eps = 0.0f, totalPower = 0.0f;  // the scene's diagonal, a ray's slack, lights' and emitters' power
+  };
+  bool rayStillReaches(const PathVpl& v, const FrameChecks& c) const;
+  bool escapedRayNowHits(uint32_t i, uint32_t b, const FrameChecks& c) const;
+  bool probeStale(const PathVpl& v, uint32_t b, const FrameChecks& c) const;
+  void checkEmitterPathVpl(uint32_t i, const FrameChecks& c);
+  void checkLightPathVpl(uint32_t i, const FrameChecks& c);
+  bool lightStillHolds(const LightState& ls, const render::LightItem& light, const FrameChecks& c, bool& hard) const;
   void markChanged(uint32_t index, bool hard);  // counts a VPL once per set rendering (and once more if hard)
   bool lightJumped(const LightState& from, glm::vec3 position, glm::vec3 direction, float scale) const;
   void shootProbe(PathVpl& v, uint64_t& rng, float scale, const EmbreeScene& bvh, const class SceneSurfaces& surfaces) const;
   bool shoot(uint32_t index, const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const class SceneSurfaces& surfaces,
              const class EmitterSet& emitters);
+  struct PathRay {
+    glm::vec3 origin{0.0f}, dir{0.0f}, throughput{0.0f};  // throughput: the flux the ray carries
+  };
+  PathVpl vplOnEmitter(uint32_t path, glm::vec3 seq, float u, float lightsTotal, float total, uint64_t& rng, const EmbreeScene& bvh,
+                       const class SceneSurfaces& surfaces, const class EmitterSet& emitters);
+  PathRay rayFromLight(uint32_t path, glm::vec3 seq, float u, float total, const render::RenderSnapshot& snapshot);
+  PathVpl landRay(const PathRay& ray, uint32_t path, uint32_t b, uint64_t& rng, float scale, const render::RenderSnapshot& snapshot,
+                  const EmbreeScene& bvh, const class SceneSurfaces& surfaces) const;
 
   TemporalOptions settings_;
   uint32_t reshootBudget_ = 0;  // per frame, as used (settings_.reshootBudget, or one set's worth for 0)

@@ -1,6 +1,6 @@
-#include "dyngi/gi/vct_cpu.h"
+#include "techniques/vct/vct_cpu.h"
 
-#include "shaders/shared/gi_gpu_types.h"
+#include "techniques/vct/shaders/vct_shared.h"
 
 #include <algorithm>
 #include <array>
@@ -164,12 +164,12 @@ glm::vec4 vctConeCpu(const std::vector<VolumeLevel>& radiance, const std::vector
     const glm::vec3 pos = origin + t * dir;
     const glm::vec3 beyond = glm::max(glm::max(-pos, pos - glm::vec3(p.res)), glm::vec3(0.0f));
     const float inside = std::clamp(1.0f - std::max(beyond.x, std::max(beyond.y, beyond.z)) / diameter, 0.0f, 1.0f);
-    const glm::vec4 part = inside * sampleCpu(radiance, aniso, p, pos, std::log2(diameter), dir, p.stepScale);
+    const glm::vec4 part = inside * sampleCpu(radiance, aniso, p, pos, std::log2(diameter), dir, p.coneStep);
     const float a = part.a;
     const glm::vec3 c(part);
     colour += (1.0f - alpha) * c;
     alpha += (1.0f - alpha) * a;
-    t += p.stepScale * diameter;
+    t += p.coneStep * diameter;
     if (alpha >= 0.99f || t > p.maxDistance || inside <= 0.0f) break;
   }
   return glm::vec4(colour, alpha);

@@ -36,7 +36,7 @@ bool vctSeenBothSides(float code);
 glm::vec4 sampleVolumeLod(const std::vector<VolumeLevel>& levels, const glm::vec3& uvw, float lod);
 
 struct VctConeParams {
-  float res = 128, maxDistance = 128, aoDistance = 19, coneOffset = 1, stepScale = 0.5f, farNarrowing = 0;
+  float res = 128, maxDistance = 128, aoDistance = 19, coneOffset = 1, coneStep = 0.5f, farNarrowing = 0;
   bool anisotropic = false;
 };
 // vctCone (vct_cone.glsl): radiance (rgb) and opacity (a) along a cone from `origin` (voxel units).

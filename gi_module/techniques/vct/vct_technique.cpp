@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "dyngi/gi/gi_settings.h"
-#include "dyngi/gi/voxel_cone_tracing.h"
+#include "techniques/vct/voxel_cone_tracing.h"
 #include "techniques/registry_entries.h"
 
 namespace dyngi::gi {
@@ -15,33 +15,24 @@ namespace dyngi::gi {
 const OptionTable<VctOptions>& VctOptions::table() {
   static const OptionTable<VctOptions> t =
       OptionTable<VctOptions>()
-          .add({"cones", "diffuse cones per pixel (cosine-spread over the hemisphere)", 1, 32}, &VctOptions::diffuseCones)
-          .add({"cone-interleave", "rows of traced pixels take turns over the diffuse cones, each marching every Nth (with --diffuse-filter 0: 1)", 1, 4},
-               &VctOptions::coneInterleave)
-          .add({"bounces", "light bounces (each past the first: a cone pass over the occupied voxels)", 1, 3}, &VctOptions::bounces)
-          .add({"trace-scale", "trace one pixel in NxN and upsample (1: every pixel; 0: at most 192^2 traced)", 0, 8},
-               &VctOptions::traceScale)
-          .add({"trace-frames", "frames over which each traced pixel is traced once, the rest reprojected (1, 2 or 4)", 1, 4},
-               &VctOptions::traceFrames)
-          .add({"diffuse-filter", "radius (traced pixels) of the filter over cone sets turned per pixel (0: fixed cones, no filter)", 0,
-                VctOptions::kMaxDiffuseFilterRadius},
-               &VctOptions::diffuseFilterRadius)
-          .add({"anisotropic", "mip chain per direction (less light leaks through thin walls)", 0, 1}, &VctOptions::anisotropic)
-          .add({"opaque-axis-mips", "isotropic mips take their most opaque axis' opacity, not the mean (thin walls stay opaque)", 0, 1},
-               &VctOptions::opaqueAxisMips)
-          .add({"specular", "specular cone from the G-buffer roughness", 0, 1}, &VctOptions::specular)
-          .add({"specular-cone-below", "roughness under which the specular light is a cone's; rougher pixels take the diffuse light (E/pi), blended over the 0.2 under it (over 1: always a cone)", 0.2, 2},
-               &VctOptions::specularConeBelow)
-          .add({"temporal-blend", "fraction of last frame's voxel radiance kept (0: none)", 0, 0.95}, &VctOptions::temporalBlend)
-          .add({"temporal-response", "relative change above which a voxel takes the new radiance at once", 0.01, 10},
-               &VctOptions::temporalResponse)
-          .add({"max-distance", "cone reach, in volume sides", 0.05, 2}, &VctOptions::maxDistance)
-          .add({"ao-distance", "reach of ambient occlusion, in volume sides", 0.01, 1}, &VctOptions::aoDistance)
-          .add({"cone-offset", "voxels off the surface a cone starts", 0, 4}, &VctOptions::coneOffset)
-          .add({"cone-step", "step along a cone, in cone diameters", 0.1, 2}, &VctOptions::stepScale)
-          .add({"far-narrowing", "samples of footprints over 11 voxels read a footprint 2^-B of the cone's (less light through thin walls; with few --cones, light between them is lost)", 0, 1},
-               &VctOptions::farNarrowing)
-          .add({"view-mip", "mip level the radiance and opacity views show", 0, 9}, &VctOptions::viewMip);
+          .add(DYNGI_OPTION(VctOptions, diffuseCones), "diffuse cones per pixel (cosine-spread over the hemisphere)", 1, 32)
+          .add(DYNGI_OPTION(VctOptions, coneInterleave), "rows of traced pixels take turns over the diffuse cones, each marching every Nth (with --diffuse-filter-radius 0: 1)", 1, 4)
+          .add(DYNGI_OPTION(VctOptions, bounces), "light bounces (each past the first: a cone pass over the occupied voxels)", 1, 3)
+          .add(DYNGI_OPTION(VctOptions, traceScale), "trace one pixel in NxN and upsample (1: every pixel; 0: at most 192^2 traced)", 0, 8)
+          .add(DYNGI_OPTION(VctOptions, traceFrames), "frames over which each traced pixel is traced once, the rest reprojected (1, 2 or 4)", 1, 4)
+          .add(DYNGI_OPTION(VctOptions, diffuseFilterRadius), "radius (traced pixels) of the filter over cone sets turned per pixel (0: fixed cones, no filter)", 0, VctOptions::kMaxDiffuseFilterRadius)
+          .add(DYNGI_OPTION(VctOptions, anisotropic), "mip chain per direction (less light leaks through thin walls)", 0, 1)
+          .add(DYNGI_OPTION(VctOptions, opaqueAxisMips), "isotropic mips take their most opaque axis' opacity, not the mean (thin walls stay opaque)", 0, 1)
+          .add(DYNGI_OPTION(VctOptions, specular), "specular cone from the G-buffer roughness", 0, 1)
+          .add(DYNGI_OPTION(VctOptions, specularConeBelow), "roughness under which the specular light is a cone's; rougher pixels take the diffuse light (E/pi), blended over the 0.2 under it (over 1: always a cone)", 0.2, 2)
+          .add(DYNGI_OPTION(VctOptions, temporalBlend), "fraction of last frame's voxel radiance kept (0: none)", 0, 0.95)
+          .add(DYNGI_OPTION(VctOptions, temporalResponse), "relative change above which a voxel takes the new radiance at once", 0.01, 10)
+          .add(DYNGI_OPTION(VctOptions, maxDistance), "cone reach, in volume sides", 0.05, 2)
+          .add(DYNGI_OPTION(VctOptions, aoDistance), "reach of ambient occlusion, in volume sides", 0.01, 1)
+          .add(DYNGI_OPTION(VctOptions, coneOffset), "voxels off the surface a cone starts", 0, 4)
+          .add(DYNGI_OPTION(VctOptions, coneStep), "step along a cone, in cone diameters", 0.1, 2)
+          .add(DYNGI_OPTION(VctOptions, farNarrowing), "samples of footprints over 11 voxels read a footprint 2^-B of the cone's (less light through thin walls; with few --diffuse-cones, light between them is lost)", 0, 1)
+          .add(DYNGI_OPTION(VctOptions, viewMip), "mip level the radiance and opacity views show", 0, 9);
   return t;
 }
 
@@ -107,7 +98,6 @@ class VctTechnique final : public Technique {
     else if (name == "radiance") v = VctView::Radiance;
     else if (name == "opacity") v = VctView::Opacity;
     else if (name == "ao") v = VctView::Ao;
-    else if (name == "indirect") v = VctView::Indirect;
     else if (name == "specular") v = VctView::Specular;
     else return false;
     return true;
@@ -150,7 +140,7 @@ class VctTechnique final : public Technique {
 TechniqueEntry vctTechniqueEntry() {
   return {"vct",
           "voxel cone tracing: direct light injected into the voxel volume, a 3D mip chain, diffuse, AO and specular cones",
-          {"radiance", "opacity", "ao", "indirect", "specular"},
+          {"radiance", "opacity", "ao", "specular"},
           [](GiSettings& s) { return bindOptions(s.vct); },
           [](const GiSettings&) { return true; },
           [](const TechniqueServices& services, const GiSettings& s) -> std::unique_ptr<Technique> {

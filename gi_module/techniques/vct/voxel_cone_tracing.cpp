@@ -1,13 +1,14 @@
-#include "dyngi/gi/voxel_cone_tracing.h"
+#include "techniques/vct/voxel_cone_tracing.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstddef>
 
 #include "dyngi/engine/render/gpu_timer.h"
 #include "gpu_aliases.h"
-#include "shaders/shared/gi_gpu_types.h"
+#include "techniques/vct/shaders/vct_shared.h"
 #include "spirv/vct_bounce.comp.spv.h"
 #include "spirv/vct_clear_stale.comp.spv.h"
 #include "spirv/vct_commit.comp.spv.h"
@@ -82,10 +83,28 @@ void appendRuns(std::vector<glm::uvec2>& runs, uint32_t level, glm::uvec3 lo, gl
 }
 }  // namespace
 
-VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxels, const VctOptions& options)
-    : ctx_(ctx), voxels_(voxels), options_(options) {
-  voxels_.enableLeafAttributes();  // albedo, normal and emission per voxel: what injection lights
+VctOptions VoxelConeTracing::validated(VctOptions o) {
+  o.bounces = std::clamp(o.bounces, 1u, 3u);
+  o.diffuseCones = std::max(o.diffuseCones, 1u);
+  o.traceFrames = std::bit_floor(std::clamp(o.traceFrames, 1u, 4u));
+  o.diffuseFilterRadius = std::min(o.diffuseFilterRadius, VctOptions::kMaxDiffuseFilterRadius);
+  // Without the filter nothing brings the rows' cone sets together: every pixel marches all of them.
+  o.coneInterleave = o.diffuseFilterRadius > 0 ? std::clamp(o.coneInterleave, 1u, o.diffuseCones) : 1u;
+  o.temporalResponse = std::max(o.temporalResponse, 1e-3f);
+  return o;
+}
 
+VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxels, const VctOptions& options)
+    : ctx_(ctx), voxels_(voxels), options_(validated(options)) {
+  voxels_.enableLeafAttributes();  // albedo, normal and emission per voxel: what injection lights
+  createLeafPipelines();
+  createMipsPipelines();
+  createScreenPipelines();
+  createSampler();
+}
+
+// The passes over the occupied voxels: injection, clearing what emptied, the bounce and its commit.
+void VoxelConeTracing::createLeafPipelines() {
   const Binding leafB[] = {{DYNGI_VCT_INJECT_BINDING_LEAF_LIST, kSSBO, kCS},
                            {DYNGI_VCT_INJECT_BINDING_VOXEL_ATTRIBUTES, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_LIGHTS, kSSBO, kCS},
@@ -93,16 +112,12 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
                            {DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_DIRECT, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_RADIANCE, kStorageImage, kCS}};
-  inject_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_inject_comp), leafB, sizeof(gpu::VctInjectPush), "vct_inject");
+  inject_ = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_inject_comp), leafB, sizeof(gpu::VctInjectPush), "vct_inject");
   const Binding clearB[] = {{DYNGI_VCT_CLEAR_BINDING_RUNS, kSSBO, kCS},          {DYNGI_VCT_CLEAR_BINDING_PREVIOUS_OCCUPANCY, kSSBO, kCS},
                             {DYNGI_VCT_CLEAR_BINDING_OCCUPANCY, kSSBO, kCS},     {DYNGI_VCT_CLEAR_BINDING_RADIANCE, kStorageImage, kCS},
                             {DYNGI_VCT_CLEAR_BINDING_DIRECT, kStorageImage, kCS}, {DYNGI_VCT_CLEAR_BINDING_ATLAS, kStorageImage, kCS},
                             {DYNGI_VCT_CLEAR_BINDING_ATLAS_1, kStorageImage, kCS}};
-  clearStale_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_clear_stale_comp), clearB, sizeof(gpu::VctClearPush), "vct_clear_stale");
-
-  const Binding mipsB[] = {{DYNGI_VCT_MIPS_BINDING_SOURCE, kStorageImage, kCS},     {DYNGI_VCT_MIPS_BINDING_DEST, kStorageImage, kCS},
-                           {DYNGI_VCT_MIPS_BINDING_SEEN, kStorageImage, kCS},
-                           {DYNGI_VCT_MIPS_BINDING_NODE_CELLS, kSSBO, kCS},         {DYNGI_VCT_MIPS_BINDING_LEVELS, kSSBO, kCS}};
+  clearStale_ = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_clear_stale_comp), clearB, sizeof(gpu::VctClearPush), "vct_clear_stale");
   const Binding bounceB[] = {{DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST, kSSBO, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES, kStorageImage, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_DIRECT, kStorageImage, kCS}, {DYNGI_VCT_BOUNCE_BINDING_RADIANCE, kSampled, kCS},
@@ -111,7 +126,35 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
                              {DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES, kStorageImage, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_DIRECT, kStorageImage, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_OUT, kStorageImage, kCS}};
-  commit_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_commit_comp), commitB, sizeof(gpu::VctBouncePush), "vct_commit");
+  commit_ = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_commit_comp), commitB, sizeof(gpu::VctBouncePush), "vct_commit");
+  const Binding probeB[] = {{DYNGI_VCT_PROBE_BINDING_RAYS, kSSBO, kCS},
+                            {DYNGI_VCT_PROBE_BINDING_RADIANCE, kSampled, kCS},
+                            {DYNGI_VCT_PROBE_BINDING_ANISO, kSampled, kCS},
+                            {DYNGI_VCT_PROBE_BINDING_RESULTS, kSSBO, kCS}};
+  for (bool aniso : {false, true})
+    for (bool unitStep : {false, true}) {
+      const ConeVariant v{aniso, unitStep};
+      const uint32_t spec[] = {aniso ? 1u : 0u, 0u, unitStep ? 1u : 0u};  // constant 1 is not theirs; 2 is vct_cone.glsl's kVctUnitStep
+      bounce_[v.index()] = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_bounce_comp), bounceB, sizeof(gpu::VctBouncePush), "vct_bounce", spec);
+      probe_[v.index()] = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_cone_probe_comp), probeB, sizeof(gpu::VctProbePush), "vct_cone_probe", spec);
+    }
+}
+
+// vct_mips.comp's variants: (anisotropic, opaque axis, atlas level 0, its source the direct radiance).
+void VoxelConeTracing::createMipsPipelines() {
+  const Binding mipsB[] = {{DYNGI_VCT_MIPS_BINDING_SOURCE, kStorageImage, kCS},     {DYNGI_VCT_MIPS_BINDING_DEST, kStorageImage, kCS},
+                           {DYNGI_VCT_MIPS_BINDING_SEEN, kStorageImage, kCS},
+                           {DYNGI_VCT_MIPS_BINDING_NODE_CELLS, kSSBO, kCS},         {DYNGI_VCT_MIPS_BINDING_LEVELS, kSSBO, kCS}};
+  const std::pair<MipsVariant, std::array<uint32_t, 4>> variants[] = {
+      {MipsVariant::Isotropic, {0u, 0u, 0u, 0u}},       {MipsVariant::Atlas, {1u, 0u, 0u, 0u}},
+      {MipsVariant::IsotropicOpaqueAxis, {0u, 1u, 0u, 0u}}, {MipsVariant::AtlasFromLevel0, {1u, 0u, 1u, 0u}},
+      {MipsVariant::AtlasFromDirect, {1u, 0u, 1u, 1u}}};
+  for (const auto& [variant, spec] : variants)
+    mips_[uint32_t(variant)] = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", spec);
+}
+
+// The screen's passes: trace, reproject, filter, upsample, and the debug views.
+void VoxelConeTracing::createScreenPipelines() {
   const Binding traceB[] = {{DYNGI_VCT_TRACE_BINDING_FRAME, kUBO, kCS},
                             {DYNGI_VCT_TRACE_BINDING_G_POSITION, kStorageImage, kCS},
                             {DYNGI_VCT_TRACE_BINDING_G_NORMAL, kStorageImage, kCS},
@@ -122,45 +165,23 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
   const Binding debugB[] = {{DYNGI_VCT_DEBUG_BINDING_FRAME, kUBO, kCS},          {DYNGI_VCT_DEBUG_BINDING_RADIANCE, kSampled, kCS},
                             {DYNGI_VCT_DEBUG_BINDING_ANISO, kSampled, kCS},       {DYNGI_VCT_DEBUG_BINDING_INDIRECT, kStorageImage, kCS},
                             {DYNGI_VCT_DEBUG_BINDING_SPECULAR, kStorageImage, kCS}, {DYNGI_VCT_DEBUG_BINDING_OUT_HDR, kStorageImage, kCS}};
-  const Binding probeB[] = {{DYNGI_VCT_PROBE_BINDING_RAYS, kSSBO, kCS},
-                            {DYNGI_VCT_PROBE_BINDING_RADIANCE, kSampled, kCS},
-                            {DYNGI_VCT_PROBE_BINDING_ANISO, kSampled, kCS},
-                            {DYNGI_VCT_PROBE_BINDING_RESULTS, kSSBO, kCS}};
-  // Variants by specialization constant (lavapipe runs both sides of a branch): anisotropic or not; for
-  // the passes that march cones in a frame (and the probe that tests them), with the unit step or
-  // another; for the trace, with the specular cone or without.
-  for (uint32_t aniso : {0u, 1u}) {
-    const uint32_t spec[] = {aniso};
-    const uint32_t mipsSpec[] = {aniso, 0u, 0u, 0u};
-    mips_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", mipsSpec);
-    debug_[aniso] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_debug_comp), debugB, sizeof(gpu::VctDebugPush), "vct_debug", spec);
-    for (uint32_t unitStep : {0u, 1u}) {
-      const uint32_t coneSpec[] = {aniso, 0u, unitStep};  // constant 1 is not theirs; 2 is vct_cone.glsl's kVctUnitStep
-      bounce_[aniso + 2 * unitStep] =
-          Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_bounce_comp), bounceB, sizeof(gpu::VctBouncePush), "vct_bounce", coneSpec);
-      probe_[aniso + 2 * unitStep] =
-          Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_cone_probe_comp), probeB, sizeof(gpu::VctProbePush), "vct_cone_probe", coneSpec);
-    }
-    for (uint32_t specular : {0u, 1u})
-      for (uint32_t unitStep : {0u, 1u}) {
-        const uint32_t traceSpec[] = {aniso, specular, unitStep};  // vct_trace.comp's, then vct_cone.glsl's kVctUnitStep
-        trace_[aniso + 2 * specular + 4 * unitStep] =
-            Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_trace_comp), traceB, sizeof(gpu::VctTracePush), "vct_trace", traceSpec);
+  for (bool aniso : {false, true}) {
+    const uint32_t spec[] = {aniso ? 1u : 0u};
+    debug_[aniso ? 1 : 0] = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_debug_comp), debugB, sizeof(gpu::VctDebugPush), "vct_debug", spec);
+    for (bool specular : {false, true})
+      for (bool unitStep : {false, true}) {
+        const uint32_t traceSpec[] = {aniso ? 1u : 0u, specular ? 1u : 0u, unitStep ? 1u : 0u};  // vct_trace.comp's, then kVctUnitStep
+        trace_[TraceVariant{aniso, specular, unitStep}.index()] =
+            Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_trace_comp), traceB, sizeof(gpu::VctTracePush), "vct_trace", traceSpec);
       }
   }
-  // The atlas' first level: from the direct radiance alone (before a bounce is added to level 0), or from
-  // level 0 with the direct radiance's alpha (after).
-  const uint32_t opaqueAxisSpec[] = {0u, 1u, 0u, 0u}, atlasFromLevel0Spec[] = {1u, 0u, 1u, 0u}, atlasFromDirectSpec[] = {1u, 0u, 1u, 1u};
-  mips_[2] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", opaqueAxisSpec);
-  mips_[3] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", atlasFromLevel0Spec);
-  mips_[4] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", atlasFromDirectSpec);
   const Binding upB[] = {{DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL, kStorageImage, kCS},
                          {DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR, kStorageImage, kCS},
                          {DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, kStorageImage, kCS},
                          {DYNGI_VCT_UPSAMPLE_BINDING_FRAME, kUBO, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_LOW_SURFACE, kStorageImage, kCS}};
-  for (uint32_t specular : {0u, 1u}) {
-    const uint32_t spec[] = {specular};
-    upsample_[specular] = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_upsample_comp), upB, sizeof(gpu::VctUpsamplePush), "vct_upsample", spec);
+  for (bool specular : {false, true}) {
+    const uint32_t spec[] = {specular ? 1u : 0u};
+    upsample_[specular ? 1 : 0] = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_upsample_comp), upB, sizeof(gpu::VctUpsamplePush), "vct_upsample", spec);
   }
   const Binding reprojectB[] = {{DYNGI_VCT_REPROJECT_BINDING_FRAME, kUBO, kCS},
                                 {DYNGI_VCT_REPROJECT_BINDING_G_POSITION, kStorageImage, kCS},
@@ -171,22 +192,24 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
                                 {DYNGI_VCT_REPROJECT_BINDING_OUT_DIFFUSE, kStorageImage, kCS},
                                 {DYNGI_VCT_REPROJECT_BINDING_OUT_SPECULAR, kStorageImage, kCS},
                                 {DYNGI_VCT_REPROJECT_BINDING_OUT_SURFACE, kStorageImage, kCS}};
-  reproject_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_reproject_comp), reprojectB, sizeof(gpu::VctReprojectPush), "vct_reproject");
+  reproject_ = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_reproject_comp), reprojectB, sizeof(gpu::VctReprojectPush), "vct_reproject");
   const Binding filterB[] = {{DYNGI_VCT_FILTER_BINDING_FRAME, kUBO, kCS},
                              {DYNGI_VCT_FILTER_BINDING_SURFACE, kStorageImage, kCS},
                              {DYNGI_VCT_FILTER_BINDING_IN, kStorageImage, kCS},
                              {DYNGI_VCT_FILTER_BINDING_OUT, kStorageImage, kCS}};
-  filter_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vct_filter_comp), filterB, sizeof(gpu::VctFilterPush), "vct_filter");
+  filter_ = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_filter_comp), filterB, sizeof(gpu::VctFilterPush), "vct_filter");
+}
 
-  // Quadrilinear, clamped to the edge: a coarse texel at the volume's side (a floor, a wall near it) is
-  // continued past it rather than faded to nothing, which would make a cone see half of it. A cone stops
-  // when it leaves the volume (vct_cone.glsl), so nothing beyond is sampled.
+// Quadrilinear, clamped to the edge: a coarse texel at the volume's side (a floor, a wall near it) is
+// continued past it rather than faded to nothing, which would make a cone see half of it. A cone stops
+// when it leaves the volume (vct_cone.glsl), so nothing beyond is sampled.
+void VoxelConeTracing::createSampler() {
   VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   si.magFilter = si.minFilter = VK_FILTER_LINEAR;
   si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
   si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   si.maxLod = VK_LOD_CLAMP_NONE;
-  DYNGI_VK(vkCreateSampler(ctx.device(), &si, nullptr, &sampler_));
+  DYNGI_VK(vkCreateSampler(ctx_.device(), &si, nullptr, &sampler_));
 }
 
 VoxelConeTracing::~VoxelConeTracing() {
@@ -269,14 +292,9 @@ void VoxelConeTracing::fillConeParams(Push& p) const {
   p.maxDistance = options_.maxDistance * float(res_);
   p.aoDistance = std::max(options_.aoDistance * float(res_), 1e-3f);
   p.coneOffset = options_.coneOffset;
-  p.stepScale = options_.stepScale;
+  p.coneStep = options_.coneStep;
   p.cones = options_.diffuseCones;
   p.farNarrowing = options_.farNarrowing;
-}
-
-uint32_t VoxelConeTracing::effectiveConeInterleave() const {
-  // Without the filter nothing brings the rows' cone sets together: every pixel marches all of them.
-  return options_.diffuseFilterRadius > 0 ? std::clamp(options_.coneInterleave, 1u, options_.diffuseCones) : 1u;
 }
 
 void VoxelConeTracing::recordLeafPass(VkCommandBuffer cmd, const Pipeline& pipeline, const void* push, uint32_t pushBytes,
@@ -364,7 +382,7 @@ void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect) {
     vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
   };
   if (!aniso) {
-    const Pipeline& p = mips_[options_.opaqueAxisMips ? 2 : 0];
+    const Pipeline& p = mips(options_.opaqueAxisMips ? MipsVariant::IsotropicOpaqueAxis : MipsVariant::Isotropic);
     for (uint32_t m = 1; m < radiance_.desc().mips; ++m) {
       const uint32_t s = std::max(res_ >> m, 1u);
       bind(p, radiance_.mipView(m - 1), radiance_.mipView(m), {s, 0, 0});
@@ -382,7 +400,8 @@ void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect) {
   for (uint32_t m = 0; m < aniso_.desc().mips && m < depth; ++m) {
     const uint32_t slab = std::max((res_ / 2) >> m, 1u), nodeLevel = depth - 1 - m;
     const VkImageView source = m > 0 ? aniso_.mipView(m - 1) : (levelZeroIsDirect ? direct_.view() : radiance_.mipView(0));
-    bind(mips_[m > 0 ? 1 : (levelZeroIsDirect ? 4 : 3)], source, aniso_.mipView(m), {slab, m == 0 ? 0u : 2 * slab, nodeLevel});
+    const MipsVariant variant = m > 0 ? MipsVariant::Atlas : levelZeroIsDirect ? MipsVariant::AtlasFromDirect : MipsVariant::AtlasFromLevel0;
+    bind(mips(variant), source, aniso_.mipView(m), {slab, m == 0 ? 0u : 2 * slab, nodeLevel});
     vkCmdDispatchIndirect(cmd, voxels_.levels().handle(), levelDispatchOffset(nodeLevel + 1));  // its nodes' child groups
     render::computeWriteBarrier(cmd);
   }
@@ -394,8 +413,24 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
     frames_ = 0;  // the voxels this frame's build emptied go uncleared: the next frame clears everything
     return false;
   }
+  prepareFrame(frame);
+  recordInject(frame);
+  {
+    render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "mips");
+    recordMips(frame.cmd, /*levelZeroIsDirect=*/true);
+  }
+  recordBounces(frame);
+  const TraceFrame trace = beginTrace(frame);
+  recordTrace(frame, trace);
+  recordUpsample(frame, trace, recordFilter(frame, trace));
+  ++frames_;
+  frame.specular = specularSource_;
+  return true;
+}
+
+// The volumes and trace images for this frame's size and options, every image the passes use in GENERAL.
+void VoxelConeTracing::prepareFrame(render::FrameContext& frame) {
   VkCommandBuffer cmd = frame.cmd;
-  options_.bounces = std::clamp(options_.bounces, 1u, 3u);
   ensureVolumes(voxels_.volume().resolution);
   ensureTraceTargets(frame.targets.width, frame.targets.height);
   // Back to GENERAL after a read-back (tests); the frames before finished at the renderer's fence, and
@@ -409,14 +444,18 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
     in->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   for (Image* out : {&t.indirect, &t.specular})
     out->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-
-  const bool aniso = options_.anisotropic;
-  const VoxelVolume& vol = voxels_.volume();
   // A volume moved or resized (VoxelScene::setVolume) makes last frame's radiance belong elsewhere: no
   // blending with it.
+  const VoxelVolume& vol = voxels_.volume();
   if (vol.origin != historyOrigin_ || vol.voxelSize != historyVoxelSize_) frames_ = 0;
   historyOrigin_ = vol.origin;
   historyVoxelSize_ = vol.voxelSize;
+}
+
+// "inject": what emptied is cleared, then each occupied voxel's direct light and emission.
+void VoxelConeTracing::recordInject(render::FrameContext& frame) {
+  VkCommandBuffer cmd = frame.cmd;
+  const VoxelVolume& vol = voxels_.volume();
   // Voxels an object left must be empty: the passes below write occupied voxels and texels only. Where
   // the SVO was built this frame, the cells that emptied (vct_clear_stale.comp: in the last build's
   // occupancy, not this one's) are zeroed within the boxes where they may be (VoxelScene::staleBoxes);
@@ -426,180 +465,192 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   for (const VoxelBox& b : voxels_.staleBoxes()) boxVoxels += b.voxels();
   const bool clearAll = frames_ == 0 || voxels_.staleEverywhere() || boxVoxels * 2 > uint64_t(res_) * res_ * res_;
   const StaleVoxels stale{clearAll, voxels_.stats().rebuilt ? voxels_.staleBoxes() : std::vector<VoxelBox>{}};
-  {
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "inject");
-    stats_.clearedVoxels = recordClearStale(cmd, stale);
-    render::computeWriteBarrier(cmd);
-    gpu::VctInjectPush pc{};
-    pc.volume = glm::vec4(vol.origin, vol.voxelSize);
-    pc.lightCount = frame.lights.count;
-    pc.history = frames_ > 0 && options_.temporalBlend > 0.0f ? 1u : 0u;
-    pc.temporalBlend = options_.temporalBlend;
-    pc.temporalResponse = std::max(options_.temporalResponse, 1e-3f);
-    DescriptorWrites w;
-    w.storageBuffer(DYNGI_VCT_INJECT_BINDING_LIGHTS, frame.lights.lights->handle())
-        .storageBuffer(DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES, frame.lights.shadowMatrices->handle())
-        .storageImage(DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, frame.lights.shadowMaps->view())
-        .storageImage(DYNGI_VCT_INJECT_BINDING_DIRECT, direct_.view())
-        .storageImage(DYNGI_VCT_INJECT_BINDING_RADIANCE, radiance_.mipView(0));
-    recordLeafPass(cmd, inject_, &pc, sizeof(pc), w);
-    stats_.injected = true;
-  }
-  {
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "mips");
-    recordMips(cmd, /*levelZeroIsDirect=*/true);
-  }
-  const VkImageView anisoView = aniso ? aniso_.view() : radiance_.view();  // bound either way; read when anisotropic
-  {
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "bounce");
-    for (uint32_t b = 1; b < options_.bounces; ++b) {
-      gpu::VctBouncePush pc{};
-      fillConeParams(pc);
-      // A voxel marches as many cones as a traced pixel (diffuseCones / coneInterleave), each covering
-      // its share of the hemisphere, without the far narrowing: no filter brings neighbours' cones in, and
-      // so few narrowed cones would lose the light between them. Every cone on every voxel doubled the
-      // bounce pass at the defaults (docs/BENCHMARKS.md, session 28).
-      pc.cones = (options_.diffuseCones + effectiveConeInterleave() - 1) / effectiveConeInterleave();
-      pc.farNarrowing = 0.0f;
-      DescriptorWrites w;
-      w.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, direct_.view())
-          .sampledImage(DYNGI_VCT_BOUNCE_BINDING_RADIANCE, radiance_.view(), sampler_)
-          .sampledImage(DYNGI_VCT_BOUNCE_BINDING_ANISO, anisoView, sampler_)
-          .storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, bounced_.view());
-      recordLeafPass(cmd, bounce_[(aniso ? 1 : 0) + 2 * unitStep()], &pc, sizeof(pc), w);
-      DescriptorWrites c;
-      c.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, bounced_.view()).storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, radiance_.mipView(0));
-      recordLeafPass(cmd, commit_, &pc, sizeof(pc), c);
-      recordMips(cmd, /*levelZeroIsDirect=*/false);  // the same occupied set as this frame's first chain; level 0 now has the bounce
-    }
-  }
-  const uint32_t scale = traceScale();
-  options_.traceFrames = std::bit_floor(std::clamp(options_.traceFrames, 1u, 4u));
-  // Nothing to carry over (first frame, new trace targets, a light switched): every pixel is traced.
-  const uint32_t traceFrames = traceHistory_ ? options_.traceFrames : 1u;
-  stats_.tracedFraction = 1.0 / traceFrames;
-  const uint32_t tracePhase = uint32_t(traceFrame_ % traceFrames);
-  ++traceFrame_;
-  const uint32_t lastTraced = tracedCurrent_;
-  tracedCurrent_ ^= 1u;
-  const TracedPixels& traced = traced_[tracedCurrent_];
-  const TracedPixels& lastFrame = traced_[lastTraced];
-  stats_.traceWidth = traced.diffuse.desc().width;
-  stats_.traceHeight = traced.diffuse.desc().height;
-  {
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "trace");
-    // Without a draw smoother than specularConeBelow (a roughness texture may make any pixel so), no
-    // pixel marches a specular cone: the variant without its code, which lavapipe would run masked.
-    const bool glossy = options_.specular && std::any_of(frame.snapshot.draws.begin(), frame.snapshot.draws.end(), [&](const render::DrawItem& d) {
-                          return d.material.roughness < options_.specularConeBelow || d.material.metallicRoughnessTexture != scene::kNoTexture;
-                        });
-    stats_.specularCones = glossy;
-    // The specular image is written where some pixel's specular light is a cone's, or the debug view
-    // shows it; else the lighting takes the diffuse light as the specular (SpecularSource::Indirect).
-    specularSource_ = !options_.specular ? render::SpecularSource::None
-                      : glossy || options_.view == VctView::Specular ? render::SpecularSource::Target
-                                                                      : render::SpecularSource::Indirect;
-    const Pipeline& p = trace_[(aniso ? 1 : 0) + (glossy ? 2 : 0) + 4 * unitStep()];
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
-    DescriptorWrites()
-        .uniformBuffer(DYNGI_VCT_TRACE_BINDING_FRAME, frame.frameUniforms.handle())
-        .storageImage(DYNGI_VCT_TRACE_BINDING_G_POSITION, t.position.view())
-        .storageImage(DYNGI_VCT_TRACE_BINDING_G_NORMAL, t.normal.view())
-        .sampledImage(DYNGI_VCT_TRACE_BINDING_RADIANCE, radiance_.view(), sampler_)
-        .sampledImage(DYNGI_VCT_TRACE_BINDING_ANISO, anisoView, sampler_)
-        .storageImage(DYNGI_VCT_TRACE_BINDING_OUT_DIFFUSE, traced.diffuse.view())
-        .storageImage(DYNGI_VCT_TRACE_BINDING_OUT_SPECULAR, traced.specular.view())
-        .push(ctx_, cmd, p);
-    gpu::VctTracePush pc{};
+  render::ScopedPass scope(ctx_, frame.timer, cmd, "inject");
+  stats_.clearedVoxels = recordClearStale(cmd, stale);
+  render::computeWriteBarrier(cmd);
+  gpu::VctInjectPush pc{};
+  pc.volume = glm::vec4(vol.origin, vol.voxelSize);
+  pc.lightCount = frame.lights.count;
+  pc.history = frames_ > 0 && options_.temporalBlend > 0.0f ? 1u : 0u;
+  pc.temporalBlend = options_.temporalBlend;
+  pc.temporalResponse = options_.temporalResponse;
+  DescriptorWrites w;
+  w.storageBuffer(DYNGI_VCT_INJECT_BINDING_LIGHTS, frame.lights.lights->handle())
+      .storageBuffer(DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES, frame.lights.shadowMatrices->handle())
+      .storageImage(DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, frame.lights.shadowMaps->view())
+      .storageImage(DYNGI_VCT_INJECT_BINDING_DIRECT, direct_.view())
+      .storageImage(DYNGI_VCT_INJECT_BINDING_RADIANCE, radiance_.mipView(0));
+  recordLeafPass(cmd, inject_, &pc, sizeof(pc), w);
+  stats_.injected = true;
+}
+
+// "bounce": each bounce after the first cone-traces over the occupied voxels, commits to level 0 and
+// rebuilds the mips.
+void VoxelConeTracing::recordBounces(render::FrameContext& frame) {
+  VkCommandBuffer cmd = frame.cmd;
+  render::ScopedPass scope(ctx_, frame.timer, cmd, "bounce");
+  for (uint32_t b = 1; b < options_.bounces; ++b) {
+    gpu::VctBouncePush pc{};
     fillConeParams(pc);
-    pc.traceScale = scale;
-    pc.specular = glossy ? 1u : 0u;
-    pc.specularConeBelow = options_.specularConeBelow;
-    pc.turnCones = options_.diffuseFilterRadius > 0 ? 1u : 0u;
-    pc.traceFrames = traceFrames;
-    pc.tracePhase = tracePhase;
-    pc.coneInterleave = effectiveConeInterleave();
-    vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
-    // With traceFrames > 1: the 2 x 2 lattice's cells, once per offset traced this frame (vct_trace_phase.glsl).
-    const uint32_t step = traceFrames > 1 ? 2 : 1;
-    vkCmdDispatch(cmd, dispatchGroups((stats_.traceWidth + step - 1) / step, 8), dispatchGroups((stats_.traceHeight + step - 1) / step, 8),
-                  traceFrames > 1 ? 4 / traceFrames : 1);
-    render::computeWriteBarrier(cmd);
-    // Then the pixels not traced this frame, from last frame's, and every traced pixel's surface record
-    // (for the filter, the upsample and next frame; the only work when every pixel is traced).
-    {
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, reproject_.handle());
-      DescriptorWrites()
-          .uniformBuffer(DYNGI_VCT_REPROJECT_BINDING_FRAME, frame.frameUniforms.handle())
-          .storageImage(DYNGI_VCT_REPROJECT_BINDING_G_POSITION, t.position.view())
-          .storageImage(DYNGI_VCT_REPROJECT_BINDING_G_NORMAL, t.normal.view())
-          .storageImage(DYNGI_VCT_REPROJECT_BINDING_PREVIOUS_DIFFUSE, lastFrame.diffuse.view())
-          .storageImage(DYNGI_VCT_REPROJECT_BINDING_PREVIOUS_SPECULAR, lastFrame.specular.view())
-          .storageImage(DYNGI_VCT_REPROJECT_BINDING_PREVIOUS_SURFACE, lastFrame.surface.view())
-          .storageImage(DYNGI_VCT_REPROJECT_BINDING_OUT_DIFFUSE, traced.diffuse.view())
-          .storageImage(DYNGI_VCT_REPROJECT_BINDING_OUT_SPECULAR, traced.specular.view())
-          .storageImage(DYNGI_VCT_REPROJECT_BINDING_OUT_SURFACE, traced.surface.view())
-          .push(ctx_, cmd, reproject_);
-      gpu::VctReprojectPush rp{};
-      rp.previousViewProj = previousViewProj_;
-      rp.traceScale = scale;
-      rp.traceFrames = traceFrames;
-      rp.tracePhase = tracePhase;
-      rp.history = traceHistory_ ? 1u : 0u;
-      // Twice the frames a still pixel waits for its turn: under motion a value can be carried from pixel
-      // to pixel without ever coming up for tracing.
-      rp.maxAge = 2 * traceFrames;
-      vkCmdPushConstants(cmd, reproject_.layout(), kCS, 0, sizeof(rp), &rp);
-      vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth, 8), dispatchGroups(stats_.traceHeight, 8), 1);
-      render::computeWriteBarrier(cmd);
-    }
+    // A voxel marches as many cones as a traced pixel (diffuseCones / coneInterleave), each covering its
+    // share of the hemisphere, without the far narrowing: no filter brings neighbours' cones in, and so
+    // few narrowed cones would lose the light between them.
+    pc.cones = (options_.diffuseCones + options_.coneInterleave - 1) / options_.coneInterleave;
+    pc.farNarrowing = 0.0f;
+    DescriptorWrites w;
+    w.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, direct_.view())
+        .sampledImage(DYNGI_VCT_BOUNCE_BINDING_RADIANCE, radiance_.view(), sampler_)
+        .sampledImage(DYNGI_VCT_BOUNCE_BINDING_ANISO, anisoView(), sampler_)
+        .storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, bounced_.view());
+    recordLeafPass(cmd, bounce_[coneVariant().index()], &pc, sizeof(pc), w);
+    DescriptorWrites c;
+    c.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, bounced_.view()).storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, radiance_.mipView(0));
+    recordLeafPass(cmd, commit_, &pc, sizeof(pc), c);
+    recordMips(cmd, /*levelZeroIsDirect=*/false);  // the same occupied set as this frame's first chain; level 0 now has the bounce
   }
+}
+
+VoxelConeTracing::TraceFrame VoxelConeTracing::beginTrace(const render::FrameContext& frame) {
+  TraceFrame trace;
+  trace.scale = traceScale();
+  // Nothing to carry over (first frame, new trace targets, a light switched): every pixel is traced.
+  trace.frames = traceHistory_ ? options_.traceFrames : 1u;
+  trace.phase = uint32_t(traceFrame_ % trace.frames);
+  ++traceFrame_;
+  trace.lastFrame = &traced_[tracedCurrent_];
+  tracedCurrent_ ^= 1u;
+  trace.current = &traced_[tracedCurrent_];
+  stats_.tracedFraction = 1.0 / trace.frames;
+  stats_.traceWidth = trace.current->diffuse.desc().width;
+  stats_.traceHeight = trace.current->diffuse.desc().height;
+  // Without a draw smoother than specularConeBelow (a roughness texture may make any pixel so), no
+  // pixel marches a specular cone: the variant without its code, which lavapipe would run masked.
+  trace.glossy = options_.specular && std::any_of(frame.snapshot.draws.begin(), frame.snapshot.draws.end(), [&](const render::DrawItem& d) {
+                   return d.material.roughness < options_.specularConeBelow || d.material.metallicRoughnessTexture != scene::kNoTexture;
+                 });
+  stats_.specularCones = trace.glossy;
+  // The specular image is written where some pixel's specular light is a cone's, or the debug view
+  // shows it; else the lighting takes the diffuse light as the specular (SpecularSource::Indirect).
+  specularSource_ = !options_.specular                                     ? render::SpecularSource::None
+                    : trace.glossy || options_.view == VctView::Specular ? render::SpecularSource::Target
+                                                                           : render::SpecularSource::Indirect;
+  return trace;
+}
+
+// "trace": the cones of this frame's traced pixels, then the rest reprojected from last frame.
+void VoxelConeTracing::recordTrace(render::FrameContext& frame, const TraceFrame& trace) {
+  VkCommandBuffer cmd = frame.cmd;
+  render::ScopedPass scope(ctx_, frame.timer, cmd, "trace");
+  render::RenderTargets& t = frame.targets;
+  const Pipeline& p = trace_[TraceVariant{options_.anisotropic, trace.glossy, unitStep() == 1}.index()];
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
+  DescriptorWrites()
+      .uniformBuffer(DYNGI_VCT_TRACE_BINDING_FRAME, frame.frameUniforms.handle())
+      .storageImage(DYNGI_VCT_TRACE_BINDING_G_POSITION, t.position.view())
+      .storageImage(DYNGI_VCT_TRACE_BINDING_G_NORMAL, t.normal.view())
+      .sampledImage(DYNGI_VCT_TRACE_BINDING_RADIANCE, radiance_.view(), sampler_)
+      .sampledImage(DYNGI_VCT_TRACE_BINDING_ANISO, anisoView(), sampler_)
+      .storageImage(DYNGI_VCT_TRACE_BINDING_OUT_DIFFUSE, trace.current->diffuse.view())
+      .storageImage(DYNGI_VCT_TRACE_BINDING_OUT_SPECULAR, trace.current->specular.view())
+      .push(ctx_, cmd, p);
+  gpu::VctTracePush pc{};
+  fillConeParams(pc);
+  pc.traceScale = trace.scale;
+  pc.specular = trace.glossy ? 1u : 0u;
+  pc.specularConeBelow = options_.specularConeBelow;
+  pc.turnCones = options_.diffuseFilterRadius > 0 ? 1u : 0u;
+  pc.traceFrames = trace.frames;
+  pc.tracePhase = trace.phase;
+  pc.coneInterleave = options_.coneInterleave;
+  vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
+  // With traceFrames > 1: the 2 x 2 lattice's cells, once per offset traced this frame (vct_trace_phase.glsl).
+  const uint32_t step = trace.frames > 1 ? 2 : 1;
+  vkCmdDispatch(cmd, dispatchGroups((stats_.traceWidth + step - 1) / step, 8), dispatchGroups((stats_.traceHeight + step - 1) / step, 8),
+                trace.frames > 1 ? 4 / trace.frames : 1);
+  render::computeWriteBarrier(cmd);
+  recordReproject(frame, trace);
   traceHistory_ = true;
   previousViewProj_ = frame.uniforms.viewProj;
-  const Image* diffuse = &traced.diffuse;
-  if (options_.diffuseFilterRadius > 0) {
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "filter");
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, filter_.handle());
-    // Along x into filterAlongX_, then along y into filteredDiffuse_, which the upsample reads.
-    const Image* passes[2][2] = {{&traced.diffuse, &filterAlongX_}, {&filterAlongX_, &filteredDiffuse_}};
-    for (int axis = 0; axis < 2; ++axis) {
-      DescriptorWrites()
-          .uniformBuffer(DYNGI_VCT_FILTER_BINDING_FRAME, frame.frameUniforms.handle())
-          .storageImage(DYNGI_VCT_FILTER_BINDING_SURFACE, traced.surface.view())
-          .storageImage(DYNGI_VCT_FILTER_BINDING_IN, passes[axis][0]->view())
-          .storageImage(DYNGI_VCT_FILTER_BINDING_OUT, passes[axis][1]->view())
-          .push(ctx_, cmd, filter_);
-      const gpu::VctFilterPush pc{scale, int(std::min(options_.diffuseFilterRadius, VctOptions::kMaxDiffuseFilterRadius)), axis == 0 ? 1 : 0, axis == 1 ? 1 : 0};
-      vkCmdPushConstants(cmd, filter_.layout(), kCS, 0, sizeof(pc), &pc);
-      vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth, 8), dispatchGroups(stats_.traceHeight, 8), 1);
-      render::computeWriteBarrier(cmd);
-    }
-    diffuse = &filteredDiffuse_;
-  }
-  {
-    render::ScopedPass scope(ctx_, frame.timer, cmd, "upsample");
-    const Pipeline& up = upsample_[specularSource_ == render::SpecularSource::Target ? 1 : 0];
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, up.handle());
+}
+
+// The pixels not traced this frame, from last frame's, and every traced pixel's surface record (for the
+// filter, the upsample and next frame; the only work when every pixel is traced).
+void VoxelConeTracing::recordReproject(render::FrameContext& frame, const TraceFrame& trace) {
+  VkCommandBuffer cmd = frame.cmd;
+  render::RenderTargets& t = frame.targets;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, reproject_.handle());
+  DescriptorWrites()
+      .uniformBuffer(DYNGI_VCT_REPROJECT_BINDING_FRAME, frame.frameUniforms.handle())
+      .storageImage(DYNGI_VCT_REPROJECT_BINDING_G_POSITION, t.position.view())
+      .storageImage(DYNGI_VCT_REPROJECT_BINDING_G_NORMAL, t.normal.view())
+      .storageImage(DYNGI_VCT_REPROJECT_BINDING_PREVIOUS_DIFFUSE, trace.lastFrame->diffuse.view())
+      .storageImage(DYNGI_VCT_REPROJECT_BINDING_PREVIOUS_SPECULAR, trace.lastFrame->specular.view())
+      .storageImage(DYNGI_VCT_REPROJECT_BINDING_PREVIOUS_SURFACE, trace.lastFrame->surface.view())
+      .storageImage(DYNGI_VCT_REPROJECT_BINDING_OUT_DIFFUSE, trace.current->diffuse.view())
+      .storageImage(DYNGI_VCT_REPROJECT_BINDING_OUT_SPECULAR, trace.current->specular.view())
+      .storageImage(DYNGI_VCT_REPROJECT_BINDING_OUT_SURFACE, trace.current->surface.view())
+      .push(ctx_, cmd, reproject_);
+  gpu::VctReprojectPush rp{};
+  rp.previousViewProj = previousViewProj_;
+  rp.traceScale = trace.scale;
+  rp.traceFrames = trace.frames;
+  rp.tracePhase = trace.phase;
+  rp.history = traceHistory_ ? 1u : 0u;
+  // Twice the frames a still pixel waits for its turn: under motion a value can be carried from pixel to
+  // pixel without ever coming up for tracing.
+  rp.maxAge = 2 * trace.frames;
+  vkCmdPushConstants(cmd, reproject_.layout(), kCS, 0, sizeof(rp), &rp);
+  vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth, 8), dispatchGroups(stats_.traceHeight, 8), 1);
+  render::computeWriteBarrier(cmd);
+}
+
+// "filter" (diffuseFilterRadius > 0): the traced diffuse light along x, then y. Returns what the
+// upsample reads.
+const Image& VoxelConeTracing::recordFilter(render::FrameContext& frame, const TraceFrame& trace) {
+  if (options_.diffuseFilterRadius == 0) return trace.current->diffuse;
+  VkCommandBuffer cmd = frame.cmd;
+  render::ScopedPass scope(ctx_, frame.timer, cmd, "filter");
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, filter_.handle());
+  // Along x into filterAlongX_, then along y into filteredDiffuse_, which the upsample reads.
+  const Image* passes[2][2] = {{&trace.current->diffuse, &filterAlongX_}, {&filterAlongX_, &filteredDiffuse_}};
+  for (int axis = 0; axis < 2; ++axis) {
     DescriptorWrites()
-        .uniformBuffer(DYNGI_VCT_UPSAMPLE_BINDING_FRAME, frame.frameUniforms.handle())
-        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION, t.position.view())
-        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL, t.normal.view())
-        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE, diffuse->view())
-        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR, traced.specular.view())
-        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_SURFACE, traced.surface.view())
-        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, t.indirect.view())
-        .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, t.specular.view())
-        .push(ctx_, cmd, up);
-    const gpu::VctUpsamplePush pc{scale, options_.specularConeBelow};
-    vkCmdPushConstants(cmd, up.layout(), kCS, 0, sizeof(pc), &pc);
-    // One invocation per block of scale x scale pixels sharing their traced neighbours: a block left of
-    // and above the first traced pixel, then one per traced pixel.
-    vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth + 1, 8), dispatchGroups(stats_.traceHeight + 1, 8), 1);
+        .uniformBuffer(DYNGI_VCT_FILTER_BINDING_FRAME, frame.frameUniforms.handle())
+        .storageImage(DYNGI_VCT_FILTER_BINDING_SURFACE, trace.current->surface.view())
+        .storageImage(DYNGI_VCT_FILTER_BINDING_IN, passes[axis][0]->view())
+        .storageImage(DYNGI_VCT_FILTER_BINDING_OUT, passes[axis][1]->view())
+        .push(ctx_, cmd, filter_);
+    const gpu::VctFilterPush pc{trace.scale, int(options_.diffuseFilterRadius), axis == 0 ? 1 : 0, axis == 1 ? 1 : 0};
+    vkCmdPushConstants(cmd, filter_.layout(), kCS, 0, sizeof(pc), &pc);
+    vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth, 8), dispatchGroups(stats_.traceHeight, 8), 1);
     render::computeWriteBarrier(cmd);
   }
-  ++frames_;
-  frame.specular = specularSource_;
-  return true;
+  return filteredDiffuse_;
+}
+
+// "upsample": the traced light to every pixel -> targets.indirect and targets.specular.
+void VoxelConeTracing::recordUpsample(render::FrameContext& frame, const TraceFrame& trace, const Image& diffuse) {
+  VkCommandBuffer cmd = frame.cmd;
+  render::RenderTargets& t = frame.targets;
+  render::ScopedPass scope(ctx_, frame.timer, cmd, "upsample");
+  const Pipeline& up = upsample_[specularSource_ == render::SpecularSource::Target ? 1 : 0];
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, up.handle());
+  DescriptorWrites()
+      .uniformBuffer(DYNGI_VCT_UPSAMPLE_BINDING_FRAME, frame.frameUniforms.handle())
+      .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION, t.position.view())
+      .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL, t.normal.view())
+      .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_DIFFUSE, diffuse.view())
+      .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_SPECULAR, trace.current->specular.view())
+      .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_LOW_SURFACE, trace.current->surface.view())
+      .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_OUT_DIFFUSE, t.indirect.view())
+      .storageImage(DYNGI_VCT_UPSAMPLE_BINDING_OUT_SPECULAR, t.specular.view())
+      .push(ctx_, cmd, up);
+  const gpu::VctUpsamplePush pc{trace.scale, options_.specularConeBelow};
+  vkCmdPushConstants(cmd, up.layout(), kCS, 0, sizeof(pc), &pc);
+  // One invocation per block of scale x scale pixels sharing their traced neighbours: a block left of
+  // and above the first traced pixel, then one per traced pixel.
+  vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth + 1, 8), dispatchGroups(stats_.traceHeight + 1, 8), 1);
+  render::computeWriteBarrier(cmd);
 }
 
 void VoxelConeTracing::recordAfterLighting(render::FrameContext& frame) {
@@ -636,7 +687,7 @@ std::vector<glm::vec4> VoxelConeTracing::probeCones(const std::vector<std::pair<
   rayBuf.upload(packed.data(), packed.size() * sizeof(glm::vec4));
   Buffer out(ctx_, rays.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "vct probe results");
   const bool aniso = options_.anisotropic;
-  const Pipeline& p = probe_[(aniso ? 1 : 0) + 2 * unitStep()];  // the trace's variant
+  const Pipeline& p = probe_[coneVariant().index()];  // the trace's variant
   ctx_.immediate([&](VkCommandBuffer cmd) {
     for (Image* img : {&radiance_, &aniso_})
       if (img->valid()) img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);

@@ -43,9 +43,12 @@ class VoxelConeTracing final : public render::RenderFeature {
   // The trace resolution divisor in use: the options' (or the automatic one for the render size) times a
   // GI budget's factor, at most kMaxTraceScale.
   uint32_t traceScale() const;
-  // 1 at the unit step (the default): the cone passes' variant without a pow() a step (vct_cone.glsl's
-  // kVctUnitStep); 0 at any other step. Their pipeline arrays put the unit-step variants in the upper half.
-  uint32_t unitStep() const { return options_.stepScale == 1.0f ? 1u : 0u; }
+  // 1 at the unit step: the cone passes' variant without a pow() a step (vct_cone.glsl's kVctUnitStep);
+  // 0 at any other step.
+  uint32_t unitStep() const { return options_.coneStep == 1.0f ? 1u : 0u; }
+  // `options` as this feature uses them: counts and frames in their ranges, the cone interleave 1 without
+  // the diffuse filter (nothing would bring the rows' cone sets together).
+  static VctOptions validated(VctOptions options);
   // Drops the traced pixels' values kept from earlier frames (traceFrames > 1): the next frame uses only
   // what it traces, every pixel. For changes that make them wrong at once: a light switched, an emission
   // changed, a jump (VctTechnique::update decides).
@@ -65,6 +68,47 @@ class VoxelConeTracing final : public render::RenderFeature {
   std::vector<glm::vec4> probeCones(const std::vector<std::pair<glm::vec3, glm::vec3>>& rays, float tanHalf);
 
  private:
+  // Pipeline variants by what they are for (specialization constants: lavapipe runs both sides of a
+  // branch, so each is a pipeline of its own).
+  struct ConeVariant {  // the passes that march cones over the voxels: bounce, probe
+    bool anisotropic = false, unitStep = false;
+    uint32_t index() const { return (anisotropic ? 1u : 0u) + (unitStep ? 2u : 0u); }
+  };
+  struct TraceVariant {
+    bool anisotropic = false, specular = false, unitStep = false;
+    uint32_t index() const { return (anisotropic ? 1u : 0u) + (specular ? 2u : 0u) + (unitStep ? 4u : 0u); }
+  };
+  enum class MipsVariant : uint32_t { Isotropic, Atlas, IsotropicOpaqueAxis, AtlasFromLevel0, AtlasFromDirect, Count };
+  ConeVariant coneVariant() const { return {options_.anisotropic, unitStep() == 1}; }
+  const render::Pipeline& mips(MipsVariant v) const { return mips_[uint32_t(v)]; }
+  VkImageView anisoView() const { return options_.anisotropic ? aniso_.view() : radiance_.view(); }  // bound either way
+
+  // The traced pixels, this frame's and last (alternating): diffuse (AO in alpha), specular (alpha: frames
+  // since traced; both alphas -1: missing), the surface each saw (vct_reproject.comp's record).
+  struct TracedPixels {
+    render::Image diffuse, specular, surface;
+  };
+  // This frame's trace: its scale, the frames it is spread over and this frame's phase among them, the
+  // images it writes and last frame's, whether some pixel marches a specular cone.
+  struct TraceFrame {
+    uint32_t scale = 1, frames = 1, phase = 0;
+    const TracedPixels* current = nullptr;
+    const TracedPixels* lastFrame = nullptr;
+    bool glossy = false;
+  };
+
+  void createLeafPipelines();
+  void createMipsPipelines();
+  void createScreenPipelines();
+  void createSampler();
+  void prepareFrame(render::FrameContext& frame);
+  void recordInject(render::FrameContext& frame);
+  void recordBounces(render::FrameContext& frame);
+  TraceFrame beginTrace(const render::FrameContext& frame);
+  void recordTrace(render::FrameContext& frame, const TraceFrame& trace);
+  void recordReproject(render::FrameContext& frame, const TraceFrame& trace);
+  const render::Image& recordFilter(render::FrameContext& frame, const TraceFrame& trace);
+  void recordUpsample(render::FrameContext& frame, const TraceFrame& trace, const render::Image& diffuse);
   void ensureVolumes(uint32_t res);
   void ensureTraceTargets(uint32_t width, uint32_t height);
   // The mip chain, or the anisotropic atlas. levelZeroIsDirect: level 0 holds the direct radiance (no
@@ -84,7 +128,6 @@ class VoxelConeTracing final : public render::RenderFeature {
                       render::DescriptorWrites& writes);
   template <class Push>
   void fillConeParams(Push& p) const;
-  uint32_t effectiveConeInterleave() const;  // coneInterleave, 1 with the diffuse filter off
 
   render::VulkanContext& ctx_;
   VoxelScene& voxels_;
@@ -101,11 +144,6 @@ class VoxelConeTracing final : public render::RenderFeature {
   render::Image direct_;       // res^3: the injected radiance, blended in place with last frame's (temporal blending); alpha: which cones see the voxel (vct_seen.glsl)
   render::Image bounced_;      // res^3: a bounce's output before it is committed to radiance_ level 0
   render::Buffer staleRuns_;   // this frame's runs of cells vct_clear_stale.comp visits (recordClearStale)
-  // The traced pixels, this frame's and last (alternating): diffuse (AO in alpha), specular (alpha: frames
-  // since traced; both alphas -1: missing), the surface each saw (vct_reproject.comp's record).
-  struct TracedPixels {
-    render::Image diffuse, specular, surface;
-  };
   TracedPixels traced_[2];
   render::Image filterAlongX_;     // the diffuse filter's first pass (along x)
   render::Image filteredDiffuse_;  // its second: what the upsample reads
@@ -115,7 +153,9 @@ class VoxelConeTracing final : public render::RenderFeature {
   bool traceHistory_ = false;      // traced_[last] holds last frame's pixels, valid to reproject
   glm::mat4 previousViewProj_{1.0f};
   VkSampler sampler_ = VK_NULL_HANDLE;
-  render::Pipeline inject_, clearStale_, mips_[5], bounce_[4], commit_, trace_[8], reproject_, filter_, upsample_[2], debug_[2], probe_[4];
+  render::Pipeline inject_, clearStale_, commit_, reproject_, filter_;
+  render::Pipeline mips_[uint32_t(MipsVariant::Count)], bounce_[4], probe_[4], trace_[8];  // by MipsVariant, ConeVariant, TraceVariant
+  render::Pipeline upsample_[2], debug_[2];  // [specular image written], [anisotropic]
   VctFrameStats stats_;
 };
 

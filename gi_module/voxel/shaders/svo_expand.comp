@@ -7,7 +7,7 @@
 // Nodes are visited in level order, which keeps a level's groups contiguous (svo_level.comp relies on it).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
-#include "shared/gi_gpu_types.h"
+#include "voxel_shared.h"
 #extension GL_KHR_shader_subgroup_ballot : require
 #include "svo_morton.glsl"
 layout(local_size_x = 64) in;

@@ -5,7 +5,7 @@
 // workgroup, as the mark pass does: the moving entities' in every build (each leaf listed at its first
 // fragment), the static ones' once when the static set changes.
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "voxel_shared.h"
 #include "subgroup_append.glsl"
 #include "svo_morton.glsl"
 layout(local_size_x = 64) in;

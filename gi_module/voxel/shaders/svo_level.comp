@@ -4,7 +4,7 @@
 // dispatch size of the expand pass. Level 0 also seeds the root from the occupancy pyramid; the leaf level
 // (depth) writes the leaf list's header.
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "voxel_shared.h"
 layout(local_size_x = 1) in;
 layout(set = 0, binding = DYNGI_SVO_LEVEL_BINDING_LEVELS) buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = DYNGI_SVO_LEVEL_BINDING_COUNTERS) buffer Counters { SvoCounters counters; };

@@ -1,7 +1,7 @@
 #version 460
 // Visibility of many segments through the SVO (one thread per segment).
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "voxel_shared.h"
 layout(local_size_x = 64) in;
 // 0: the march is compiled out (benchmark ceiling: the cost of reading a segment and writing a result).
 layout(constant_id = 0) const uint kMarch = 1u;

@@ -6,7 +6,7 @@
 // marked: the static entities' into the static pyramid, the moving ones' into a copy of it), up to the
 // range's fragment count (DYNGI_SVO_CHUNK_END).
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "voxel_shared.h"
 #include "svo_morton.glsl"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_SVO_MARK_BINDING_FRAGMENTS) readonly buffer Fragments { uvec4 fragments[]; };

@@ -27,7 +27,6 @@ ivec3 svoCellOfMortonCode(uint code) { return ivec3(svoCompactBits(code), svoCom
 
 // The Morton code of node `node`'s cell from the node cells (`cells`, a uint array). Only a group's first
 // slot is written (8 times the parent's code, which is its first child's code): sibling c of a group is
-// that plus c, and the root (node 0) is cell 0. One store per group instead of eight took the VCT frame's
-// SVO build about 0.7 ms less at 128^3 on lavapipe (docs/BENCHMARKS.md, session 29).
+// that plus c, and the root (node 0) is cell 0: one store per group instead of eight.
 #define SVO_NODE_CELL(cells, node) ((cells)[(node) & ~7u] + ((node) & 7u))
 #endif

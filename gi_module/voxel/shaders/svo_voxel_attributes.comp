@@ -3,7 +3,7 @@
 // a dispatch (kStep, DYNGI_VOXEL_ATTRIBUTES_STEP_*). Every leaf sum read is cleared after: the sums are
 // zero again when the build ends, so the next one needs no clear of them.
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "voxel_shared.h"
 layout(local_size_x = 64) in;
 layout(constant_id = 0) const uint kStep = DYNGI_VOXEL_ATTRIBUTES_STEP_STATIC;
 layout(set = 0, binding = DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_LEAF_LIST) readonly buffer LeafList { uvec4 header; uvec2 entries[]; } leafList;

@@ -4,7 +4,7 @@
 // restarts the SVO march took (blue few, red many).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
-#include "shared/gi_gpu_types.h"
+#include "voxel_shared.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = DYNGI_VOXEL_DEBUG_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };

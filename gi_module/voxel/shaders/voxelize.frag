@@ -3,7 +3,7 @@
 // column that the triangle's plane can reach inside this pixel exactly, and appends a fragment record
 // (coord, albedo, normal, emission) for each voxel the triangle overlaps into this entity's range.
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "voxel_shared.h"
 #include "shared/normal_map.h"
 #include "tri_box.glsl"
 

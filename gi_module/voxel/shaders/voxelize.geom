@@ -3,7 +3,7 @@
 // bounding box grown by one pixel, so every pixel column the triangle touches gets a fragment (lavapipe
 // has no conservative rasterization). The fragment shader then tests voxels exactly.
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "voxel_shared.h"
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 4) out;
 layout(push_constant) uniform Push { VoxelizePush pc; };

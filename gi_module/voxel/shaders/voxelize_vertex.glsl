@@ -1,7 +1,7 @@
 // The voxelization's vertex stage, shared by voxelize.vert and voxelize_tangent.vert (normal-textured
 // meshes: their normals and GpuMesh::tangents at locations 1 and 3): positions in voxel units, the
 // transformed texture coordinates, and for a normal texture the frame it turns, in voxel space.
-#include "shared/gi_gpu_types.h"
+#include "voxel_shared.h"
 #include "shared/uv_transform.h"
 layout(push_constant) uniform Push { VoxelizePush pc; };
 layout(location = 0) in vec3 inPosition;

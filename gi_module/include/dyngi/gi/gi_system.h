@@ -12,6 +12,8 @@
 // name from the registry (technique.h); nothing in engine/ knows about any of this.
 #include <memory>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "dyngi/engine/ecs/scheduler.h"
 #include "dyngi/engine/render/renderer.h"
@@ -19,21 +21,18 @@
 #include "dyngi/gi/bvh.h"
 #include "dyngi/gi/change_set.h"
 #include "dyngi/gi/gi_settings.h"
-#include "dyngi/gi/many_lights.h"
 #include "dyngi/gi/technique.h"
-#include "dyngi/gi/temporal_indirect.h"
 #include "dyngi/gi/voxel_scene.h"
-#include "dyngi/gi/vpl_paths.h"
 
 namespace dyngi::gi {
 
+class GiIndirectView;
+
+// The GI system's own figures; a technique's are its statsSections() and cpuMs().
 struct GiStats {
   BvhStats bvh;
   VoxelStats voxels;
-  VplPathStats vpl;
   double syncMs = 0;           // the whole CPU side of run()
-  double bvhVisibilityMs = 0;  // Embree visibility of the last frame (BVH backend)
-  uint32_t temporalSet = 0;    // the set gathered last frame
   // The GI's cost of the last frame rendered: its GPU sections (voxel scene and technique) plus the
   // technique's CPU sections (cpuMs); what a GI budget holds. -1 before the first timed frame.
   double giMs = -1;
@@ -64,25 +63,16 @@ class GiSystem final : public ecs::System {
   GiStats stats() const;
   EmbreeScene& bvh() { return *bvh_; }
   VoxelScene* voxels() { return voxels_.get(); }
-  // The technique's parts, when it is the one that has them (tests and tools).
-  VplPaths* paths();
-  TemporalIndirect* temporal();
-  ManyLights* manyLights();
-  // The VPL count the technique uses: its options' count rounded down to a multiple of the bounces.
-  uint32_t effectiveVplCount() const;
+  // The views of this GI: "final" and "indirect" (every technique's), then the technique's own.
+  std::vector<std::string> debugViews() const;
+  // Switches to one of debugViews(); false (and no change) for a name it does not have.
+  bool setDebugView(std::string_view name);
   // The GI budget's controller, when GiSettings::budget asks for one.
   const BudgetController* budget() const { return budget_.get(); }
   // Every GPU section the GI times: the voxel scene's (when it has one) and the technique's.
   std::vector<const char*> timedSections() const;
 
  private:
-  template <class F>
-  F* findFeature() const {
-    for (render::RenderFeature* f : technique_->features())
-      if (auto* typed = dynamic_cast<F*>(f)) return typed;
-    return nullptr;
-  }
-
   friend class GiFrameUpdate;
   // The technique's CPU work on the renderer's snapshot, with every change since the last such call.
   void updateTechnique(const render::RenderSnapshot& snapshot);
@@ -107,6 +97,8 @@ class GiSystem final : public ecs::System {
   std::unique_ptr<VoxelSyncSystem> voxelSync_;
   std::unique_ptr<Technique> technique_;
   std::unique_ptr<render::RenderFeature> frameUpdate_;  // attached first: calls updateTechnique
+  std::unique_ptr<GiIndirectView> indirectView_;        // attached last: the `indirect` view
+  std::string view_ = "final";
   render::Renderer* renderer_ = nullptr;                 // whose timings the budget reads; reset() swaps features in it
   std::unique_ptr<BudgetController> budget_;
   double giMs_ = -1;

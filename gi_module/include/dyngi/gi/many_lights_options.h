@@ -6,12 +6,12 @@
 
 namespace dyngi::gi {
 
-enum class ManyLightsView { Final, Indirect, Vpls, SubImages };
+enum class ManyLightsView { Final, Vpls, SubImages };
 
 struct ManyLightsOptions {
   VplOptions vpl;
   uint32_t rsmResolution = 256;     // RSM texels per side, per light layer
-  bool visibility = true;           // false: V = 1 (no indirect shadows), for comparisons
+  VisibilityBackend visibility = VisibilityBackend::Svo;  // Svo or None (V = 1: no indirect shadows, for comparisons)
   ManyLightsView view = ManyLightsView::Final;  // a debug view (Technique::setDebugView), not a table row
 
   static const OptionTable<ManyLightsOptions>& table();

@@ -68,7 +68,7 @@ class Technique {
 
 // One registered technique.
 struct TechniqueEntry {
-  const char* name;     // "many_lights", "temporal"
+  const char* name;     // "temporal", "many-lights", "vct": the --gi value
   const char* summary;  // one line
   // Its debug views by name ("final", every technique's default, is not listed): known before it is made,
   // so a command line is checked before any device exists.

@@ -5,12 +5,10 @@
 
 namespace dyngi::gi {
 
-enum class VisibilityBackend { Svo, Bvh, None };
-
 struct TemporalOptions {
   VplOptions vpl;
   uint32_t temporalSets = 16;         // T: VPLs are gathered one set (1/T of them) per frame
-  uint32_t reshootBudget = 0;         // VPLs reshot per frame; 0: vplCount / T (one set's worth: steady frame time)
+  uint32_t reshootBudget = 0;         // VPLs reshot per frame; 0: vpls / T (one set's worth: steady frame time)
   // When more VPLs are invalid than the budget (a light switched on, moved or turned), all of them are
   // reshot in that frame, up to this many (0: never more than the budget): the pool is whole again at
   // once, at a CPU cost of about 0.5 us a VPL here.
@@ -34,7 +32,7 @@ struct TemporalOptions {
   // false: every pixel is reprojected from every set each frame, as when the camera moves (the reference
   // the O(1) update for a still camera is tested against).
   bool incrementalAccumulation = true;
-  VisibilityBackend visibility = VisibilityBackend::Svo;  // chosen with the technique (--gi svo | bvh), not a table row
+  VisibilityBackend visibility = VisibilityBackend::Svo;  // the SVO on the GPU, Embree on the CPU, or none (V = 1)
 
   static const OptionTable<TemporalOptions>& table();
 };

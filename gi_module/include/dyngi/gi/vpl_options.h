@@ -9,8 +9,12 @@
 
 namespace dyngi::gi {
 
+// How a VPL technique decides whether a VPL sees a pixel: a march through the voxel scene's SVO on the
+// GPU, Embree rays on the CPU (exact), or not at all (V = 1: no indirect shadows, for comparisons).
+enum class VisibilityBackend { Svo, Bvh, None };
+
 struct VplOptions {
-  uint32_t vplCount = 512;             // total over all bounces (per bounce: vplCount / bounces)
+  uint32_t vpls = 512;                 // total over all bounces (per bounce: vpls / bounces)
   uint32_t bounces = 1;                // light bounces simulated by VPLs, 1..3
   // The light of the bounces after the last one simulated (shaders/shared/bounce_tail.h): both VPL
   // techniques gather one more bounce (each last-bounce VPL's probe), scaled to carry every later one.
@@ -22,24 +26,24 @@ struct VplOptions {
   // corners the clamp darkens get it back. 0: off; 1: round.
   float clampSpread = 8.0f;
   // What the gather uses (GatherPush::clampSpread): 0 when off (or with no clamp), else at least 1. The
-  // screen-space compensation (compensationRays), when on, gives back the same light instead.
+  // screen-space compensation (clampCompensation), when on, gives back the same light instead.
   float clampSpreadStretch() const {
-    return clampSpread > 0.0f && distanceClamp > 0.0f && compensationRays == 0 ? std::max(1.0f, clampSpread) : 0.0f;
+    return clampSpread > 0.0f && distanceClamp > 0.0f && clampCompensation == 0 ? std::max(1.0f, clampSpread) : 0.0f;
   }
   // Screen-space rays per traced pixel (one in 4 x 4) that give back the light the clamp drops (0: off;
   // indirect/shaders/compensate.comp). Off by default: it can only give back what the screen shows, and a
   // larger B, where it pays, then loses the light of hidden surfaces (a panel lamp's top, docs/QUALITY.md).
-  uint32_t compensationRays = 0;
+  uint32_t clampCompensation = 0;
   float luminanceThreshold = 0.01f;    // skip VPLs dimmer than this fraction of a first-bounce VPL
   float liftVoxels = 1.5f;             // SVO visibility: segment ends leave their surface by this many voxels
   float filterPlaneTolerance = 0.02f;  // filter: taps on the pixel's plane within this fraction of the view distance
   uint32_t seed = 1;                   // random sequences of the VPLs
 
-  // The VPL count used: vplCount rounded down to a multiple of the bounces (each bounce level holds
+  // The VPL count used: vpls rounded down to a multiple of the bounces (each bounce level holds
   // the same number). The one rounding rule of both techniques.
   uint32_t effectiveVplCount() const {
     const uint32_t b = std::clamp(bounces, 1u, 3u);
-    return std::max(1u, vplCount / b) * b;
+    return std::max(1u, vpls / b) * b;
   }
   static const OptionTable<VplOptions>& table();
 };

@@ -1,15 +1,14 @@
 #version 460
 // Debug views of the many-lights technique, written over the HDR image.
-// mode 0: indirect light only (albedo x indirect); 1: VPL positions as dots over the final image
-// (white: lit directly, orange: second bounce, red: third); 2: the K x K sub-images side by side, each
-// an estimate of the whole indirect light from its own VPL subset.
+// mode 0: VPL positions as dots over the final image (white: lit directly, orange: second bounce, red:
+// third); 1: the K x K sub-images side by side, each an estimate of the whole indirect light from its
+// own VPL subset (times albedo).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
-#include "shared/gi_gpu_types.h"
+#include "many_lights_shared.h"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_MANY_LIGHTS_DEBUG_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = DYNGI_MANY_LIGHTS_DEBUG_BINDING_G_ALBEDO) uniform sampler2D gAlbedo;
-layout(set = 0, binding = DYNGI_MANY_LIGHTS_DEBUG_BINDING_INDIRECT, rgba32f) uniform readonly image2D indirect;
 layout(set = 0, binding = DYNGI_MANY_LIGHTS_DEBUG_BINDING_RAW, rgba32ui) uniform readonly uimage2D raw;  // filter_input.glsl's packing
 layout(set = 0, binding = DYNGI_MANY_LIGHTS_DEBUG_BINDING_VPLS) readonly buffer Vpls { GpuVpl vpls[]; };
 layout(set = 0, binding = DYNGI_MANY_LIGHTS_DEBUG_BINDING_HDR, rgba32f) uniform image2D hdr;
@@ -18,7 +17,7 @@ layout(push_constant) uniform Push { DYNGI_MANY_LIGHTS_DEBUG_PUSH };
 void main() {
   uint i = gl_GlobalInvocationID.x;
   ivec2 size = ivec2(frame.sizeAndCount.xy);
-  if (mode == 1u) {
+  if (mode == 0u) {
     if (i >= vplCount) return;
     GpuVpl v = vpls[i];
     if (v.position.w < 0.0) return;
@@ -35,17 +34,11 @@ void main() {
   }
   if (i >= uint(size.x * size.y)) return;
   ivec2 px = ivec2(i % uint(size.x), i / uint(size.x));
-  vec4 a = texelFetch(gAlbedo, px, 0);
-  vec3 albedo = a.rgb * (1.0 - a.a);
-  if (mode == 0u) {
-    imageStore(hdr, px, vec4(albedo * imageLoad(indirect, px).rgb, 1.0));
-  } else {
-    ivec2 tile = size / int(K);
-    ivec2 sub = min(px / max(tile, ivec2(1)), ivec2(int(K) - 1));
-    ivec2 src = (px - sub * tile) * int(K) + sub;
-    src = clamp(src, ivec2(0), size - 1);
-    // Each sub-image alone is a (noisier) estimate of the whole indirect light: shown at full scale.
-    vec4 srcAlbedo = texelFetch(gAlbedo, src, 0);
-    imageStore(hdr, px, vec4(filterLight(imageLoad(raw, src)) * srcAlbedo.rgb * (1.0 - srcAlbedo.a), 1.0));
-  }
+  ivec2 tile = size / int(K);
+  ivec2 sub = min(px / max(tile, ivec2(1)), ivec2(int(K) - 1));
+  ivec2 src = (px - sub * tile) * int(K) + sub;
+  src = clamp(src, ivec2(0), size - 1);
+  // Each sub-image alone is a (noisier) estimate of the whole indirect light: shown at full scale.
+  vec4 srcAlbedo = texelFetch(gAlbedo, src, 0);
+  imageStore(hdr, px, vec4(filterLight(imageLoad(raw, src)) * srcAlbedo.rgb * (1.0 - srcAlbedo.a), 1.0));
 }

@@ -3,7 +3,7 @@
 // the flux it reflects: rho * (the flux the light sends through this texel).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
-#include "shared/gi_gpu_types.h"
+#include "many_lights_shared.h"
 #include "shared/lighting.glsl"
 #include "shared/normal_map.h"
 layout(set = 0, binding = DYNGI_RSM_BINDING_LAYERS) readonly buffer Layers { RsmLayer layers[]; };

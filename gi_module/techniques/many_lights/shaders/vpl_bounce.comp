@@ -2,7 +2,7 @@
 // Multi-bounce VPLs: each VPL of bounce b-1 shoots one cosine-distributed (Halton) direction through the
 // voxel scene; where it lands, a VPL of bounce b reflects parent flux x the voxel's albedo.
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "many_lights_shared.h"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_VPLS) buffer Vpls { GpuVpl vpls[]; };
 layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };

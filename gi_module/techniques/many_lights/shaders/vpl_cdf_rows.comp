@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "many_lights_shared.h"
 // VPL sampling, step 1: per RSM row, the running sum of texel luminance (flux) along the row.
 layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_VPL_CDF_ROWS_BINDING_RSM_FLUX) uniform sampler2DArray rsmFlux;

@@ -2,7 +2,7 @@
 // VPL sampling, step 3: N stratified samples of the RSM texels, proportional to their luminance.
 // VPL flux = texel flux / (N p(texel)), so the VPL set is an unbiased estimate of the reflected flux.
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "many_lights_shared.h"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_VPL_SAMPLE_BINDING_RSM_POSITION) uniform sampler2DArray rsmPosition;
 layout(set = 0, binding = DYNGI_VPL_SAMPLE_BINDING_RSM_NORMAL) uniform sampler2DArray rsmNormal;

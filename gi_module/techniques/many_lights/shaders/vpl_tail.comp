@@ -7,7 +7,7 @@
 // against the path tracer with 8: the tall box's face to the red wall 1.137 -> 1.061; with 1 bounce the
 // worst region 54 -> 17 percent off, the image 1.059 -> 0.984. It gathers a bounce more VPLs.)
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "many_lights_shared.h"
 #include "shared/bounce_tail.h"
 layout(local_size_x = 256) in;
 layout(set = 0, binding = DYNGI_VPL_TAIL_BINDING_VPLS) buffer Vpls { GpuVpl vpls[]; };

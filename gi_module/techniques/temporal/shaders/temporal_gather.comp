@@ -4,6 +4,7 @@
 // is the accumulated light, or, for pixels queued for the full reprojection, this set's light until
 // temporal_reproject.comp overwrites it.
 #extension GL_GOOGLE_include_directive : require
+#include "temporal_shared.h"
 #define GATHER_EXTRA_PUSH AccumulatePush acc;
 #include "gather.glsl"
 layout(set = 0, binding = DYNGI_TEMPORAL_GATHER_BINDING_SET_SAMPLES, rg32ui) uniform uimage2DArray setSamples;

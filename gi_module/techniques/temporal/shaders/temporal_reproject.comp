@@ -5,7 +5,7 @@
 // row order). Overwrites those pixels' filter input.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
-#include "shared/gi_gpu_types.h"
+#include "temporal_shared.h"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_TEMPORAL_REPROJECT_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = DYNGI_TEMPORAL_REPROJECT_BINDING_SET_SAMPLES, rg32ui) uniform uimage2DArray setSamples;

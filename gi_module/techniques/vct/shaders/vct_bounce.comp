@@ -4,7 +4,7 @@
 // albedo and added to its own direct radiance: OUT = DIRECT + albedo E / pi. vct_commit.comp then copies
 // OUT into level 0 of the radiance volume (a pass apart: the cones read that level while this one runs).
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "vct_shared.h"
 layout(local_size_x = 64) in;
 layout(constant_id = 0) const bool kAnisotropic = false;
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST) readonly buffer LeafList { uvec4 header; uvec2 entries[]; } leafList;

@@ -8,7 +8,7 @@
 // voxels may have emptied (VoxelScene::staleBoxes; VoxelConeTracing lists the runs): a moving object's
 // box holds ten times the cells it left, and zeroing whole boxes by copies ran on one thread.
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "vct_shared.h"
 #include "svo_morton.glsl"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_VCT_CLEAR_BINDING_RUNS) readonly buffer Runs { uvec2 runs[]; };

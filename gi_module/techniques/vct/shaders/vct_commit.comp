@@ -2,7 +2,7 @@
 // Copies each occupied voxel's bounced radiance (vct_bounce.comp's OUT) into level 0 of the radiance
 // volume; empty voxels there are already clear.
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "vct_shared.h"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST) readonly buffer LeafList { uvec4 header; uvec2 entries[]; } leafList;
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES, rgba32ui) uniform readonly uimage3D voxelAttributes;

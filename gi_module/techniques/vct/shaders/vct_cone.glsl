@@ -3,7 +3,7 @@
 // keep them in step. Positions and distances are in voxel units of the finest level (0..res per axis).
 //
 // The includer declares, before including:
-//   the push members of DYNGI_VCT_CONE_PARAMS (res, maxDistance, aoDistance, coneOffset, stepScale, ...)
+//   the push members of DYNGI_VCT_CONE_PARAMS (res, maxDistance, aoDistance, coneOffset, coneStep, ...)
 //   layout(constant_id = 0) const bool kAnisotropic
 // and keeps specialization constant 2 free: it is kVctUnitStep below.
 //   uniform sampler3D vctRadiance;  level 0 and (isotropic) its mip chain: premultiplied radiance, opacity
@@ -38,7 +38,7 @@ vec4 vctOverFraction(vec4 s, float fraction) {
   float a = 1.0 - pow(max(1.0 - s.a, 1e-6), fraction);
   return vec4(s.a > 1e-6 ? s.rgb * (a / s.a) : vec3(0.0), a);
 }
-// stepScale is 1: a step's part is its sample, without the pow() (a log2 and an exp2, polynomials on
+// coneStep is 1: a step's part is its sample, without the pow() (a log2 and an exp2, polynomials on
 // lavapipe). Set by the trace, the bounce and the test probe (VoxelConeTracing) at a step of one
 // footprint; false elsewhere (the debug view's half steps).
 layout(constant_id = 2) const bool kVctUnitStep = false;
@@ -58,7 +58,7 @@ vec4 vctCombineSlabs(vec4 sx, vec4 sy, vec4 sz, vec3 w) {
 // under 11 voxels: levels up to 8) the nearest whole level, else the footprint's own. lavapipe skips the second level of
 // a fetch only where every lane's lod is whole; a diffuse cone's footprints are the same in every lane,
 // and most of its steps are near the surface it leaves (its footprint grows by 1.2-1.5 a step there),
-// so whole levels there save a fifth of the trace (docs/BENCHMARKS.md, session 27). The step's part is
+// so whole levels there save a fifth of the trace. The step's part is
 // taken as before, as the cone's footprint. Farther out the footprint is the cone's, narrowed by
 // narrow.x levels (the diffuse cones' VctOptions::farNarrowing; narrow.y is 2^narrow.x): whole levels at
 // 11-22 voxels took the Cornell tall box's face to the red wall from 0.81 to 0.66 of the path tracer.
@@ -113,7 +113,7 @@ void vctAccumulate(vec4 part, float t, inout vec3 colour, inout float alpha, ino
 
 // Marches a cone of half-angle tangent `tanHalf` from `origin` along unit `dir` for `reach` voxels:
 // front-to-back accumulation (colour += (1 - a) c, a += (1 - a) a_voxel), each step the cone's diameter x
-// stepScale with the opacity corrected for that step length, until opaque or out of the volume.
+// coneStep with the opacity corrected for that step length, until opaque or out of the volume.
 // `rise` is how fast the cone leaves the surface it starts from (dot(dir, normal)): the footprint is
 // kept under kVctSurfaceClearance times its distance from that surface, since a filtered sample reaches
 // about 1.5 texels around it and a wider one would gather the surface's own voxels (self-occlusion and
@@ -139,9 +139,9 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, floa
     if (diameter > 1.0) break;
     vec3 p = origin + t * dir;
     float inside = vctInside(p, diameter);
-    vctAccumulate(inside * (kAnisotropic ? vctPart(textureLod(vctRadiance, p / res, 0.0), stepScale) : vctSampleCoarse(p, 0.0, dir, stepScale, narrow)), t,
+    vctAccumulate(inside * (kAnisotropic ? vctPart(textureLod(vctRadiance, p / res, 0.0), coneStep) : vctSampleCoarse(p, 0.0, dir, coneStep, narrow)), t,
                   colour, alpha, occlusion);
-    t += stepScale * diameter;
+    t += coneStep * diameter;
     if (alpha >= 0.99 || t > reach || inside <= 0.0) {
       done = true;
       break;
@@ -152,8 +152,8 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, floa
     if (diameter >= 2.0) break;
     vec3 p = origin + t * dir;
     float inside = vctInside(p, diameter);
-    vctAccumulate(inside * vctSample(p, log2(diameter), dir, stepScale, narrow), t, colour, alpha, occlusion);
-    t += stepScale * diameter;
+    vctAccumulate(inside * vctSample(p, log2(diameter), dir, coneStep, narrow), t, colour, alpha, occlusion);
+    t += coneStep * diameter;
     if (alpha >= 0.99 || t > reach || inside <= 0.0) {
       done = true;
       break;
@@ -163,8 +163,8 @@ vec4 vctCone(vec3 origin, vec3 dir, float tanHalf, float rise, float reach, floa
     float diameter = min(2.0 * tanHalf * t, kVctSurfaceClearance * (coneOffset + rise * t));
     vec3 p = origin + t * dir;
     float inside = vctInside(p, diameter);
-    vctAccumulate(inside * vctSampleCoarse(p, log2(diameter), dir, stepScale, narrow), t, colour, alpha, occlusion);
-    t += stepScale * diameter;
+    vctAccumulate(inside * vctSampleCoarse(p, log2(diameter), dir, coneStep, narrow), t, colour, alpha, occlusion);
+    t += coneStep * diameter;
     if (alpha >= 0.99 || t > reach || inside <= 0.0) break;
   }
   return vec4(colour, alpha);

@@ -2,7 +2,7 @@
 // Tests only: one cone per ray (origin and direction in voxel units), through vctCone, so the GPU march
 // can be held equal to its C++ twin (gi::vctConeCpu). Results: rgb radiance, a opacity.
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "vct_shared.h"
 layout(local_size_x = 64) in;
 layout(constant_id = 0) const bool kAnisotropic = false;
 layout(set = 0, binding = DYNGI_VCT_PROBE_BINDING_RAYS) readonly buffer Rays { vec4 rays[]; };  // origin, direction pairs

@@ -1,11 +1,11 @@
 #version 460
 // VCT debug views over the HDR image. `radiance` / `opacity`: each pixel's camera ray marched through the
 // volume at one mip (front to back, as a cone of constant footprint 2^mip voxels), showing the radiance
-// it gathers or its opacity as grey. `ao`, `indirect`, `specular`: the traced images as the lighting pass
-// reads them (AO as grey, E / pi, specular radiance).
+// it gathers or its opacity as grey. `ao`, `specular`: the traced images as the lighting pass reads them
+// (AO as grey, specular radiance).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
-#include "shared/gi_gpu_types.h"
+#include "vct_shared.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const bool kAnisotropic = false;
 layout(set = 0, binding = DYNGI_VCT_DEBUG_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
@@ -50,8 +50,6 @@ void main() {
     colour = mode == 0u ? acc.rgb : vec3(acc.a);
   } else if (mode == 2u) {
     colour = vec3(imageLoad(indirect, px).a);
-  } else if (mode == 3u) {
-    colour = imageLoad(indirect, px).rgb;
   } else {
     colour = imageLoad(specular, px).rgb;
   }

@@ -9,7 +9,7 @@
 // other axis fills it.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
-#include "shared/gi_gpu_types.h"
+#include "vct_shared.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_SURFACE, rgba32ui) uniform readonly uimage2D surfaces;  // vct_surface.glsl

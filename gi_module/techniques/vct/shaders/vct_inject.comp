@@ -7,7 +7,7 @@
 // anisotropic atlas: vct_seen.glsl) and to level 0 of the radiance volume (opacity 1 in alpha).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
-#include "shared/gi_gpu_types.h"
+#include "vct_shared.h"
 #include "shared/lighting.glsl"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_LEAF_LIST) readonly buffer LeafList { uvec4 header; uvec2 entries[]; } leafList;

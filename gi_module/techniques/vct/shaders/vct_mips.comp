@@ -6,12 +6,11 @@
 // d meets them (front + (1 - front.a) back), and the 4 are averaged: a wall one voxel thick stays opaque
 // along its normal at every level instead of fading to 1/2, 1/4, ... (Crassin et al. 2011).
 // The atlas is written only at the texels of occupied SVO nodes (one invocation per node writes its
-// texel in all six slabs; the rest of the atlas is cleared). A dense pass over every texel took twice as
-// long at 512^2 on lavapipe (docs/BENCHMARKS.md, session 21). The occupied nodes of a level are found
-// as the child groups of the level below it, one a node: walking the level's own slots, empty siblings
-// included, took lavapipe as long as if they were occupied.
+// texel in all six slabs; the rest of the atlas is cleared), half the cost of a dense pass over every
+// texel. The occupied nodes of a level are found as the child groups of the level below it, one a node:
+// a level's own slots include the empty siblings, which cost as much as occupied ones.
 #extension GL_GOOGLE_include_directive : require
-#include "shared/gi_gpu_types.h"
+#include "vct_shared.h"
 #include "svo_morton.glsl"
 #include "vct_seen.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;

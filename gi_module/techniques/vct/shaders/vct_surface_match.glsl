@@ -6,8 +6,8 @@
 #define DYNGI_VCT_SURFACE_MATCH_GLSL
 float vctSurfaceMatch(vec3 p, vec3 n, vec3 qp, vec3 qn, float planeScale) {
   float plane = abs(dot(n, qp - p)) / planeScale;
-  // The normals' agreement to the 8th power by squaring: pow() is a log2 and an exp2, which lavapipe
-  // evaluates as polynomials, four times a pixel in the upsample (session 24: 4.1 -> ms there).
+  // The normals' agreement to the 8th power by squaring: pow() is a log2 and an exp2, four times a pixel
+  // in the upsample.
   float agree = max(dot(n, qn), 0.0);
   agree *= agree;
   agree *= agree;

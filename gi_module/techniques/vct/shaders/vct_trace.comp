@@ -6,7 +6,7 @@
 // pixels only (vct_trace_phase.glsl); vct_reproject.comp fills in the others.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
-#include "shared/gi_gpu_types.h"
+#include "vct_shared.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const bool kAnisotropic = false;
 layout(constant_id = 1) const bool kSpecular = true;
@@ -44,7 +44,7 @@ void main() {
   // of them sees the hemisphere through many more directions than one pixel's few cones. Only the
   // azimuth turns: jittering the elevations too (the widths follow them) cost lavapipe another 15 percent
   // of the frame at 768^2. Turning costs about 11 percent there (neighbours' cones read different texels;
-  // a turn shared by a row of 8 pixels cost as much and filtered worse). `--diffuse-filter 0` leaves the
+  // a turn shared by a row of 8 pixels cost as much and filtered worse). `--diffuse-filter-radius 0` leaves the
   // turn out, and every pixel then marches every cone (nothing would bring the rows' halves together).
   // Rows take turns over the cone set (VctOptions::coneInterleave): a row of the dispatch, a row of
   // lanes, holds traced pixels of one row whether the trace is spread over frames or not, so every lane

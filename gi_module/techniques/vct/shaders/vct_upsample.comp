@@ -9,7 +9,7 @@
 // in under VctOptions::specularConeBelow).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
-#include "shared/gi_gpu_types.h"
+#include "vct_shared.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = DYNGI_VCT_UPSAMPLE_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(set = 0, binding = DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION, rgba32f) uniform readonly image2D gPosition;
