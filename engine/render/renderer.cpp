@@ -252,23 +252,9 @@ void Renderer::recordPresentBlit(Swapchain& swapchain, uint32_t imageIndex) {
   ScopedPass scope(ctx_, timer_ && timer_->mode() == GpuTimer::Mode::Timestamps ? timer_.get() : nullptr, cmd_, "present_blit");
   targets_.ldr.transition(cmd_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
   VkImage sw = swapchain.image(imageIndex);
+  const VkImageSubresourceRange colour{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
   auto swBarrier = [&](VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcS, VkAccessFlags2 srcA, VkPipelineStageFlags2 dstS,
-                       VkAccessFlags2 dstA) {
-    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    b.srcStageMask = srcS;
-    b.srcAccessMask = srcA;
-    b.dstStageMask = dstS;
-    b.dstAccessMask = dstA;
-    b.oldLayout = from;
-    b.newLayout = to;
-    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = sw;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.imageMemoryBarrierCount = 1;
-    dep.pImageMemoryBarriers = &b;
-    vkCmdPipelineBarrier2(cmd_, &dep);
-  };
+                       VkAccessFlags2 dstA) { imageBarrier(cmd_, sw, colour, from, to, srcS, srcA, dstS, dstA); };
   swBarrier(VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
             VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   VkExtent2D ext = swapchain.extent();

@@ -224,24 +224,29 @@ void Image::reset() {
 }
 
 void Image::transition(VkCommandBuffer cmd, VkImageLayout newLayout, VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+  imageBarrier(cmd, image_, {aspect(), 0, desc_.mips, 0, desc_.layers}, layout_, newLayout, lastStage_, lastAccess_, dstStage, dstAccess);
+  layout_ = newLayout;
+  lastStage_ = dstStage;
+  lastAccess_ = dstAccess;
+}
+
+void imageBarrier(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range, VkImageLayout from, VkImageLayout to,
+                  VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
   VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-  b.srcStageMask = lastStage_;
-  b.srcAccessMask = lastAccess_;
+  b.srcStageMask = srcStage;
+  b.srcAccessMask = srcAccess;
   b.dstStageMask = dstStage;
   b.dstAccessMask = dstAccess;
-  b.oldLayout = layout_;
-  b.newLayout = newLayout;
+  b.oldLayout = from;
+  b.newLayout = to;
   b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.image = image_;
-  b.subresourceRange = {aspect(), 0, desc_.mips, 0, desc_.layers};
+  b.image = image;
+  b.subresourceRange = range;
   VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dep.imageMemoryBarrierCount = 1;
   dep.pImageMemoryBarriers = &b;
   vkCmdPipelineBarrier2(cmd, &dep);
-  layout_ = newLayout;
-  lastStage_ = dstStage;
-  lastAccess_ = dstAccess;
 }
 
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,

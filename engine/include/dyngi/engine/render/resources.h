@@ -105,6 +105,10 @@ class Image {
 // Fills a sampled RGBA8 image from CPU pixels (through a staging buffer) and leaves it shader-readable.
 Image createTexture(VulkanContext& ctx, uint32_t width, uint32_t height, const uint8_t* rgba8, bool srgb, const char* name);
 
+// One image's layout transition with its dependency (an image dyngi does not own: a swapchain's, a host's).
+void imageBarrier(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range, VkImageLayout from, VkImageLayout to,
+                  VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
 // Full memory barrier between two stages (buffers written by one pass and read by the next).
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
