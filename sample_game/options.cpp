@@ -256,6 +256,13 @@ std::string checkView(const Options& o) {
 
 std::string sampleFlagColumn(const SampleFlag& f) { return std::string("--") + f.name + (*f.value ? " " + std::string(f.value) : ""); }
 
+// A Markdown table cell: a '|' would end it, inside code spans too.
+std::string markdownCell(std::string_view text) {
+  std::string cell;
+  for (char c : text) cell += c == '|' ? std::string("\\|") : std::string(1, c);
+  return cell;
+}
+
 }  // namespace
 
 std::string usage() {
@@ -295,7 +302,7 @@ std::string usageMarkdown() {
       "## The sample\n\n| option | default | meaning |\n| --- | --- | --- |\n";
   const Options defaults;
   for (const SampleFlag& f : sampleFlags())
-    md += "| `" + sampleFlagColumn(f) + "` | " + (f.shown ? f.shown(defaults) : "") + " | " + f.help + " |\n";
+    md += "| `" + markdownCell(sampleFlagColumn(f)) + "` | " + (f.shown ? f.shown(defaults) : "") + " | " + markdownCell(f.help) + " |\n";
   md += "\n`--gi`: " + joined(giModes(), ", ") + ". `--scene NAME`: " + joined(builtinSceneNames(), ", ") + ". `--animate`: " +
         joined(animatedSceneNames(), ", ") + ".\n";
   gi::GiSettings settings;
