@@ -87,16 +87,64 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   }
 }
 
+VulkanContext::VulkanContext(const ExternalDevice& device, const DeviceRequirements& needs) {
+  try {
+    adopt(device, needs);
+  } catch (...) {
+    destroy();
+    throw;
+  }
+}
+
 void VulkanContext::create(const ContextOptions& options) {
   createInstance(options);
   pickPhysicalDevice(options);
   createDevice(options);
+  createImmediateResources();
+}
+
+void VulkanContext::adopt(const ExternalDevice& d, const DeviceRequirements& needs) {
+  owned_ = false;
+  if (!d.instance || !d.physicalDevice || !d.device || !d.queue) throw VulkanError("the host's device: a null instance, physical device, device or queue");
+  instance_ = d.instance;
+  physical_ = d.physicalDevice;
+  device_ = d.device;
+  queue_ = d.queue;
+  queueFamily_ = d.queueFamily;
+  allocator_ = d.allocator;
+  enabledFeatures_ = d.enabledFeatures;
+  if (std::string lacks = needs.missing(physical_); !lacks.empty()) throw VulkanError("the host's Vulkan device lacks what dyngi needs: " + lacks);
+  if (std::string off = needs.notEnabled(enabledFeatures_); !off.empty())
+    throw VulkanError("the host's Vulkan device was created without " + off + " (merge dyngi's DeviceRequirements into its features)");
+  readDeviceProperties();
+  pushDescriptorSet_ = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+  if (!pushDescriptorSet_) throw VulkanError("the host's Vulkan device was created without VK_KHR_push_descriptor (merge dyngi's DeviceRequirements)");
+  createImmediateResources();
+}
+
+// Properties, memory types and queue timestamps of physical_.
+void VulkanContext::readDeviceProperties() {
+  vkGetPhysicalDeviceProperties(physical_, &props_);
+  vkGetPhysicalDeviceMemoryProperties(physical_, &memProps_);
+  deviceName_ = props_.deviceName;
+  for (uint32_t i = 0; i < memProps_.memoryTypeCount; ++i) {
+    auto fl = memProps_.memoryTypes[i].propertyFlags;
+    if ((fl & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) && (fl & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)) hostVisibleDeviceLocal_ = true;
+  }
+  uint32_t qn = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &qn, nullptr);
+  std::vector<VkQueueFamilyProperties> qf(qn);
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &qn, qf.data());
+  timestampsSupported_ = queueFamily_ < qn && qf[queueFamily_].timestampValidBits > 0 && props_.limits.timestampComputeAndGraphics;
+}
+
+void VulkanContext::createImmediateResources() {
   VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT | VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
   pci.queueFamilyIndex = queueFamily_;
-  DYNGI_VK(vkCreateCommandPool(device_, &pci, nullptr, &immediatePool_));
+  DYNGI_VK(vkCreateCommandPool(device_, &pci, allocator_, &immediatePool_));
   VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  DYNGI_VK(vkCreateFence(device_, &fci, nullptr, &immediateFence_));
+  DYNGI_VK(vkCreateFence(device_, &fci, allocator_, &immediateFence_));
 }
 
 // The instance with the validation layer (and its synchronization checks) when asked for, and the
@@ -198,13 +246,7 @@ void VulkanContext::pickPhysicalDevice(const ContextOptions& options) {
     }
   }
   if (!physical_) throw VulkanError("no usable Vulkan device:" + (rejected.empty() ? std::string(" none found") : rejected));
-  vkGetPhysicalDeviceProperties(physical_, &props_);
-  vkGetPhysicalDeviceMemoryProperties(physical_, &memProps_);
-  deviceName_ = props_.deviceName;
-  for (uint32_t i = 0; i < memProps_.memoryTypeCount; ++i) {
-    auto fl = memProps_.memoryTypes[i].propertyFlags;
-    if ((fl & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) && (fl & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)) hostVisibleDeviceLocal_ = true;
-  }
+  readDeviceProperties();
   if (!options.quiet) std::fprintf(stderr, "dyngi: Vulkan device: %s\n", deviceName_.c_str());
 }
 
@@ -251,11 +293,19 @@ VulkanContext::~VulkanContext() { destroy(); }
 
 void VulkanContext::destroy() {
   if (device_) {
-    vkDeviceWaitIdle(device_);
-    if (immediateFence_) vkDestroyFence(device_, immediateFence_, nullptr);
-    if (immediatePool_) vkDestroyCommandPool(device_, immediatePool_, nullptr);
-    vkDestroyDevice(device_, nullptr);
+    // The host's device: only the queue this context submitted to is waited for, at teardown.
+    if (owned_) vkDeviceWaitIdle(device_);
+    else if (queue_) vkQueueWaitIdle(queue_);
+    if (immediateFence_) vkDestroyFence(device_, immediateFence_, allocator_);
+    if (immediatePool_) vkDestroyCommandPool(device_, immediatePool_, allocator_);
+    immediateFence_ = VK_NULL_HANDLE;
+    immediatePool_ = VK_NULL_HANDLE;
+    if (owned_) vkDestroyDevice(device_, nullptr);
     device_ = VK_NULL_HANDLE;
+  }
+  if (!owned_) {
+    instance_ = VK_NULL_HANDLE;
+    return;
   }
   if (messenger_) {
     auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
@@ -282,7 +332,7 @@ VkDeviceMemory VulkanContext::allocateMemory(const VkMemoryRequirements& req, ui
   mai.allocationSize = req.size;
   mai.memoryTypeIndex = memoryType;
   VkDeviceMemory memory = VK_NULL_HANDLE;
-  VkResult r = vkAllocateMemory(device_, &mai, nullptr, &memory);
+  VkResult r = vkAllocateMemory(device_, &mai, allocator_, &memory);
   if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY) {
     char msg[320];
     std::snprintf(msg, sizeof msg, "device memory: the driver refused '%s' (%.0f MiB) with %s (try a smaller render size or voxel resolution)",
@@ -297,7 +347,7 @@ VkDeviceMemory VulkanContext::allocateMemory(const VkMemoryRequirements& req, ui
 
 void VulkanContext::freeMemory(VkDeviceMemory memory, VkDeviceSize bytes, uint32_t memoryType) {
   if (!memory) return;
-  vkFreeMemory(device_, memory, nullptr);
+  vkFreeMemory(device_, memory, allocator_);
   heapUsed_[memProps_.memoryTypes[memoryType].heapIndex] -= bytes;
   --liveAllocations_;
 }

@@ -7,11 +7,11 @@ GpuTimer::GpuTimer(VulkanContext& ctx, Mode mode, uint32_t maxSections) : ctx_(c
   VkQueryPoolCreateInfo ci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   ci.queryType = VK_QUERY_TYPE_TIMESTAMP;
   ci.queryCount = max_ * 2;
-  DYNGI_VK(vkCreateQueryPool(ctx.device(), &ci, nullptr, &pool_));
+  DYNGI_VK(vkCreateQueryPool(ctx.device(), &ci, ctx.allocator(), &pool_));
 }
 
 GpuTimer::~GpuTimer() {
-  if (pool_) vkDestroyQueryPool(ctx_.device(), pool_, nullptr);
+  if (pool_) vkDestroyQueryPool(ctx_.device(), pool_, ctx_.allocator());
 }
 
 void GpuTimer::beginFrame(VkCommandBuffer cmd, std::function<void()> fence) {
@@ -44,7 +44,7 @@ void GpuTimer::end(VkCommandBuffer cmd, uint32_t section) {
   }
 }
 
-void GpuTimer::resolve() {
+void GpuTimer::resolve(bool wait) {
   results_.clear();
   if (names_.empty()) return;
   if (mode_ == Mode::Fenced) {
@@ -55,7 +55,7 @@ void GpuTimer::resolve() {
   if (!pool_) return;
   std::vector<uint64_t> ts(names_.size() * 2);
   VkResult r = vkGetQueryPoolResults(ctx_.device(), pool_, 0, uint32_t(ts.size()), ts.size() * sizeof(uint64_t), ts.data(),
-                                     sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+                                     sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | (wait ? VK_QUERY_RESULT_WAIT_BIT : 0));
   if (r != VK_SUCCESS) return;
   double toMs = double(ctx_.timestampPeriodNs()) * 1e-6;
   for (size_t i = 0; i < names_.size(); ++i) results_.push_back({names_[i], double(ts[i * 2 + 1] - ts[i * 2]) * toMs});

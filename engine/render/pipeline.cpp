@@ -4,12 +4,12 @@
 
 namespace dyngi::render {
 namespace {
-VkShaderModule makeModule(VkDevice device, ShaderCode code) {
+VkShaderModule makeModule(const VulkanContext& ctx, ShaderCode code) {
   VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   ci.codeSize = code.bytes;
   ci.pCode = code.words;
   VkShaderModule m;
-  DYNGI_VK(vkCreateShaderModule(device, &ci, nullptr, &m));
+  DYNGI_VK(vkCreateShaderModule(ctx.device(), &ci, ctx.allocator(), &m));
   return m;
 }
 }  // namespace
@@ -29,8 +29,8 @@ Pipeline& Pipeline::operator=(Pipeline&& o) noexcept {
 void Pipeline::reset() {
   if (!ctx_) return;
   VkDevice d = ctx_->device();
-  if (pipeline_) vkDestroyPipeline(d, pipeline_, nullptr);
-  if (layout_) vkDestroyPipelineLayout(d, layout_, nullptr);
+  if (pipeline_) vkDestroyPipeline(d, pipeline_, ctx_->allocator());
+  if (layout_) vkDestroyPipelineLayout(d, layout_, ctx_->allocator());
   if (setLayout_) vkDestroyDescriptorSetLayout(d, setLayout_, nullptr);
   pipeline_ = VK_NULL_HANDLE;
   layout_ = VK_NULL_HANDLE;
@@ -45,14 +45,14 @@ void Pipeline::createLayout(std::span<const Binding> bindings, VkShaderStageFlag
   sci.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
   sci.bindingCount = uint32_t(b.size());
   sci.pBindings = b.data();
-  DYNGI_VK(vkCreateDescriptorSetLayout(ctx_->device(), &sci, nullptr, &setLayout_));
+  DYNGI_VK(vkCreateDescriptorSetLayout(ctx_->device(), &sci, ctx_->allocator(), &setLayout_));
   VkPushConstantRange pcr{pcStages, 0, pcBytes};
   VkPipelineLayoutCreateInfo lci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   lci.setLayoutCount = 1;
   lci.pSetLayouts = &setLayout_;
   lci.pushConstantRangeCount = pcBytes ? 1 : 0;
   lci.pPushConstantRanges = &pcr;
-  DYNGI_VK(vkCreatePipelineLayout(ctx_->device(), &lci, nullptr, &layout_));
+  DYNGI_VK(vkCreatePipelineLayout(ctx_->device(), &lci, ctx_->allocator(), &layout_));
 }
 
 Pipeline Pipeline::compute(VulkanContext& ctx, ShaderCode code, std::span<const Binding> bindings, uint32_t pushConstantBytes,
@@ -61,7 +61,7 @@ Pipeline Pipeline::compute(VulkanContext& ctx, ShaderCode code, std::span<const 
   p.ctx_ = &ctx;
   p.bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
   p.createLayout(bindings, VK_SHADER_STAGE_COMPUTE_BIT, pushConstantBytes);
-  VkShaderModule module = makeModule(ctx.device(), code);
+  VkShaderModule module = makeModule(ctx, code);
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   std::vector<VkSpecializationMapEntry> entries(specialization.size());
   for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, i * 4u, 4u};
@@ -69,8 +69,8 @@ Pipeline Pipeline::compute(VulkanContext& ctx, ShaderCode code, std::span<const 
   ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main",
               specialization.empty() ? nullptr : &spec};
   ci.layout = p.layout_;
-  VkResult r = vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline_);
-  vkDestroyShaderModule(ctx.device(), module, nullptr);
+  VkResult r = vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, ctx.allocator(), &p.pipeline_);
+  vkDestroyShaderModule(ctx.device(), module, ctx.allocator());
   DYNGI_VK(r);
   ctx.setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p.pipeline_), name);
   return p;
@@ -83,11 +83,11 @@ Pipeline Pipeline::graphics(VulkanContext& ctx, const GraphicsDesc& desc) {
   p.createLayout(desc.bindings, desc.pushConstantStages, desc.pushConstantBytes);
 
   std::vector<VkPipelineShaderStageCreateInfo> stages;
-  VkShaderModule vs = makeModule(ctx.device(), desc.vertex);
+  VkShaderModule vs = makeModule(ctx, desc.vertex);
   stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs, "main", nullptr});
   VkShaderModule gs = VK_NULL_HANDLE;
   if (desc.geometry.words) {
-    gs = makeModule(ctx.device(), desc.geometry);
+    gs = makeModule(ctx, desc.geometry);
     stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_GEOMETRY_BIT, gs, "main", nullptr});
   }
   VkShaderModule fs = VK_NULL_HANDLE;
@@ -96,7 +96,7 @@ Pipeline Pipeline::graphics(VulkanContext& ctx, const GraphicsDesc& desc) {
   const VkSpecializationInfo fragmentSpec{uint32_t(fragmentEntries.size()), fragmentEntries.data(),
                                           desc.fragmentSpecialization.size() * sizeof(uint32_t), desc.fragmentSpecialization.data()};
   if (desc.fragment.words) {
-    fs = makeModule(ctx.device(), desc.fragment);
+    fs = makeModule(ctx, desc.fragment);
     stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, fs, "main",
                       fragmentEntries.empty() ? nullptr : &fragmentSpec});
   }
@@ -148,10 +148,10 @@ Pipeline Pipeline::graphics(VulkanContext& ctx, const GraphicsDesc& desc) {
   ci.pColorBlendState = &cb;
   ci.pDynamicState = &dy;
   ci.layout = p.layout_;
-  VkResult r = vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline_);
-  vkDestroyShaderModule(ctx.device(), vs, nullptr);
-  if (fs) vkDestroyShaderModule(ctx.device(), fs, nullptr);
-  if (gs) vkDestroyShaderModule(ctx.device(), gs, nullptr);
+  VkResult r = vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, ctx.allocator(), &p.pipeline_);
+  vkDestroyShaderModule(ctx.device(), vs, ctx.allocator());
+  if (fs) vkDestroyShaderModule(ctx.device(), fs, ctx.allocator());
+  if (gs) vkDestroyShaderModule(ctx.device(), gs, ctx.allocator());
   DYNGI_VK(r);
   ctx.setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p.pipeline_), desc.name);
   return p;

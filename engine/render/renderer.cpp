@@ -42,22 +42,22 @@ void Renderer::create() {
   sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
   sci.maxLod = VK_LOD_CLAMP_NONE;
-  DYNGI_VK(vkCreateSampler(ctx.device(), &sci, nullptr, &linearSampler_));
+  DYNGI_VK(vkCreateSampler(ctx.device(), &sci, ctx.allocator(), &linearSampler_));
   sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  DYNGI_VK(vkCreateSampler(ctx.device(), &sci, nullptr, &nearestSampler_));
+  DYNGI_VK(vkCreateSampler(ctx.device(), &sci, ctx.allocator(), &nearestSampler_));
 
   VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   pci.queueFamilyIndex = ctx.queueFamily();
-  DYNGI_VK(vkCreateCommandPool(ctx.device(), &pci, nullptr, &pool_));
+  DYNGI_VK(vkCreateCommandPool(ctx.device(), &pci, ctx.allocator(), &pool_));
   VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   ai.commandPool = pool_;
   ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   ai.commandBufferCount = 1;
   DYNGI_VK(vkAllocateCommandBuffers(ctx.device(), &ai, &cmd_));
   VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  DYNGI_VK(vkCreateFence(ctx.device(), &fci, nullptr, &fence_));
+  DYNGI_VK(vkCreateFence(ctx.device(), &fci, ctx.allocator(), &fence_));
 
   const uint8_t white[4] = {255, 255, 255, 255};
   whiteTexture_ = createTexture(ctx, 1, 1, white, false, "white");
@@ -72,10 +72,10 @@ Renderer::~Renderer() { releaseHandles(); }
 
 void Renderer::releaseHandles() {
   vkDeviceWaitIdle(ctx_.device());
-  if (fence_) vkDestroyFence(ctx_.device(), fence_, nullptr);
-  if (pool_) vkDestroyCommandPool(ctx_.device(), pool_, nullptr);
-  if (linearSampler_) vkDestroySampler(ctx_.device(), linearSampler_, nullptr);
-  if (nearestSampler_) vkDestroySampler(ctx_.device(), nearestSampler_, nullptr);
+  if (fence_) vkDestroyFence(ctx_.device(), fence_, ctx_.allocator());
+  if (pool_) vkDestroyCommandPool(ctx_.device(), pool_, ctx_.allocator());
+  if (linearSampler_) vkDestroySampler(ctx_.device(), linearSampler_, ctx_.allocator());
+  if (nearestSampler_) vkDestroySampler(ctx_.device(), nearestSampler_, ctx_.allocator());
   fence_ = VK_NULL_HANDLE;
   pool_ = VK_NULL_HANDLE;
   linearSampler_ = nearestSampler_ = VK_NULL_HANDLE;
@@ -234,16 +234,54 @@ void Renderer::recordPasses(FrameContext& frame, const std::function<VkImageView
   bool indirectWritten = false;
   for (RenderFeature* f : features_) indirectWritten |= f->record(frame);
   if (settings_.featuresOnly) return;
-  if (!indirectWritten) {  // readable as a target: zero, not last frame's
-    targets_.indirect.transition(cmd_, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    VkClearColorValue zero{};
-    VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdClearColorImage(cmd_, targets_.indirect.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
-  }
+  clearIndirectIfUnwritten(cmd_, indirectWritten);
   lighting_->execute(frame, *shadow_, indirectWritten, frame.specular);
   for (RenderFeature* f : features_) f->recordAfterLighting(frame);
   tonemap_->execute(frame);
   for (RenderFeature* f : features_) f->recordOverlay(frame);
+}
+
+// Readable as a target: zero, not last frame's.
+void Renderer::clearIndirectIfUnwritten(VkCommandBuffer cmd, bool written) {
+  if (written) return;
+  targets_.indirect.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  VkClearColorValue zero{};
+  VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vkCmdClearColorImage(cmd, targets_.indirect.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+}
+
+const FrameStats& Renderer::recordHostFrame(const RenderSnapshot& snapshot, VkCommandBuffer cmd,
+                                            const std::function<void(FrameContext&)>& fillGBuffer,
+                                            const std::function<void(FrameContext&)>& afterFeatures) {
+  if (targets_.width == 0) throw VulkanError("Renderer::recordHostFrame called before resize()");
+  if (timer_ && timer_->mode() == GpuTimer::Mode::Fenced) throw VulkanError("a host's frame cannot be timed by fences (--stage-times fenced)");
+  stats_ = {};
+  if (hostFramePending_) {
+    if (timer_) {
+      timer_->resolve(/*wait=*/false);
+      stats_.gpuMs = timer_->results();
+    }
+    for (RenderFeature* f : features_) f->frameFinished(ctx_);
+  }
+  auto t0 = Clock::now();
+  const std::vector<GpuMesh*> meshes = uploadAssets(snapshot);
+  auto textures = [&](scene::TextureId id) { return snapshot.assets ? textureView(*snapshot.assets, id) : whiteTexture_.view(); };
+  for (RenderFeature* f : features_) f->prepare(ctx_, snapshot);
+  shadow_->prepare(snapshot);
+  const gpu::FrameUniforms fu = uploadFrameUniforms(snapshot);
+  if (timer_) timer_->beginFrame(cmd, {});
+  auto noWait = [] { throw VulkanError("this technique reads the frame back mid-frame, which a host's frame cannot (use SVO visibility)"); };
+  FrameContext frame{ctx_, cmd, timer_.get(), snapshot, targets_, frameUniforms_, fu, meshes, linearSampler_, nearestSampler_, textures, noWait};
+  frame.lights = LightInputs{&shadow_->lights(), &shadow_->matrices(), &shadow_->shadowMap(), shadow_->lightCount()};
+  shadow_->execute(frame);
+  fillGBuffer(frame);
+  bool indirectWritten = false;
+  for (RenderFeature* f : features_) indirectWritten |= f->record(frame);
+  clearIndirectIfUnwritten(cmd, indirectWritten);
+  afterFeatures(frame);
+  stats_.cpuRecordMs = msSince(t0);
+  hostFramePending_ = true;
+  return stats_;
 }
 
 // The display image blitted to the swapchain image. Not fenced: a submission before the last would
@@ -307,6 +345,7 @@ Image& Renderer::target(TargetId id) {
     case TargetId::Normal: return targets_.normal;
     case TargetId::Albedo: return targets_.albedo;
     case TargetId::Emissive: return targets_.emissive;
+    case TargetId::Depth: return targets_.depth;
     case TargetId::Indirect: return targets_.indirect;
     case TargetId::Specular: return targets_.specular;
     case TargetId::Hdr: return targets_.hdr;

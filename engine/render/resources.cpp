@@ -24,7 +24,7 @@ void Buffer::create(VkBufferUsageFlags usage, MemoryUsage memory, const char* na
   bci.size = size ? size : 4;
   bci.usage = usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
   bci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-  DYNGI_VK(vkCreateBuffer(ctx.device(), &bci, nullptr, &buffer_));
+  DYNGI_VK(vkCreateBuffer(ctx.device(), &bci, ctx.allocator(), &buffer_));
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(ctx.device(), buffer_, &req);
   VkMemoryPropertyFlags required = 0, preferred = 0;
@@ -71,7 +71,7 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
 
 void Buffer::reset() {
   if (!ctx_) return;
-  if (buffer_) vkDestroyBuffer(ctx_->device(), buffer_, nullptr);
+  if (buffer_) vkDestroyBuffer(ctx_->device(), buffer_, ctx_->allocator());
   ctx_->freeMemory(memory_, memoryBytes_, memoryType_);
   buffer_ = VK_NULL_HANDLE;
   memory_ = VK_NULL_HANDLE;
@@ -144,7 +144,7 @@ void Image::create() {
   ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   if (desc.viewType == VK_IMAGE_VIEW_TYPE_CUBE || desc.viewType == VK_IMAGE_VIEW_TYPE_CUBE_ARRAY)
     ici.flags |= VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT;
-  DYNGI_VK(vkCreateImage(ctx.device(), &ici, nullptr, &image_));
+  DYNGI_VK(vkCreateImage(ctx.device(), &ici, ctx.allocator(), &image_));
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(ctx.device(), image_, &req);
   memoryType_ = ctx.findMemoryType(req.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
@@ -157,13 +157,13 @@ void Image::create() {
   vci.viewType = desc.viewType;
   vci.format = desc.format;
   vci.subresourceRange = {aspect(), 0, desc.mips, 0, desc.layers};
-  DYNGI_VK(vkCreateImageView(ctx.device(), &vci, nullptr, &view_));
+  DYNGI_VK(vkCreateImageView(ctx.device(), &vci, ctx.allocator(), &view_));
   if (desc.layers > 1) {
     for (uint32_t l = 0; l < desc.layers; ++l) {
       vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
       vci.subresourceRange = {aspect(), 0, 1, l, 1};
       VkImageView v;
-      DYNGI_VK(vkCreateImageView(ctx.device(), &vci, nullptr, &v));
+      DYNGI_VK(vkCreateImageView(ctx.device(), &vci, ctx.allocator(), &v));
       layerViews_.push_back(v);
     }
   } else {
@@ -174,7 +174,7 @@ void Image::create() {
       vci.viewType = desc.viewType;
       vci.subresourceRange = {aspect(), m, 1, 0, desc.layers};
       VkImageView v;
-      DYNGI_VK(vkCreateImageView(ctx.device(), &vci, nullptr, &v));
+      DYNGI_VK(vkCreateImageView(ctx.device(), &vci, ctx.allocator(), &v));
       mipViews_.push_back(v);
     }
   } else {
@@ -208,13 +208,13 @@ void Image::reset() {
   if (!ctx_) return;
   VkDevice d = ctx_->device();
   for (VkImageView v : layerViews_)
-    if (v != view_) vkDestroyImageView(d, v, nullptr);
+    if (v != view_) vkDestroyImageView(d, v, ctx_->allocator());
   layerViews_.clear();
   for (VkImageView v : mipViews_)
-    if (v != view_) vkDestroyImageView(d, v, nullptr);
+    if (v != view_) vkDestroyImageView(d, v, ctx_->allocator());
   mipViews_.clear();
-  if (view_) vkDestroyImageView(d, view_, nullptr);
-  if (image_) vkDestroyImage(d, image_, nullptr);
+  if (view_) vkDestroyImageView(d, view_, ctx_->allocator());
+  if (image_) vkDestroyImage(d, image_, ctx_->allocator());
   ctx_->freeMemory(memory_, memoryBytes_, memoryType_);
   view_ = VK_NULL_HANDLE;
   image_ = VK_NULL_HANDLE;

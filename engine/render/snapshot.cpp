@@ -9,6 +9,7 @@
 namespace dyngi::render {
 
 glm::mat4 CameraView::projection(float targetAspect) const {
+  if (fixedProjection) return projectionMatrix;
   float a = aspect > 0.0f ? aspect : targetAspect;
   glm::mat4 p = glm::perspectiveRH_ZO(yfov, a, znear, zfar);
   p[1][1] *= -1.0f;  // Vulkan's y points down

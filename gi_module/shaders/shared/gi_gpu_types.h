@@ -34,4 +34,45 @@ using uint = uint32_t;
 #define DYNGI_GI_VIEW_BINDING_INDIRECT 0
 #define DYNGI_GI_VIEW_BINDING_OUT_HDR 1
 
+// gi_gbuffer_import.comp: a host's G-buffer (gi::GiContext) into the GI's targets.
+#define DYNGI_GBUFFER_IMPORT_BINDING_FRAME 0
+#define DYNGI_GBUFFER_IMPORT_BINDING_DEPTH 1
+#define DYNGI_GBUFFER_IMPORT_BINDING_NORMAL 2
+#define DYNGI_GBUFFER_IMPORT_BINDING_BASE_COLOR 3
+#define DYNGI_GBUFFER_IMPORT_BINDING_ROUGHNESS 4
+#define DYNGI_GBUFFER_IMPORT_BINDING_METALLIC 5
+#define DYNGI_GBUFFER_IMPORT_BINDING_EMISSIVE 6
+#define DYNGI_GBUFFER_IMPORT_BINDING_OUT_POSITION 7
+#define DYNGI_GBUFFER_IMPORT_BINDING_OUT_NORMAL 8
+#define DYNGI_GBUFFER_IMPORT_BINDING_OUT_ALBEDO 9
+#define DYNGI_GBUFFER_IMPORT_BINDING_OUT_EMISSIVE 10
+// GiContext's normal encodings (GBufferDesc::NormalEncoding, in its order).
+#define DYNGI_NORMAL_WORLD_XYZ 0u
+#define DYNGI_NORMAL_VIEW_XYZ 1u
+#define DYNGI_NORMAL_WORLD_OCTAHEDRAL 2u
+#define DYNGI_NORMAL_VIEW_OCTAHEDRAL 3u
+#define DYNGI_GBUFFER_IMPORT_PUSH                                                    \
+  uint normalEncoding; /* DYNGI_NORMAL_* */                                        \
+  float normalScale;   /* stored * scale + bias */                                 \
+  float normalBias;                                                                \
+  uint reversedZ;      /* 1: far at depth 0 */                                     \
+  uint roughnessChannel;                                                           \
+  uint metallicChannel;                                                            \
+  uint squaredRoughness; /* 1: stored alpha = roughness^2 */                       \
+  uint width;                                                                      \
+  uint height;
+// gi_export_rgba16f.comp / gi_export_rgba32f.comp: the GI's outputs into a host's image.
+#define DYNGI_EXPORT_BINDING_IN 0
+#define DYNGI_EXPORT_BINDING_OUT 1
+#define DYNGI_EXPORT_PUSH uint width; uint height; uint zero; /* 1: writes 0 */
+
+#ifdef __cplusplus
+DYNGI_GPU_NAMESPACE_BEGIN
+struct GBufferImportPush { DYNGI_GBUFFER_IMPORT_PUSH };
+struct ExportPush { DYNGI_EXPORT_PUSH };
+static_assert(sizeof(GBufferImportPush) == 36 && offsetof(GBufferImportPush, height) == 32);
+static_assert(sizeof(ExportPush) == 12);
+DYNGI_GPU_NAMESPACE_END
+#endif
+
 #endif

@@ -209,11 +209,11 @@ void VoxelConeTracing::createSampler() {
   si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
   si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   si.maxLod = VK_LOD_CLAMP_NONE;
-  DYNGI_VK(vkCreateSampler(ctx_.device(), &si, nullptr, &sampler_));
+  DYNGI_VK(vkCreateSampler(ctx_.device(), &si, ctx_.allocator(), &sampler_));
 }
 
 VoxelConeTracing::~VoxelConeTracing() {
-  if (sampler_) vkDestroySampler(ctx_.device(), sampler_, nullptr);
+  if (sampler_) vkDestroySampler(ctx_.device(), sampler_, ctx_.allocator());
 }
 
 void VoxelConeTracing::ensureVolumes(uint32_t res) {

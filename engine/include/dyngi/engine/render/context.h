@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "dyngi/engine/render/device_requirements.h"
 #include "dyngi/engine/render/vk_common.h"
 
 namespace dyngi::render {
@@ -22,12 +23,19 @@ struct ContextOptions {
 
 class VulkanContext {
  public:
+  // Its own instance and device.
   explicit VulkanContext(const ContextOptions& options);
+  // A host's instance and device (owning none of them): throws VulkanError naming what the device lacks
+  // of `needs` (one line). Only its own command pool and fence for one-off work are made here.
+  VulkanContext(const ExternalDevice& device, const DeviceRequirements& needs);
   ~VulkanContext();
   VulkanContext(const VulkanContext&) = delete;
   VulkanContext& operator=(const VulkanContext&) = delete;
 
   VkInstance instance() const { return instance_; }
+  // The host's allocation callbacks (nullptr: Vulkan's): every vkCreate* / vkDestroy* of dyngi passes it.
+  const VkAllocationCallbacks* allocator() const { return allocator_; }
+  bool ownsDevice() const { return owned_; }
   VkPhysicalDevice physicalDevice() const { return physical_; }
   VkDevice device() const { return device_; }
   VkQueue queue() const { return queue_; }
@@ -78,12 +86,17 @@ class VulkanContext {
                                                       VkDebugUtilsMessageTypeFlagsEXT types,
                                                       const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
   void create(const ContextOptions& options);
+  void adopt(const ExternalDevice& device, const DeviceRequirements& needs);
+  void readDeviceProperties();
+  void createImmediateResources();
   void createInstance(const ContextOptions& options);
   void pickPhysicalDevice(const ContextOptions& options);
   void createDevice(const ContextOptions& options);
   void destroy();
 
   VkInstance instance_ = VK_NULL_HANDLE;
+  bool owned_ = true;  // false: the host's instance and device
+  const VkAllocationCallbacks* allocator_ = nullptr;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;

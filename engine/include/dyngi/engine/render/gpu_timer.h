@@ -25,7 +25,9 @@ class GpuTimer {
   Mode mode() const { return mode_; }
   uint32_t begin(VkCommandBuffer cmd, const char* name);
   void end(VkCommandBuffer cmd, uint32_t section);
-  void resolve();                              // call after the frame's fence has signalled
+  // Call after the frame's fence has signalled. wait = false: times not yet available are left out
+  // instead of waited for (a host's frame, whose fence dyngi does not see).
+  void resolve(bool wait = true);
   // (name, milliseconds) of the last resolved frame, in recording order.
   const std::vector<std::pair<std::string, double>>& results() const { return results_; }
 

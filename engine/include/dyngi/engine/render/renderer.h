@@ -42,7 +42,7 @@ struct RendererSettings {
   bool featuresOnly = false;
 };
 
-enum class TargetId { Position, Normal, Albedo, Emissive, Indirect, Specular, Hdr, Ldr };
+enum class TargetId { Position, Normal, Albedo, Emissive, Depth, Indirect, Specular, Hdr, Ldr };
 
 struct FrameStats {
   std::vector<std::pair<std::string, double>> gpuMs;  // per pass, recording order
@@ -77,6 +77,18 @@ class Renderer {
   const FrameStats& render(const RenderSnapshot& snapshot, Swapchain* swapchain = nullptr);
   const FrameStats& lastStats() const { return stats_; }
 
+  // A host's frame (gi::GiContext): the shadow maps and the features recorded into `cmd`, a command
+  // buffer the host submits. `fillGBuffer` writes the G-buffer targets (after the shadow maps),
+  // `afterFeatures` takes what the features wrote; nothing is lit or tone-mapped, and nothing here
+  // waits on the device. The previous host frame's pass times and features' frameFinished() come first:
+  // the host has waited for it (one frame in flight); lastStats().gpuMs are that frame's.
+  const FrameStats& recordHostFrame(const RenderSnapshot& snapshot, VkCommandBuffer cmd, const std::function<void(FrameContext&)>& fillGBuffer,
+                                    const std::function<void(FrameContext&)>& afterFeatures);
+
+  // A target's view (GENERAL layout after the frame that wrote it): a host reads the GI's own outputs.
+  VkImageView targetView(TargetId id) { return target(id).view(); }
+  Image& targetImage(TargetId id) { return target(id); }
+
   // Reads a target of the last frame back as RGBA floats (8-bit targets come back in 0..1).
   std::vector<glm::vec4> readback(TargetId target);
   // The display image as RGBA8 bytes, row-major, top row first.
@@ -96,6 +108,8 @@ class Renderer {
   void beginCommands();
   void submitAndWaitMidFrame();
   void recordPasses(FrameContext& frame, const std::function<VkImageView(scene::TextureId)>& textures);
+  void clearIndirectIfUnwritten(VkCommandBuffer cmd, bool written);
+  bool hostFramePending_ = false;  // a host frame was recorded: its times and frameFinished() come next
   void recordPresentBlit(Swapchain& swapchain, uint32_t imageIndex);
   void submitFrame(Swapchain* swapchain, uint32_t imageIndex, std::chrono::steady_clock::time_point recordStart);
   VkImageView textureView(const scene::AssetStore& assets, scene::TextureId id);

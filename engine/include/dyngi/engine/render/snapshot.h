@@ -31,6 +31,9 @@ struct CameraView {
   glm::vec3 position{0.0f};
   float yfov = 0.8f, znear = 0.05f, zfar = 100.0f;
   float aspect = 0.0f;  // 0: from the render target
+  // A host's own projection (gi::GiContext) instead of yfov, znear, zfar and aspect.
+  bool fixedProjection = false;
+  glm::mat4 projectionMatrix{1.0f};
   glm::mat4 projection(float targetAspect) const;  // Vulkan clip space (y down, depth 0..1)
 };
 

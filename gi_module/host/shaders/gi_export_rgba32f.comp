@@ -1,0 +1,4 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#define EXPORT_FORMAT rgba32f
+#include "gi_export.glsl"
