@@ -125,7 +125,8 @@ gi::GiSettings settingsOf(const char* technique) {
 }  // namespace
 
 // Every technique: the host API fed dyngi's own G-buffer and the same scene gives the ECS path's indirect
-// light, frame after frame, while a box moves (through setTransform on one side, the world on the other).
+// light, frame after frame, through the same changes made on both sides (the world's components on one,
+// the calls on the other): a box moving, the light moving, a material edited, an instance removed.
 TEST_F(RenderTest, HostApiGivesTheEcsPathsIndirectLightOnTheSameGBuffer) {
   constexpr uint32_t kSize = 64;
   for (const char* technique : {"temporal", "many-lights", "vct"}) {
@@ -135,17 +136,32 @@ TEST_F(RenderTest, HostApiGivesTheEcsPathsIndirectLightOnTheSameGBuffer) {
     gi::GiContext host(externalOf(context()), settings);
     Mirror m = mirror(host, run.world, run.assets);
     render::Image output = outputImage(context(), kSize, kSize);
-    const ecs::Entity box = run.named("short_box");
-    ASSERT_FALSE(box.isNull());
+    const ecs::Entity box = run.named("short_box"), tall = run.named("tall_box");
+    ecs::Entity light{};
+    run.world.each<scene::Light>([&](ecs::Entity e, const scene::Light&) { light = e; });
+    ASSERT_FALSE(box.isNull() || tall.isNull() || light.isNull());
     double worst = 0;
-    for (int frame = 0; frame < 8; ++frame) {
-      if (frame >= 4) {  // the box slides: the same change on both sides
+    for (int frame = 0; frame < 12; ++frame) {
+      if (frame >= 3 && frame < 6) {  // the box slides
         scene::Transform t = run.world.get<scene::Transform>(box);
         t.translation.x += 0.05f;
         run.world.write<scene::Transform>(box) = t;
       }
+      if (frame == 6) {  // the light moves
+        scene::Transform t = run.world.get<scene::Transform>(light);
+        t.translation.z += 0.3f;
+        run.world.write<scene::Transform>(light) = t;
+      }
+      if (frame == 8) run.world.write<scene::Material>(tall).baseColor = glm::vec4(0.9f, 0.2f, 0.1f, 1.0f);  // re-coloured
+      if (frame == 10) run.world.destroy(tall);
+      const scene::Material tallMaterial = frame == 8 ? run.world.get<scene::Material>(tall) : scene::Material{};
       run.step();
-      if (frame >= 4) host.setTransform(m.instances.at(box), run.world.get<scene::WorldTransform>(box).matrix);
+      if (frame >= 3 && frame < 6) host.setTransform(m.instances.at(box), run.world.get<scene::WorldTransform>(box).matrix);
+      if (frame == 6)
+        for (const render::LightItem& l : render::extractSnapshot(run.world, run.assets, run.frame).lights)
+          if (l.entity == light) host.updateLight(m.lights.at(light), lightDesc(l));
+      if (frame == 8) host.setMaterial(m.instances.at(tall), host.addMaterial(materialDesc(tallMaterial)));
+      if (frame == 10) host.removeInstance(m.instances.at(tall));
       recordHostFrame(context(), host, run, output);
       const std::vector<glm::vec4> ecs = run.indirect(), viaHost = render::readbackImage(context(), output);
       const double rel = render::relativeMse(viaHost, ecs);
