@@ -89,3 +89,53 @@ TEST(Install, MinimalHostRefusesBadInputWithOneLine) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
   }
 }
+
+namespace {
+// dyngi_imgcmp's "rel_mse" of IMAGE against REFERENCE, or -1.
+double relMse(const TempDir& dir, const std::string& reference, const std::string& image) {
+  const SampleRun r = runSample(DYNGI_IMGCMP_EXE, quoted(reference) + " " + quoted(image), dir, 60);
+  const size_t at = r.out.find("\"rel_mse\": ");
+  return r.exitCode == 0 && at != std::string::npos ? std::stod(r.out.substr(at + 11)) : -1.0;
+}
+}  // namespace
+
+// A host that is not dyngi (examples/own_renderer: its own device, glTF loading, reversed-Z depth and
+// octahedral normals, its own direct lighting), built against the installed package: with the
+// validation layer and its synchronization checks on it runs clean, its image is lit with bounce light on
+// the ceiling, and the GI's indirect light it gets through the host API equals dyngi_sample's
+// `--view indirect` of the same scene, camera, size, technique and frames for every technique.
+TEST(Install, OwnRendererGetsTheSamplesIndirectLightThroughTheHostApi) {
+  TempDir dir;
+  const SampleRun built = installAndRun(dir, dir.file("out"), 1);
+  ASSERT_EQ(built.exitCode, 0) << built.err << "\n(logs: own-configure.log, own-build.log in the temporary directory)";
+  const std::string own = dir.file("out/own-build/own_renderer"), scene = quoted(DYNGI_SOURCE_DIR "/assets/cornell_box.gltf");
+  for (const char* technique : {"temporal", "many-lights", "vct"}) {
+    const std::string png = dir.file(std::string(technique) + ".png"), exr = dir.file(std::string(technique) + "_own.exr"),
+                      reference = dir.file(std::string(technique) + "_sample.exr");
+    const SampleRun r = runSample(own, scene + " " + quoted(png) + " --technique " + technique +
+                                           " --frames 30 --size 128x128 --validation --indirect-out " + quoted(exr),
+                                  dir, 300);
+    ASSERT_EQ(r.exitCode, 0) << technique << ": " << r.err;
+    EXPECT_EQ(r.err.find("validation"), std::string::npos) << r.err;
+    const SampleRun s = runSample(DYNGI_SAMPLE_EXE, "--headless --scene " + scene + " --gi " + technique +
+                                                        " --view indirect --size 128x128 --frames 30 --hdr-out " + quoted(reference),
+                                  dir, 300);
+    ASSERT_EQ(s.exitCode, 0) << s.err;
+    const double rel = relMse(dir, reference, exr);
+    std::printf("own_renderer --technique %s: indirect light against dyngi_sample --view indirect: relMSE %.2e\n", technique, rel);
+    EXPECT_GE(rel, 0.0) << technique;
+    EXPECT_LE(rel, 0.01) << technique;
+    const PngFigures f = measure(png);
+    EXPECT_GT(f.mean, 10.0) << technique << ": lit";
+    EXPECT_LT(f.clipped, 0.05) << technique << ": not saturated";
+    EXPECT_GT(f.ceilingMean, 15.0) << technique << ": the ceiling gets bounce light";
+  }
+  const std::string png = quoted(dir.file("x.png"));
+  const std::string bad[] = {"/nonexistent.gltf " + png, scene + " " + png + " --technique no_such_technique", scene + " " + png + " --frames -3",
+                             scene + " " + png + " --size 0x4", ""};
+  for (const std::string& args : bad) {
+    const SampleRun r = runSample(own, args, dir, 120);
+    EXPECT_EQ(r.exitCode, 2) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+  }
+}
