@@ -175,8 +175,8 @@ TEST_F(RenderTest, HostApiGivesTheEcsPathsIndirectLightOnTheSameGBuffer) {
 }
 
 // A device made without what dyngi needs is refused in one line naming it; a host's device with the
-// requirements merged in takes 100 GI contexts made and destroyed, with no validation error and the
-// process' memory flat.
+// requirements merged in takes 100 GI contexts made and destroyed (12 under ASan, whose leak check
+// stands in for the size one), with no validation error and the process' memory flat.
 TEST_F(RenderTest, HostDeviceRequirementsAndTeardown) {
   render::ExternalDevice d = externalOf(context());
   render::ExternalDevice without = d;
@@ -196,13 +196,20 @@ TEST_F(RenderTest, HostDeviceRequirementsAndTeardown) {
     f >> pages >> resident;
     return resident * 4;
   };
+#ifdef DYNGI_TEST_SANITIZED
+  constexpr int contexts = 12;  // LeakSanitizer reports any leak at exit; RSS is no measure under ASan
+#else
+  constexpr int contexts = 100;
+#endif
   long after10 = 0;
-  for (int i = 0; i < 100; ++i) {
+  for (int i = 0; i < contexts; ++i) {
     gi::GiContext host(d, settingsOf(i % 2 ? "vct" : "temporal"));
     if (i == 9) after10 = rssKiB();
   }
-  const long after100 = rssKiB();
-  report("RSS after 10 contexts %ld KiB, after 100 %ld KiB\n", after10, after100);
-  EXPECT_LT(after100 - after10, 16 * 1024) << "90 more contexts made and destroyed grew the process by over 16 MiB";
+  const long afterAll = rssKiB();
+  report("RSS after 10 contexts %ld KiB, after %d %ld KiB\n", after10, contexts, afterAll);
+#ifndef DYNGI_TEST_SANITIZED
+  EXPECT_LT(afterAll - after10, 16 * 1024) << "90 more contexts made and destroyed grew the process by over 16 MiB";
+#endif
   EXPECT_EQ(context().validationErrorCount(), 0u);
 }
