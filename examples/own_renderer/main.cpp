@@ -2,7 +2,7 @@
 // G-buffer with reversed-Z depth and octahedral normals, direct lighting) that adds dyngi's indirect
 // diffuse and specular light to its lighting through dyngi's host API (gi::GiContext). It uses nothing
 // of dyngi's renderer, world or importer.
-//   own_renderer SCENE.gltf OUT.png [--technique NAME] [--frames N] [--size WxH] [--indirect-out FILE.exr] [--validation]
+//   own_renderer SCENE.gltf OUT.png [--technique NAME] [--frames N] [--size WxH] [--indirect-out FILE.exr] [--validation] [--window]
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -23,6 +23,7 @@
 #include "scene.h"
 #include "shade.comp.spv.h"
 #include "vulkan_host.h"
+#include "window.h"
 
 namespace {
 
@@ -31,6 +32,8 @@ struct Args {
   int frames = 30;
   uint32_t width = 512, height = 512;
   bool validation = false;
+  bool window = false;       // a window (GLFW swapchain): runs until closed, or --frames when given
+  bool framesGiven = false;
 };
 
 bool number(const std::string& s, uint32_t& v) {
@@ -45,12 +48,14 @@ std::string parse(int argc, char** argv, Args& a) {
     const std::string s = argv[i];
     const bool hasValue = i + 1 < argc;
     if (s == "--validation") a.validation = true;
+    else if (s == "--window") a.window = true;
     else if (s == "--technique" && hasValue) a.technique = argv[++i];
     else if (s == "--indirect-out" && hasValue) a.indirectOut = argv[++i];
     else if (s == "--frames" && hasValue) {
       uint32_t n = 0;
       if (!number(argv[++i], n) || n == 0 || n > 100000) return "--frames wants 1..100000";
       a.frames = int(n);
+      a.framesGiven = true;
     } else if (s == "--size" && hasValue) {
       const std::string v = argv[++i];
       const size_t x = v.find('x');
@@ -63,7 +68,7 @@ std::string parse(int argc, char** argv, Args& a) {
       positional.push_back(s);
     }
   }
-  if (positional.size() != 2) return "usage: own_renderer SCENE.gltf OUT.png [--technique NAME] [--frames N] [--size WxH] [--indirect-out FILE.exr] [--validation]";
+  if (positional.size() != 2) return "usage: own_renderer SCENE.gltf OUT.png [--technique NAME] [--frames N] [--size WxH] [--indirect-out FILE.exr] [--validation] [--window]";
   a.scene = positional[0];
   a.out = positional[1];
   return {};
@@ -73,7 +78,7 @@ std::string parse(int argc, char** argv, Args& a) {
 struct Renderer {
   host::VulkanHost& vk;
   uint32_t width, height;
-  host::Image depth, normal, baseColor, material, emissive, indirect, specular, hdr;
+  host::Image depth, normal, baseColor, material, emissive, indirect, specular, hdr, display;
   host::Buffer draws, lights, readback;
   std::vector<host::Buffer> vertices, indices;
   VkPipelineLayout gbufferLayout = VK_NULL_HANDLE, shadeLayout = VK_NULL_HANDLE;
@@ -84,7 +89,7 @@ struct Renderer {
   Renderer(host::VulkanHost& v, uint32_t w, uint32_t h) : vk(v), width(w), height(h) {}
   ~Renderer() {
     VkDevice d = vk.device();
-    for (host::Image* i : {&depth, &normal, &baseColor, &material, &emissive, &indirect, &specular, &hdr}) vk.destroy(*i);
+    for (host::Image* i : {&depth, &normal, &baseColor, &material, &emissive, &indirect, &specular, &hdr, &display}) vk.destroy(*i);
     for (host::Buffer* b : {&draws, &lights, &readback}) vk.destroy(*b);
     for (auto& b : vertices) vk.destroy(b);
     for (auto& b : indices) vk.destroy(b);
@@ -207,6 +212,7 @@ void createShadePipeline(Renderer& r) {
   b.push_back({6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr});
   b.push_back({7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr});
   b.push_back({8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr});
+  b.push_back({9, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr});
   r.shadeSet = setLayout(d, b);
   r.shadeLayout = pipelineLayout(d, r.shadeSet, cs, sizeof(ShadePush));
   VkShaderModule m = r.vk.shader(shade_comp, sizeof(shade_comp));
@@ -232,11 +238,32 @@ void createTargets(Renderer& r) {
   r.indirect = r.vk.image(r.width, r.height, VK_FORMAT_R32G32B32A32_SFLOAT, storage);
   r.specular = r.vk.image(r.width, r.height, VK_FORMAT_R32G32B32A32_SFLOAT, storage);
   r.hdr = r.vk.image(r.width, r.height, VK_FORMAT_R32G32B32A32_SFLOAT, storage);
+  r.display = r.vk.image(r.width, r.height, VK_FORMAT_R8G8B8A8_UNORM, storage);  // the window's
   r.readback = r.vk.buffer(VkDeviceSize(r.width) * r.height * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 }
 
+void writeLight(Renderer& r, size_t i, const host::Light& l) {
+  static_cast<GpuLight*>(r.lights.mapped)[i] = {glm::vec4(l.position, float(l.type)), glm::vec4(l.direction, l.range),
+                                                glm::vec4(l.color * l.intensity, 0.0f),
+                                                glm::vec4(std::cos(l.innerCone), std::cos(l.outerCone), 0.0f, 0.0f)};
+}
+
+dyngi::gi::LightDesc lightDesc(const host::Light& l) {
+  dyngi::gi::LightDesc d;
+  d.type = l.type == 0 ? dyngi::gi::LightDesc::Type::Directional : l.type == 2 ? dyngi::gi::LightDesc::Type::Spot : dyngi::gi::LightDesc::Type::Point;
+  d.color = l.color;
+  d.intensity = l.intensity;
+  d.position = l.position;
+  d.direction = l.direction;
+  d.range = l.range;
+  d.innerConeAngle = l.innerCone;
+  d.outerConeAngle = l.outerCone;
+  return d;
+}
+
 // The scene on both sides: the game's vertex buffers and draw list, and dyngi's copy through its calls.
-void uploadScene(Renderer& r, const host::Scene& scene, dyngi::gi::GiContext& gi) {
+// Returns dyngi's handles of the lights, in the scene's order.
+std::vector<dyngi::gi::LightHandle> uploadScene(Renderer& r, const host::Scene& scene, dyngi::gi::GiContext& gi) {
   std::vector<dyngi::gi::MeshHandle> meshes;
   for (const host::Mesh& m : scene.meshes) {
     host::Buffer v = r.vk.buffer(m.positions.size() * 24, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
@@ -268,22 +295,22 @@ void uploadScene(Renderer& r, const host::Scene& scene, dyngi::gi::GiContext& gi
     gi.addInstance({meshes[inst.mesh], materials[inst.material], inst.transform, true});
   }
   r.lights = r.vk.buffer(std::max<size_t>(scene.lights.size(), 1) * sizeof(GpuLight), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  std::vector<dyngi::gi::LightHandle> lights;
   for (size_t i = 0; i < scene.lights.size(); ++i) {
-    const host::Light& l = scene.lights[i];
-    static_cast<GpuLight*>(r.lights.mapped)[i] = {glm::vec4(l.position, float(l.type)), glm::vec4(l.direction, l.range),
-                                                  glm::vec4(l.color * l.intensity, 0.0f),
-                                                  glm::vec4(std::cos(l.innerCone), std::cos(l.outerCone), 0.0f, 0.0f)};
-    dyngi::gi::LightDesc d;
-    d.type = l.type == 0 ? dyngi::gi::LightDesc::Type::Directional : l.type == 2 ? dyngi::gi::LightDesc::Type::Spot : dyngi::gi::LightDesc::Type::Point;
-    d.color = l.color;
-    d.intensity = l.intensity;
-    d.position = l.position;
-    d.direction = l.direction;
-    d.range = l.range;
-    d.innerConeAngle = l.innerCone;
-    d.outerConeAngle = l.outerCone;
-    gi.addLight(d);
+    writeLight(r, i, scene.lights[i]);
+    lights.push_back(gi.addLight(lightDesc(scene.lights[i])));
   }
+  return lights;
+}
+
+// The light at `seconds` of the window's motion: a spot or directional light's direction circles its
+// own, a point light circles its place by a quarter of its distance to the camera.
+host::Light sweep(host::Light l, double seconds, const glm::vec3& eye) {
+  const float a = float(seconds) * 0.8f;
+  const glm::vec3 circle(std::cos(a), 0.0f, std::sin(a));
+  if (l.type == 1) l.position += 0.25f * glm::length(eye - l.position) * circle;
+  else l.direction = glm::normalize(l.direction + 0.35f * circle);
+  return l;
 }
 
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcStage,
@@ -369,10 +396,11 @@ void recordShade(Renderer& r, VkCommandBuffer cmd, const glm::mat4& invViewProj,
       {r.sampler, r.depth.view, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL}, {r.sampler, r.normal.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
       {r.sampler, r.baseColor.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},   {r.sampler, r.material.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
       {r.sampler, r.emissive.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},    {VK_NULL_HANDLE, r.indirect.view, VK_IMAGE_LAYOUT_GENERAL},
-      {VK_NULL_HANDLE, r.specular.view, VK_IMAGE_LAYOUT_GENERAL},                {VK_NULL_HANDLE, r.hdr.view, VK_IMAGE_LAYOUT_GENERAL}};
+      {VK_NULL_HANDLE, r.specular.view, VK_IMAGE_LAYOUT_GENERAL},                {VK_NULL_HANDLE, r.hdr.view, VK_IMAGE_LAYOUT_GENERAL},
+      {VK_NULL_HANDLE, r.display.view, VK_IMAGE_LAYOUT_GENERAL}};
   VkDescriptorBufferInfo lightsInfo{r.lights.buffer, 0, VK_WHOLE_SIZE};
   std::vector<VkWriteDescriptorSet> writes;
-  for (uint32_t i = 0; i < 9; ++i) {
+  for (uint32_t i = 0; i < 10; ++i) {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w.dstBinding = i;
     w.descriptorCount = 1;
@@ -381,7 +409,7 @@ void recordShade(Renderer& r, VkCommandBuffer cmd, const glm::mat4& invViewProj,
       w.pBufferInfo = &lightsInfo;
     } else {
       w.descriptorType = i < 5 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-      w.pImageInfo = &images[i < 7 ? i : 7];
+      w.pImageInfo = &images[i < 7 ? i : i - 1];
     }
     writes.push_back(w);
   }
@@ -428,13 +456,61 @@ bool writeExr(const std::string& path, const std::vector<float>& rgba, uint32_t 
   return r == TINYEXR_SUCCESS;
 }
 
+// What the GI is told of the game's frame: its camera, its G-buffer's views and encoding, and the
+// game's own images for the indirect diffuse and specular light.
+dyngi::gi::FrameDesc describeFrame(const Renderer& r, const glm::mat4& view, const glm::mat4& proj) {
+  dyngi::gi::FrameDesc f;
+  f.width = r.width;
+  f.height = r.height;
+  f.camera = {view, proj};
+  f.gbuffer.depth = r.depth.view;
+  f.gbuffer.reversedZ = true;
+  f.gbuffer.normal = r.normal.view;
+  f.gbuffer.normalEncoding = dyngi::gi::GBufferDesc::NormalEncoding::WorldOctahedral;
+  f.gbuffer.baseColor = r.baseColor.view;
+  f.gbuffer.roughness = r.material.view;
+  f.gbuffer.roughnessChannel = 0;
+  f.gbuffer.metallic = r.material.view;
+  f.gbuffer.metallicChannel = 1;
+  f.gbuffer.emissive = r.emissive.view;
+  f.outputs = {r.indirect.view, VK_FORMAT_R32G32B32A32_SFLOAT, r.specular.view, VK_FORMAT_R32G32B32A32_SFLOAT};
+  return f;
+}
+
+// The PNG, and the GI's indirect light as EXR when asked: 0, or 1 when a file cannot be written.
+int writeOutputs(Renderer& r, const Args& a) {
+  int status = 0;
+  const std::vector<float> hdr = readImage(r, r.hdr, VK_IMAGE_LAYOUT_GENERAL);
+  if (!writePng(a.out, hdr, a.width, a.height)) {
+    std::fprintf(stderr, "own_renderer: %s: cannot write\n", a.out.c_str());
+    status = 1;
+  }
+  if (!a.indirectOut.empty()) {
+    std::vector<float> indirect = readImage(r, r.indirect, VK_IMAGE_LAYOUT_GENERAL);
+    for (size_t i = 3; i < indirect.size(); i += 4) indirect[i] = 1.0f;  // the indirect view's alpha
+    if (!writeExr(a.indirectOut, indirect, a.width, a.height)) {
+      std::fprintf(stderr, "own_renderer: %s: cannot write\n", a.indirectOut.c_str());
+      status = 1;
+    }
+  }
+  return status;
+}
+
 int run(const Args& a) {
   host::Scene scene;
   if (std::string error = host::loadScene(a.scene, scene); !error.empty()) {
     std::fprintf(stderr, "own_renderer: %s\n", error.c_str());
     return 2;
   }
-  host::VulkanHost vk(dyngi::gi::GiContext::requirements(), a.validation);
+  // The game's own needs merged with dyngi's: a window's surface and swapchain.
+  dyngi::render::DeviceRequirements needs = dyngi::gi::GiContext::requirements();
+  if (a.window) {
+    dyngi::render::DeviceRequirements windowNeeds;
+    windowNeeds.instanceExtensions = host::Window::instanceExtensions();
+    windowNeeds.deviceExtensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
+    needs.add(windowNeeds);
+  }
+  host::VulkanHost vk(needs, a.validation);
   int status = 0;
   {
     dyngi::gi::GiSettings settings;
@@ -444,52 +520,40 @@ int run(const Args& a) {
     createTargets(r);
     createGbufferPipeline(r);
     createShadePipeline(r);
-    uploadScene(r, scene, gi);
+    const std::vector<dyngi::gi::LightHandle> lights = uploadScene(r, scene, gi);
+    std::optional<host::Window> window;
+    if (a.window) window.emplace(vk, a.width, a.height, "own_renderer (dyngi GI)");
     // The game's camera: reversed Z (near at depth 1), Vulkan's y down.
     const glm::mat4 view = glm::inverse(scene.camera.world);
     glm::mat4 proj = glm::perspectiveRH_ZO(scene.camera.yfov, float(a.width) / float(a.height), scene.camera.zfar, scene.camera.znear);
     proj[1][1] *= -1.0f;
     const glm::mat4 viewProj = proj * view;
-    dyngi::gi::FrameDesc f;
-    f.width = a.width;
-    f.height = a.height;
-    f.camera = {view, proj};
-    f.gbuffer.depth = r.depth.view;
-    f.gbuffer.reversedZ = true;
-    f.gbuffer.normal = r.normal.view;
-    f.gbuffer.normalEncoding = dyngi::gi::GBufferDesc::NormalEncoding::WorldOctahedral;
-    f.gbuffer.baseColor = r.baseColor.view;
-    f.gbuffer.roughness = r.material.view;
-    f.gbuffer.roughnessChannel = 0;
-    f.gbuffer.metallic = r.material.view;
-    f.gbuffer.metallicChannel = 1;
-    f.gbuffer.emissive = r.emissive.view;
-    f.outputs = {r.indirect.view, VK_FORMAT_R32G32B32A32_SFLOAT, r.specular.view, VK_FORMAT_R32G32B32A32_SFLOAT};
-    for (int frame = 0; frame < a.frames; ++frame) {
-      f.time = double(frame) / 60.0;
-      vk.submit([&](VkCommandBuffer cmd) {
-        recordGbuffer(r, cmd, scene, viewProj);
-        for (host::Image* out : {&r.indirect, &r.specular, &r.hdr})
-          imageBarrier(cmd, out->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, kAll, kAnyAccess,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-        gi.recordFrame(cmd, f);
-        recordShade(r, cmd, glm::inverse(viewProj), glm::vec3(scene.camera.world[3]), uint32_t(scene.lights.size()));
-      });
-    }
-    const std::vector<float> hdr = readImage(r, r.hdr, VK_IMAGE_LAYOUT_GENERAL);
-    if (!writePng(a.out, hdr, a.width, a.height)) {
-      std::fprintf(stderr, "own_renderer: %s: cannot write\n", a.out.c_str());
-      status = 1;
-    }
-    if (!a.indirectOut.empty()) {
-      std::vector<float> indirect = readImage(r, r.indirect, VK_IMAGE_LAYOUT_GENERAL);
-      for (size_t i = 3; i < indirect.size(); i += 4) indirect[i] = 1.0f;  // the indirect view's alpha
-      if (!writeExr(a.indirectOut, indirect, a.width, a.height)) {
-        std::fprintf(stderr, "own_renderer: %s: cannot write\n", a.indirectOut.c_str());
-        status = 1;
+    dyngi::gi::FrameDesc f = describeFrame(r, view, proj);
+    auto recordFrame = [&](VkCommandBuffer cmd) {
+      recordGbuffer(r, cmd, scene, viewProj);
+      for (host::Image* out : {&r.indirect, &r.specular, &r.hdr, &r.display})
+        imageBarrier(cmd, out->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, kAll, kAnyAccess,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+      gi.recordFrame(cmd, f);
+      recordShade(r, cmd, glm::inverse(viewProj), glm::vec3(scene.camera.world[3]), uint32_t(scene.lights.size()));
+    };
+    int frames = 0;
+    for (; window ? window->open() && (!a.framesGiven || frames < a.frames) : frames < a.frames; ++frames) {
+      f.time = double(frames) / 60.0;
+      if (window) {
+        window->poll();
+        if (!scene.lights.empty()) {  // in the window the first light sweeps, so the bounce light is seen to follow
+          const host::Light moved = sweep(scene.lights[0], f.time, glm::vec3(scene.camera.world[3]));
+          writeLight(r, 0, moved);
+          gi.updateLight(lights[0], lightDesc(moved));
+        }
+        window->present(r.display.image, recordFrame);
+      } else {
+        vk.submit(recordFrame);
       }
     }
-    std::printf("own_renderer: %s, %d frames of --gi %s at %ux%u: wrote %s\n", a.scene.c_str(), a.frames, a.technique.c_str(), a.width, a.height,
+    status = writeOutputs(r, a);
+    std::printf("own_renderer: %s, %d frames of --gi %s at %ux%u: wrote %s\n", a.scene.c_str(), frames, a.technique.c_str(), a.width, a.height,
                 a.out.c_str());
   }
   if (vk.validationMessages() > 0) {

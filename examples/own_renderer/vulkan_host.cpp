@@ -219,7 +219,7 @@ VkShaderModule VulkanHost::shader(const uint32_t* code, size_t bytes) {
   return m;
 }
 
-void VulkanHost::submit(const std::function<void(VkCommandBuffer)>& record) {
+void VulkanHost::submit(const std::function<void(VkCommandBuffer)>& record, VkSemaphore wait, VkSemaphore signal) {
   check(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -229,6 +229,12 @@ void VulkanHost::submit(const std::function<void(VkCommandBuffer)>& record) {
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.commandBufferCount = 1;
   si.pCommandBuffers = &cmd_;
+  const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  si.waitSemaphoreCount = wait ? 1 : 0;
+  si.pWaitSemaphores = &wait;
+  si.pWaitDstStageMask = &waitStage;
+  si.signalSemaphoreCount = signal ? 1 : 0;
+  si.pSignalSemaphores = &signal;
   check(vkResetFences(device_, 1, &fence_), "vkResetFences");
   check(vkQueueSubmit(queue_, 1, &si, fence_), "vkQueueSubmit");
   check(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");

@@ -44,11 +44,16 @@ class VulkanHost {
   void destroy(Buffer& b);
   void destroy(Image& i);
   VkShaderModule shader(const uint32_t* code, size_t bytes);
-  // Records `record` into the frame's command buffer, submits it, waits for its fence.
-  void submit(const std::function<void(VkCommandBuffer)>& record);
+  // Records `record` into the frame's command buffer, submits it, waits for its fence. A window's
+  // frame waits for `wait` (the acquired image) before its transfers and signals `signal` (presentable).
+  void submit(const std::function<void(VkCommandBuffer)>& record, VkSemaphore wait = VK_NULL_HANDLE,
+              VkSemaphore signal = VK_NULL_HANDLE);
   void pushDescriptors(VkCommandBuffer cmd, VkPipelineBindPoint point, VkPipelineLayout layout, const std::vector<VkWriteDescriptorSet>& writes);
 
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physicalDevice() const { return physical_; }
   VkDevice device() const { return device_; }
+  VkQueue queue() const { return queue_; }
   uint32_t validationMessages() const { return messages_; }
 
  private:

@@ -23,9 +23,11 @@
 #include "support/sample_run.h"
 #include "support/shared_scenes.h"
 #include "support/temp_dir.h"
+#include "support/virtual_display.h"
 
 using dyngi::test::SampleRun;
 using dyngi::test::TempDir;
+using dyngi::test::VirtualDisplay;
 
 namespace {
 
@@ -69,49 +71,6 @@ nlohmann::json readJson(const std::string& path) {
   std::ifstream f(path);
   return nlohmann::json::parse(f, nullptr, false);
 }
-
-// An Xvfb server on a free display for the test's lifetime. Xvfb picks the display itself (-displayfd)
-// and writes its number once it accepts connections, so two tests starting at once never share one.
-class VirtualDisplay {
- public:
-  VirtualDisplay() {
-    const std::string pidFile = dir_.file("xvfb.pid"), displayFile = dir_.file("xvfb.display");
-    std::string cmd = "Xvfb -displayfd 3 -screen 0 1024x800x24 -nolisten tcp 3>";
-    cmd += displayFile;
-    cmd += " >/dev/null 2>&1 & echo $! > ";
-    cmd += pidFile;
-    if (std::system(cmd.c_str()) != 0) return;
-    std::ifstream(pidFile) >> pid_;
-    for (int i = 0; i < 200; ++i) {
-      std::stringstream text;
-      text << std::ifstream(displayFile).rdbuf();
-      int n = -1;
-      if (text.str().find('\n') != std::string::npos && (text >> n) && n >= 0) {
-        display_ = std::string(":").append(std::to_string(n));
-        return;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-  }
-  ~VirtualDisplay() {
-    if (pid_ > 0) kill(pid_, SIGTERM);
-  }
-  const std::string& display() const { return display_; }
-
- private:
-  TempDir dir_;
-  int pid_ = 0;
-  std::string display_;
-};
-
-bool haveProgram(const char* name) { return std::system((std::string("command -v ") + name + " >/dev/null 2>&1").c_str()) == 0; }
-
-// In a test body: skips without `program`, except under CI=true, where scripts/setup.sh installs it.
-#define DYNGI_REQUIRE_PROGRAM(program)                                                                                  \
-  if (!haveProgram(program)) {                                                                                           \
-    if (dyngi::test::runningInCi()) FAIL() << "CI=true but " << program << " is missing (scripts/setup.sh installs it)"; \
-    GTEST_SKIP() << "no " << program;                                                                                  \
-  }
 
 // The session: the short box's projected centre at 768^2 (the built-in Cornell camera) is (486, 590).
 std::string script(const std::string& screenshot, int quitAt) {

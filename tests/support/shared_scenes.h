@@ -8,12 +8,9 @@
 #include <filesystem>
 #include <string>
 
-namespace dyngi::test {
+#include "support/ci.h"
 
-inline bool runningInCi() {
-  const char* ci = std::getenv("CI");
-  return ci && std::string(ci) == "true";
-}
+namespace dyngi::test {
 
 // The scene's path, or "" when it is absent.
 inline std::string sharedScenePath(const char* name) {

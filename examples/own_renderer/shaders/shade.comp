@@ -17,6 +17,7 @@ layout(set = 0, binding = 5, rgba32f) uniform readonly image2D giIndirect;
 layout(set = 0, binding = 6, rgba32f) uniform readonly image2D giSpecular;
 layout(set = 0, binding = 7) readonly buffer Lights { Light lights[]; };
 layout(set = 0, binding = 8, rgba32f) uniform writeonly image2D outHdr;
+layout(set = 0, binding = 9, rgba8) uniform writeonly image2D outDisplay;  // tone-mapped, sRGB-encoded
 layout(push_constant) uniform Push { mat4 invViewProj; vec4 cameraPos; uvec4 sizeAndLights; };
 
 vec3 octahedralDecode(vec2 e) {
@@ -25,13 +26,25 @@ vec3 octahedralDecode(vec2 e) {
   return normalize(n);
 }
 
+// The PNG's mapping (main.cpp, writePng): a filmic curve, then sRGB.
+vec3 display(vec3 hdr) {
+  vec3 x = max(hdr, vec3(0.0));
+  vec3 mapped = clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+  return mix(12.92 * mapped, 1.055 * pow(mapped, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), mapped));
+}
+
+void store(ivec2 px, vec3 colour) {
+  imageStore(outHdr, px, vec4(colour, 1.0));
+  imageStore(outDisplay, px, vec4(display(colour), 1.0));
+}
+
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   uvec2 size = sizeAndLights.xy;
   if (px.x >= int(size.x) || px.y >= int(size.y)) return;
   float d = texelFetch(depth, px, 0).r;
   if (d <= 0.0) {  // reversed Z: nothing hit
-    imageStore(outHdr, px, vec4(0.0, 0.0, 0.0, 1.0));
+    store(px, vec3(0.0));
     return;
   }
   vec2 ndc = (vec2(px) + 0.5) / vec2(size) * 2.0 - 1.0;
@@ -67,5 +80,5 @@ void main() {
   }
   vec3 specularColour = mix(vec3(0.04), base.rgb, metallic);
   colour += albedo * imageLoad(giIndirect, px).rgb + specularColour * imageLoad(giSpecular, px).rgb;
-  imageStore(outHdr, px, vec4(colour, 1.0));
+  store(px, colour);
 }
