@@ -6,6 +6,7 @@
 #include "dyngi/engine/ecs/scheduler.h"
 #include "dyngi/engine/render/gpu_timer.h"
 #include "dyngi/engine/render/renderer.h"
+#include "dyngi/engine/scene/animation.h"
 #include "dyngi/engine/scene/components.h"
 #include "dyngi/gi/gi_system.h"
 #include "gpu_aliases.h"
@@ -120,6 +121,7 @@ struct GiContext::Impl {
   Pipeline import_, export16_, export32_;
   render::Image blackTexture, whiteTexture;  // absent views: emission and metallic 0, roughness 1
   std::vector<scene::MeshId> meshes;
+  std::vector<uint8_t> deforming;  // per mesh: updateMesh has rewritten it, so it deforms
   std::vector<scene::TextureId> textures;
   struct MaterialSlot {
     scene::Material material;
@@ -159,6 +161,7 @@ MeshHandle GiContext::addMesh(const MeshDesc& d) {
   m.uvs.assign(d.uvs.begin(), d.uvs.end());
   m.indices.assign(d.indices.begin(), d.indices.end());
   impl_->meshes.push_back(impl_->assets.addMesh(std::move(m)));
+  impl_->deforming.push_back(0);
   return MeshHandle(impl_->meshes.size() - 1);
 }
 
@@ -168,6 +171,18 @@ void GiContext::updateMesh(MeshHandle mesh, std::span<const glm::vec3> positions
   m.positions.assign(positions.begin(), positions.end());
   if (!normals.empty()) m.normals.assign(normals.begin(), normals.end());
   m.computeBounds();
+  // Its instances become deforming meshes (the ECS path's skinned meshes, the host doing the skinning):
+  // a new version re-voxelizes, refits and invalidates them each frame. The first time, their mesh is
+  // written, which rebuilds them from this pose.
+  Impl& im = *impl_;
+  if (im.deforming[mesh]) return;
+  im.deforming[mesh] = 1;
+  const scene::MeshId id = im.meshes[mesh];
+  for (ecs::Entity e : im.instances)
+    if (!e.isNull() && im.world.get<scene::MeshInstance>(e).mesh == id) {
+      im.world.add(e, scene::SkinnedMesh{.bindPose = id, .deformed = id});
+      im.world.write<scene::MeshInstance>(e);
+    }
 }
 
 TextureHandle GiContext::addTexture(const TextureDesc& d) {
@@ -200,6 +215,7 @@ InstanceHandle GiContext::addInstance(const InstanceDesc& d) {
   ecs::Entity e = im.world.create();
   im.world.add(e, scene::WorldTransform{d.transform});
   im.world.add(e, scene::MeshInstance{mesh});
+  if (im.deforming[d.mesh]) im.world.add(e, scene::SkinnedMesh{.bindPose = mesh, .deformed = mesh});
   if (d.dynamic) im.world.add(e, scene::DynamicTag{});
   else im.world.add(e, scene::StaticTag{});
   const InstanceHandle handle = InstanceHandle(im.instances.size());

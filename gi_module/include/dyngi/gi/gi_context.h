@@ -140,7 +140,8 @@ class GiContext {
   GiContext& operator=(const GiContext&) = delete;
 
   MeshHandle addMesh(const MeshDesc& mesh);
-  // New vertex positions and normals for a mesh (CPU skinning): re-voxelized and refit where used.
+  // New vertex positions and normals for a mesh (CPU skinning): from then on its instances deform, as
+  // the ECS path's skinned meshes do: each update re-voxelizes them, refits them and invalidates their VPLs.
   void updateMesh(MeshHandle mesh, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals);
   TextureHandle addTexture(const TextureDesc& texture);
   MaterialHandle addMaterial(const MaterialDesc& material);
