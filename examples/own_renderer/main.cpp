@@ -261,20 +261,30 @@ dyngi::gi::LightDesc lightDesc(const host::Light& l) {
   return d;
 }
 
-// The scene on both sides: the game's vertex buffers and draw list, and dyngi's copy through its calls.
-// Returns dyngi's handles of the lights, in the scene's order.
-std::vector<dyngi::gi::LightHandle> uploadScene(Renderer& r, const host::Scene& scene, dyngi::gi::GiContext& gi) {
+void writeVertices(Renderer& r, uint32_t mesh, const host::Mesh& m) {
+  auto* out = static_cast<float*>(r.vertices[mesh].mapped);
+  for (size_t i = 0; i < m.positions.size(); ++i) {
+    std::memcpy(out + 6 * i, &m.positions[i], 12);
+    std::memcpy(out + 6 * i + 3, &m.normals[i], 12);
+  }
+}
+
+// dyngi's handles of the game's meshes, instances and lights, in the scene's order.
+struct GiHandles {
   std::vector<dyngi::gi::MeshHandle> meshes;
+  std::vector<dyngi::gi::InstanceHandle> instances;
+  std::vector<dyngi::gi::LightHandle> lights;
+};
+
+// The scene on both sides: the game's vertex buffers and draw list, and dyngi's copy through its calls.
+GiHandles uploadScene(Renderer& r, const host::Scene& scene, dyngi::gi::GiContext& gi) {
+  GiHandles handles;
+  std::vector<dyngi::gi::MeshHandle>& meshes = handles.meshes;
   for (const host::Mesh& m : scene.meshes) {
-    host::Buffer v = r.vk.buffer(m.positions.size() * 24, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    auto* out = static_cast<float*>(v.mapped);
-    for (size_t i = 0; i < m.positions.size(); ++i) {
-      std::memcpy(out + 6 * i, &m.positions[i], 12);
-      std::memcpy(out + 6 * i + 3, &m.normals[i], 12);
-    }
+    r.vertices.push_back(r.vk.buffer(m.positions.size() * 24, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT));
+    writeVertices(r, uint32_t(r.vertices.size() - 1), m);
     host::Buffer ib = r.vk.buffer(m.indices.size() * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
     std::memcpy(ib.mapped, m.indices.data(), m.indices.size() * 4);
-    r.vertices.push_back(v);
     r.indices.push_back(ib);
     meshes.push_back(gi.addMesh({m.positions, m.normals, {}, m.indices, {}}));
   }
@@ -292,15 +302,32 @@ std::vector<dyngi::gi::LightHandle> uploadScene(Renderer& r, const host::Scene& 
     const host::Instance& inst = scene.instances[i];
     const host::Material& m = scene.materials[inst.material];
     static_cast<GpuDraw*>(r.draws.mapped)[i] = {inst.transform, glm::vec4(glm::vec3(m.baseColor), m.metallic), glm::vec4(m.emissive, m.roughness)};
-    gi.addInstance({meshes[inst.mesh], materials[inst.material], inst.transform, true});
+    handles.instances.push_back(gi.addInstance({meshes[inst.mesh], materials[inst.material], inst.transform, inst.dynamic}));
   }
   r.lights = r.vk.buffer(std::max<size_t>(scene.lights.size(), 1) * sizeof(GpuLight), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  std::vector<dyngi::gi::LightHandle> lights;
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     writeLight(r, i, scene.lights[i]);
-    lights.push_back(gi.addLight(lightDesc(scene.lights[i])));
+    handles.lights.push_back(gi.addLight(lightDesc(scene.lights[i])));
   }
-  return lights;
+  return handles;
+}
+
+// The clip at `seconds` on both sides: the game's draws and skinned vertex buffers (the last frame has
+// finished with them: the game waits for each frame), and the same changes told to dyngi.
+void animateScene(Renderer& r, host::Scene& scene, const GiHandles& handles, dyngi::gi::GiContext& gi, float seconds) {
+  for (size_t i : host::animate(scene, seconds)) {
+    const host::Instance& inst = scene.instances[i];
+    glm::mat4& drawn = static_cast<GpuDraw*>(r.draws.mapped)[i].model;
+    if (drawn != inst.transform) {
+      drawn = inst.transform;
+      gi.setTransform(handles.instances[i], inst.transform);
+    }
+    if (inst.skin >= 0) {
+      const host::Mesh& m = scene.meshes[inst.mesh];
+      writeVertices(r, inst.mesh, m);
+      gi.updateMesh(handles.meshes[inst.mesh], m.positions, m.normals);
+    }
+  }
 }
 
 // The light at `seconds` of the window's motion: a spot or directional light's direction circles its
@@ -520,7 +547,7 @@ int run(const Args& a) {
     createTargets(r);
     createGbufferPipeline(r);
     createShadePipeline(r);
-    const std::vector<dyngi::gi::LightHandle> lights = uploadScene(r, scene, gi);
+    const GiHandles handles = uploadScene(r, scene, gi);
     std::optional<host::Window> window;
     if (a.window) window.emplace(vk, a.width, a.height, "own_renderer (dyngi GI)");
     // The game's camera: reversed Z (near at depth 1), Vulkan's y down.
@@ -538,14 +565,21 @@ int run(const Args& a) {
       recordShade(r, cmd, glm::inverse(viewProj), glm::vec3(scene.camera.world[3]), uint32_t(scene.lights.size()));
     };
     int frames = 0;
+    float clipTime = 0.0f;
     for (; window ? window->open() && (!a.framesGiven || frames < a.frames) : frames < a.frames; ++frames) {
       f.time = double(frames) / 60.0;
+      // The clip's clock advances a 60th of a second a frame before the frame is drawn (dyngi's sample
+      // plays a clip the same way), wrapped at the clip's end.
+      if (!scene.animation.empty()) {
+        clipTime = std::fmod(clipTime + 1.0f / 60.0f, scene.animationDuration);
+        animateScene(r, scene, handles, gi, clipTime);
+      }
       if (window) {
         window->poll();
         if (!scene.lights.empty()) {  // in the window the first light sweeps, so the bounce light is seen to follow
           const host::Light moved = sweep(scene.lights[0], f.time, glm::vec3(scene.camera.world[3]));
           writeLight(r, 0, moved);
-          gi.updateLight(lights[0], lightDesc(moved));
+          gi.updateLight(handles.lights[0], lightDesc(moved));
         }
         window->present(r.display.image, recordFrame);
       } else {

@@ -12,8 +12,7 @@
 
 namespace dyngi::test {
 
-SkinnedBar addSkinnedBar(ecs::World& world, scene::AssetStore& assets, const TempDir& dir, const glm::vec3& base,
-                         const glm::vec3& baseColor) {
+GltfSpec skinnedBarSpec(const glm::vec3& base, const glm::vec3& baseColor) {
   constexpr int kRings = 13;  // 12 segments of 0.1
   constexpr float kHalf = 0.08f, kHeight = 1.2f, kJoint = 0.6f;
   const glm::vec2 corners[4] = {{-kHalf, -kHalf}, {kHalf, -kHalf}, {kHalf, kHalf}, {-kHalf, kHalf}};
@@ -58,6 +57,12 @@ SkinnedBar addSkinnedBar(ecs::World& world, scene::AssetStore& assets, const Tem
   }
   s.animations = {{.name = "bend", .channels = {bend}}};
 
+  return s;
+}
+
+SkinnedBar addSkinnedBar(ecs::World& world, scene::AssetStore& assets, const TempDir& dir, const glm::vec3& base,
+                         const glm::vec3& baseColor) {
+  const GltfSpec s = skinnedBarSpec(base, baseColor);
   scene::ImportOptions io;
   io.markStatic = false;
   io.clip = "bend";
@@ -68,6 +73,45 @@ SkinnedBar addSkinnedBar(ecs::World& world, scene::AssetStore& assets, const Tem
   out.animator = report.animator;
   world.each<scene::SkinnedMesh>([&](ecs::Entity e, const scene::SkinnedMesh&) { out.mesh = e; });
   return out;
+}
+
+GltfSpec withSkinnedBar(GltfSpec scene, const glm::vec3& base, const glm::vec3& baseColor) {
+  GltfSpec bar = skinnedBarSpec(base, baseColor);
+  // Its normals written out (area-weighted vertex normals, the ones dyngi's importer makes when a file
+  // has none), so a host that does not make normals reads the same surface.
+  for (auto& mesh : bar.meshes)
+    for (GltfPrimitiveSpec& p : mesh) {
+      p.normals.assign(p.positions.size(), glm::vec3(0.0f));
+      for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+        const uint32_t a = p.indices[t], b = p.indices[t + 1], c = p.indices[t + 2];
+        const glm::vec3 n = glm::cross(p.positions[b] - p.positions[a], p.positions[c] - p.positions[a]);
+        p.normals[a] += n, p.normals[b] += n, p.normals[c] += n;
+      }
+      for (glm::vec3& n : p.normals) n = glm::normalize(n);
+    }
+  const int meshOffset = int(scene.meshes.size()), nodeOffset = int(scene.nodes.size());
+  const int skinOffset = int(scene.skins.size()), materialOffset = int(scene.materialsJson.size());
+  for (auto& mesh : bar.meshes) {
+    for (GltfPrimitiveSpec& p : mesh) p.material += materialOffset;
+    scene.meshes.push_back(mesh);
+  }
+  scene.materialsJson.insert(scene.materialsJson.end(), bar.materialsJson.begin(), bar.materialsJson.end());
+  for (GltfNodeSpec n : bar.nodes) {
+    if (n.mesh >= 0) n.mesh += meshOffset;
+    if (n.skin >= 0) n.skin += skinOffset;
+    for (int& c : n.children) c += nodeOffset;
+    scene.nodes.push_back(n);
+  }
+  for (GltfSkinSpec skin : bar.skins) {
+    for (int& j : skin.joints) j += nodeOffset;
+    scene.skins.push_back(skin);
+  }
+  for (GltfAnimationSpec a : bar.animations) {
+    for (GltfChannelSpec& c : a.channels) c.node += nodeOffset;
+    scene.animations.push_back(a);
+  }
+  if (!scene.sceneNodes.empty()) scene.sceneNodes.insert(scene.sceneNodes.end(), {nodeOffset, nodeOffset + 1});
+  return scene;
 }
 
 void addAnimationAndSkinning(ecs::Scheduler& scheduler, scene::AssetStore& assets) {

@@ -13,6 +13,7 @@
 #include "dyngi/engine/ecs/scheduler.h"
 #include "dyngi/engine/ecs/world.h"
 #include "dyngi/engine/scene/assets.h"
+#include "support/gltf_writer.h"
 #include "support/temp_dir.h"
 
 namespace dyngi::test {
@@ -22,6 +23,12 @@ struct SkinnedBar {
   ecs::Entity animator;  // plays "bend"
   std::string error;     // empty when the import worked
 };
+
+// The bar as a glTF of its own: mesh 0, material 0, nodes 0 (the mesh) to 2 (the joints), skin 0, and
+// the animation "bend".
+GltfSpec skinnedBarSpec(const glm::vec3& base, const glm::vec3& baseColor = glm::vec3(0.8f));
+// `scene` with the bar added (its meshes, nodes, skin, material and animation renumbered after scene's).
+GltfSpec withSkinnedBar(GltfSpec scene, const glm::vec3& base, const glm::vec3& baseColor = glm::vec3(0.8f));
 
 // Imports the bar into `world` with material `baseColor`.
 SkinnedBar addSkinnedBar(ecs::World& world, scene::AssetStore& assets, const TempDir& dir, const glm::vec3& base,
