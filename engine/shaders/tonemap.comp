@@ -20,6 +20,8 @@ void main() {
   if (px.x >= int(frame.sizeAndCount.x) || px.y >= int(frame.sizeAndCount.y)) return;
   vec3 c = imageLoad(hdr, px).rgb * frame.exposure.x;
   if (any(isnan(c)) || any(isinf(c))) c = vec3(1.0, 0.0, 1.0);  // make bad values visible, never silent
+  // The curve is flat at 1 long before 1e4; clamped first, its squares cannot overflow to inf / inf.
+  c = clamp(c, 0.0, 1e4);
   c = frame.exposure.y < 0.5 ? acesFit(c) : clamp(c, 0.0, 1.0);
   imageStore(ldr, px, vec4(srgbEncode(c), 1.0));
 }

@@ -31,7 +31,7 @@ scene::Material toMaterial(const MaterialDesc& d, const std::vector<scene::Textu
   m.baseColorTexture = texture(d.baseColorTexture);
   m.emissiveTexture = texture(d.emissiveTexture);
   m.metallicRoughnessTexture = texture(d.metallicRoughnessTexture);
-  return m;
+  return scene::inContentRange(m);  // the importer's ranges: a host's value cannot overflow the GI
 }
 
 // A light's world matrix: at its position, its -Z along its direction.
@@ -55,7 +55,7 @@ scene::Light toLight(const LightDesc& d) {
   l.innerConeAngle = d.innerConeAngle;
   l.outerConeAngle = d.outerConeAngle;
   l.enabled = d.enabled;
-  return l;
+  return scene::inContentRange(l);
 }
 
 // Standard depth from a reversed-Z projection: z' = w - z, so z'/w = 1 - z/w.

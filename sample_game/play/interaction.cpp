@@ -132,7 +132,10 @@ void SceneInteraction::update(const InputFrame& in, bool uiHasMouse, ecs::World&
     }
     const float factor = in.keyPressed(GLFW_KEY_EQUAL) ? kScaleStep : in.keyPressed(GLFW_KEY_MINUS) ? 1.0f / kScaleStep : 1.0f;
     if (factor != 1.0f) {
-      if (world.has<scene::Light>(sel)) world.write<scene::Light>(sel).intensity *= factor;
+      if (world.has<scene::Light>(sel)) {
+        scene::Light& l = world.write<scene::Light>(sel);
+        l.intensity = std::min(l.intensity * factor, scene::kMaxLightIntensity);
+      }
       else world.write<scene::Transform>(sel).scale *= factor;
       play.lastAction = "scaled " + entityLabel(world, sel);
     }

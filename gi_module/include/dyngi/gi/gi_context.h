@@ -57,7 +57,8 @@ struct TextureDesc {
   bool srgb = true;  // colour textures: sRGB; data (metallic-roughness): linear
 };
 
-// glTF's metallic-roughness material: factors, and textures (kNoHandle: none) they multiply.
+// glTF's metallic-roughness material: factors, and textures (kNoHandle: none) they multiply. Factors are
+// clamped into glTF's ranges, emission into [0, scene::kMaxEmission] (docs/CONTENT.md).
 struct MaterialDesc {
   glm::vec4 baseColor{1.0f};
   glm::vec3 emissive{0.0f};  // outgoing radiance (glTF's emissiveFactor x emissive strength)
@@ -75,7 +76,8 @@ struct InstanceDesc {
   bool dynamic = true;                  // false: a hint that it will not move (its voxels and shadows kept)
 };
 
-// glTF's punctual lights, in its units (README, "Light units"); lights point down their -Z.
+// glTF's punctual lights, in its units (README, "Light units"); lights point down their -Z. Values are
+// clamped into the importer's ranges (intensity <= scene::kMaxLightIntensity; docs/CONTENT.md).
 struct LightDesc {
   enum class Type { Directional, Point, Spot };
   Type type = Type::Point;

@@ -1,5 +1,6 @@
 #pragma once
 // The engine's built-in components. Plain data: behaviour lives in systems.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -117,6 +118,34 @@ struct Light {
   bool castShadows = true;
   bool enabled = true;
 };
+
+// The ranges content is held to, by the importer (which refuses values outside them) and by run-time
+// edits (panel, host API: clamped into them); docs/CONTENT.md.
+constexpr float kMaxLightIntensity = 1e7f;  // point and spot: W/sr; directional: W/m^2
+constexpr float kMaxEmission = 1e6f;        // emissive radiance, each channel
+
+// `l` with each value brought into its range: colour in [0, 1e6], intensity in [0, kMaxLightIntensity],
+// range >= 0, 0 <= inner < outer <= pi/2; a value that is not a number becomes its default.
+inline Light inContentRange(Light l) {
+  auto clampOr = [](float v, float lo, float hi, float fallback) { return v == v ? std::min(std::max(v, lo), hi) : fallback; };
+  for (int c = 0; c < 3; ++c) l.color[c] = clampOr(l.color[c], 0.0f, kMaxEmission, 1.0f);
+  l.intensity = clampOr(l.intensity, 0.0f, kMaxLightIntensity, 0.0f);
+  l.range = clampOr(l.range, 0.0f, 3.0e38f, 0.0f);
+  l.outerConeAngle = clampOr(l.outerConeAngle, 1e-3f, 1.5707963f, 0.7853982f);
+  l.innerConeAngle = clampOr(l.innerConeAngle, 0.0f, l.outerConeAngle * 0.999f, 0.0f);
+  return l;
+}
+
+// `m` with its factors in glTF's ranges ([0, 1]; emission in [0, kMaxEmission]).
+inline Material inContentRange(Material m) {
+  auto unit = [](float v, float fallback) { return v == v ? std::min(std::max(v, 0.0f), 1.0f) : fallback; };
+  for (int c = 0; c < 4; ++c) m.baseColor[c] = unit(m.baseColor[c], 1.0f);
+  for (int c = 0; c < 3; ++c) m.emissive[c] = m.emissive[c] == m.emissive[c] ? std::min(std::max(m.emissive[c], 0.0f), kMaxEmission) : 0.0f;
+  m.metallic = unit(m.metallic, 0.0f);
+  m.roughness = unit(m.roughness, 1.0f);
+  m.occlusionStrength = unit(m.occlusionStrength, 1.0f);
+  return m;
+}
 
 struct Camera {
   float yfov = 0.8f;     // radians
