@@ -1,3 +1,4 @@
+#include "dyngi/engine/platform/files.h"
 #include "app.h"
 
 #include <cstdio>
@@ -15,7 +16,7 @@ int runApp(const Options& o) {
   if (!o.inputScript.empty()) {  // a bad script is bad input: refused before anything runs
     std::string error;
     if (!InputScript::load(o.inputScript, &error)) {
-      std::fprintf(stderr, "dyngi_sample: %s\n", error.c_str());
+      std::fprintf(stderr, "dyngi_sample: %s\n", dyngi::platform::oneLine(error, 1000).c_str());
       return 2;
     }
   }

@@ -1,3 +1,4 @@
+#include "dyngi/engine/platform/files.h"
 #include "options.h"
 
 #include <algorithm>
@@ -344,18 +345,12 @@ std::string checkOutputPaths(const Options& o) {
   namespace fs = std::filesystem;
   const std::pair<const char*, const std::string*> outputs[] = {
       {"--out", &o.out}, {"--hdr-out", &o.hdrOut}, {"--stats", &o.stats}, {"--memory-log", &o.memoryLog}};
-  for (const auto& [flag, path] : outputs) {
-    if (path->empty()) continue;
-    std::error_code ec;
-    fs::path p(*path);
-    fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-    if (!fs::is_directory(dir, ec))
-      return std::string(flag) + " " + *path + ": directory '" + dir.string() + "' does not exist (it is not created)";
-    if (fs::is_directory(p, ec)) return std::string(flag) + " " + *path + ": is a directory, not a file";
-  }
+  for (const auto& [flag, path] : outputs)
+    if (!path->empty())
+      if (std::string bad = platform::checkOutputPath(*path); !bad.empty()) return std::string(flag) + " " + bad;
   std::error_code ec;
   if (!o.recordDir.empty() && !fs::is_directory(o.recordDir, ec))
-    return "--record " + o.recordDir + ": not a directory (it is not created)";
+    return "--record " + platform::oneLine(o.recordDir) + ": not a directory (it is not created)";
   return {};
 }
 

@@ -1,8 +1,8 @@
 #include "outputs.h"
 
-#include <fstream>
 #include <unistd.h>
 
+#include "dyngi/engine/platform/files.h"
 #include "dyngi/engine/render/image_io.h"
 
 namespace dyngi::sample {
@@ -20,7 +20,7 @@ uint64_t residentKiB() {
 
 int report(const std::string& err, const std::string& path) {
   if (!err.empty()) {
-    std::fprintf(stderr, "dyngi_sample: %s\n", err.c_str());
+    std::fprintf(stderr, "dyngi_sample: %s\n", platform::oneLine(err, 1000).c_str());
     return 1;
   }
   std::printf("wrote %s\n", path.c_str());
@@ -39,9 +39,8 @@ int writeImages(const Options& o, uint32_t width, uint32_t height, const std::fu
 int writeStats(const Options& o, const RunStats& stats) {
   int status = 0;
   if (!o.stats.empty()) {
-    std::ofstream f(o.stats);
-    f << stats.toJson();
-    status |= report(f ? "" : o.stats + ": could not write stats", o.stats);
+    const std::string json = stats.toJson();
+    status |= report(platform::writeOutputFile(o.stats, json.data(), json.size()), o.stats);
   }
   std::printf("%s", stats.table().c_str());
   return status;
@@ -49,22 +48,28 @@ int writeStats(const Options& o, const RunStats& stats) {
 
 bool MemoryLog::open(const std::string& path) {
   if (path.empty()) return true;
-  file_.reset(std::fopen(path.c_str(), "w"));
-  if (!file_) {
-    std::fprintf(stderr, "dyngi_sample: %s: could not open the memory log\n", path.c_str());
+  path_ = path;
+  if (std::string err = file_.open(path); !err.empty()) {
+    std::fprintf(stderr, "dyngi_sample: %s\n", platform::oneLine(err, 1000).c_str());
     return false;
   }
-  std::fprintf(file_.get(), "frame\trss_kib\tvk_allocations\tvk_device_bytes\n");
+  file_.write("frame\trss_kib\tvk_allocations\tvk_device_bytes\n");
   return true;
 }
 
+int MemoryLog::close() {
+  if (!file_.isOpen()) return 0;
+  return report(file_.close(), path_);
+}
+
 void MemoryLog::frameRendered(int rendered, const render::VulkanContext& ctx) {
-  if (!file_ || rendered % kEvery != 0) return;
+  if (!file_.isOpen() || rendered % kEvery != 0) return;
   uint64_t deviceBytes = 0;
   for (uint32_t h = 0; h < VK_MAX_MEMORY_HEAPS; ++h) deviceBytes += ctx.heapBytesInUse(h);
-  std::fprintf(file_.get(), "%d\t%llu\t%llu\t%llu\n", rendered, (unsigned long long)residentKiB(), (unsigned long long)ctx.liveAllocations(),
-               (unsigned long long)deviceBytes);
-  std::fflush(file_.get());
+  char line[128];
+  std::snprintf(line, sizeof line, "%d\t%llu\t%llu\t%llu\n", rendered, (unsigned long long)residentKiB(), (unsigned long long)ctx.liveAllocations(),
+                (unsigned long long)deviceBytes);
+  file_.write(line);
 }
 
 void addSettings(RunStats& stats, const std::vector<gi::OptionRef>& options) {

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "dyngi/engine/platform/files.h"
 #include "dyngi/engine/render/context.h"
 #include "dyngi/engine/render/image_metrics.h"
 #include "options.h"
@@ -31,9 +32,12 @@ class MemoryLog {
   // False (with the error line printed) when the file cannot be opened; no log without --memory-log.
   bool open(const std::string& path);
   void frameRendered(int rendered, const render::VulkanContext& ctx);
+  // "wrote FILE", or the first failed write or close as one error line; returns the exit status it adds.
+  int close();
 
  private:
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_{nullptr, &std::fclose};
+  platform::OutputStream file_;
+  std::string path_;
 };
 
 }  // namespace dyngi::sample

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 
+#include "dyngi/engine/platform/files.h"
 #include "dyngi/engine/ecs/scheduler.h"
 #include "dyngi/engine/platform/window.h"
 #include "dyngi/engine/render/renderer.h"
@@ -200,7 +201,7 @@ class RealtimeRun {
       memoryLog.frameRendered(rendered, ctx_);
       if (!keepGoing) break;
     }
-    return finish(rendered, stats);
+    return finish(rendered, stats) | memoryLog.close();
   }
 
  private:
@@ -317,7 +318,7 @@ int runRealtime(const Options& o, ecs::World& world, scene::AssetStore& assets, 
     std::string error;
     script = InputScript::load(o.inputScript, &error);  // runApp checked it already
     if (!script) {
-      std::fprintf(stderr, "dyngi_sample: %s\n", error.c_str());
+      std::fprintf(stderr, "dyngi_sample: %s\n", dyngi::platform::oneLine(error, 1000).c_str());
       return 2;
     }
   }

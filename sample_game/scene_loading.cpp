@@ -1,3 +1,4 @@
+#include "dyngi/engine/platform/files.h"
 #include "scene_loading.h"
 
 #include <cstdio>
@@ -13,7 +14,7 @@ int loadScene(const Options& o, ecs::World& world, scene::AssetStore& assets) {
   if (!o.animate.empty()) {
     std::string err = buildAnimatedScene(o.animate, world, assets, DYNGI_SHARED_SCENES_DEFAULT);
     if (!err.empty()) {
-      std::fprintf(stderr, "dyngi_sample: --animate %s: %s\n", o.animate.c_str(), err.c_str());
+      std::fprintf(stderr, "dyngi_sample: --animate %s: %s\n", platform::oneLine(o.animate).c_str(), platform::oneLine(err, 1000).c_str());
       return 2;
     }
   } else if (isBuiltinScene(o.scene)) {
@@ -24,13 +25,13 @@ int loadScene(const Options& o, ecs::World& world, scene::AssetStore& assets) {
     io.clip = o.clip;
     std::string err = scene::importGltf(o.scene, world, assets, &report, io);
     if (!err.empty()) {
-      std::fprintf(stderr, "dyngi_sample: %s\n", err.c_str());
+      std::fprintf(stderr, "dyngi_sample: %s\n", dyngi::platform::oneLine(err, 1000).c_str());
       return 2;
     }
     if (report.missingClip) {
       std::string names;
       for (auto& c : report.clips) names += (names.empty() ? "" : ", ") + c;
-      std::fprintf(stderr, "dyngi_sample: %s: no animation clip '%s' (available: %s)\n", o.scene.c_str(), o.clip.c_str(),
+      std::fprintf(stderr, "dyngi_sample: %s: no animation clip '%s' (available: %s)\n", platform::oneLine(o.scene).c_str(), platform::oneLine(o.clip).c_str(),
                    names.empty() ? "none" : names.c_str());
       return 2;
     }

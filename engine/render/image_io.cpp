@@ -8,14 +8,22 @@
 #include <fstream>
 #include <memory>
 
+#include "dyngi/engine/platform/files.h"
+
 namespace dyngi::render {
 // Output paths are written where they point: a missing parent directory is an error for the caller to
 // report, never a directory tree made on the side (the sample checks its output paths before a run).
 
 std::string writePng(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba8) {
   if (rgba8.size() < size_t(width) * height * 4) return path + ": image data smaller than its size";
-  if (!stbi_write_png(path.c_str(), int(width), int(height), 4, rgba8.data(), int(width * 4))) return path + ": could not write PNG";
-  return {};
+  // Encoded to memory, then written with every write and the close checked (a full disk is an error).
+  std::vector<uint8_t> png;
+  auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<uint8_t>*>(context);
+    out->insert(out->end(), static_cast<uint8_t*>(data), static_cast<uint8_t*>(data) + size);
+  };
+  if (!stbi_write_png_to_func(append, &png, int(width), int(height), 4, rgba8.data(), int(width * 4))) return path + ": could not encode PNG";
+  return platform::writeOutputFile(path, png.data(), png.size());
 }
 
 std::string writeExr(const std::string& path, uint32_t width, uint32_t height, const std::vector<glm::vec4>& rgba) {
@@ -55,11 +63,7 @@ std::string writeExr(const std::string& path, uint32_t width, uint32_t height, c
     if (err) FreeEXRErrorMessage(err);
     return msg;
   }
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  if (!f) return path + ": could not open for writing (does its directory exist?)";
-  f.write(reinterpret_cast<const char*>(memory.get()), std::streamsize(bytes));
-  if (!f) return path + ": could not write EXR";
-  return {};
+  return platform::writeOutputFile(path, memory.get(), bytes);
 }
 
 std::string readExr(const std::string& path, uint32_t& width, uint32_t& height, std::vector<glm::vec4>& rgba) {

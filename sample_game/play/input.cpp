@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "dyngi/engine/platform/files.h"
 #include "dyngi/engine/platform/window.h"
 
 namespace dyngi::sample {
@@ -45,14 +46,12 @@ std::optional<int> buttonCode(const std::string& name) {
 }  // namespace
 
 std::optional<InputScript> InputScript::load(const std::string& path, std::string* error) {
-  std::ifstream f(path);
-  if (!f) {
-    *error = path + ": cannot read the input script";
+  std::vector<uint8_t> bytes;
+  if (std::string bad = platform::readInputFile(path, bytes, kMaxScriptBytes); !bad.empty()) {
+    *error = bad + " (the input script)";
     return std::nullopt;
   }
-  std::stringstream text;
-  text << f.rdbuf();
-  return parse(text.str(), path, error);
+  return parse(std::string(bytes.begin(), bytes.end()), path, error);
 }
 
 std::optional<InputScript> InputScript::parse(const std::string& text, const std::string& name, std::string* error) {
@@ -61,7 +60,7 @@ std::optional<InputScript> InputScript::parse(const std::string& text, const std
   std::string line;
   int number = 0;
   auto fail = [&](const std::string& why) {
-    *error = name + ":" + std::to_string(number) + ": " + why;
+    *error = platform::oneLine(name) + ":" + std::to_string(number) + ": " + platform::oneLine(why);
     return std::nullopt;
   };
   constexpr double kMaxCoordinate = 1 << 16;
@@ -126,6 +125,7 @@ std::optional<InputScript> InputScript::parse(const std::string& text, const std
       push(frame + 1, Event::Release, {}, kLeft);
     } else if (verb == "screenshot") {
       if (!(in >> word)) return fail("screenshot FILE.png");
+      if (std::string bad = platform::checkOutputPath(word); !bad.empty()) return fail("screenshot " + bad);
       s.commands_.push_back({frame, {ScriptCommand::Screenshot, word}});
       s.lastFrame_ = std::max(s.lastFrame_, frame);
     } else if (verb == "resize") {

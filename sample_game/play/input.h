@@ -56,6 +56,7 @@ struct ScriptCommand {
 class InputScript {
  public:
   // Parses the file; nullopt with `error` ("FILE:LINE: why") for a file that cannot be read or a bad line.
+  static constexpr uint64_t kMaxScriptBytes = 16u << 20;  // a script is text: a larger file is not one
   static std::optional<InputScript> load(const std::string& path, std::string* error);
   static std::optional<InputScript> parse(const std::string& text, const std::string& name, std::string* error);
 

@@ -1,3 +1,4 @@
+#include "dyngi/engine/platform/files.h"
 #include "play/play_session.h"
 
 #include <GLFW/glfw3.h>
@@ -82,7 +83,7 @@ bool PlaySession::endFrame(uint64_t frame, const render::RenderSnapshot& snapsho
 void PlaySession::screenshot(const std::string& path) {
   const std::string err = render::writePng(path, renderer_.width(), renderer_.height(), renderer_.readbackLdr());
   if (!err.empty()) {
-    std::fprintf(stderr, "dyngi_sample: screenshot: %s\n", err.c_str());
+    std::fprintf(stderr, "dyngi_sample: screenshot: %s\n", dyngi::platform::oneLine(err, 1000).c_str());
     status_ = 1;
   }
 }

@@ -1,6 +1,8 @@
 // The sample's run statistics: medians as documented, and nothing timed reads as null, not as zero.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -71,9 +73,16 @@ TEST(ImageIo, WritersFailCleanlyOnPathsTheyCannotWriteAndCreateNoDirectory) {
   const std::vector<uint8_t> ldr(16 * 16 * 4, 128);
   const std::string missing = dir.file("no/such/dir/x");
   std::string err = dyngi::render::writeExr(missing + ".exr", 16, 16, hdr);
-  EXPECT_NE(err.find("could not open"), std::string::npos) << err;
+  EXPECT_NE(err.find("does not exist"), std::string::npos) << err;
   EXPECT_NE(dyngi::render::writePng(missing + ".png", 16, 16, ldr), "");
   EXPECT_FALSE(std::filesystem::exists(dir.file("no"))) << "no directory made on the side";
+  // A full disk is an error, not "wrote"; a FIFO is refused at once, not waited on.
+  if (std::filesystem::exists("/dev/full")) {
+    EXPECT_NE(dyngi::render::writeExr("/dev/full", 16, 16, hdr).find("could not be written"), std::string::npos);
+    EXPECT_NE(dyngi::render::writePng("/dev/full", 16, 16, ldr).find("could not be written"), std::string::npos);
+  }
+  ASSERT_EQ(::mkfifo(dir.file("fifo.png").c_str(), 0600), 0);
+  EXPECT_NE(dyngi::render::writePng(dir.file("fifo.png"), 16, 16, ldr).find("is a FIFO"), std::string::npos);
   // And where the directory exists, both write, and the EXR reads back what was written.
   ASSERT_EQ(dyngi::render::writeExr(dir.file("x.exr"), 16, 16, hdr), "");
   uint32_t w = 0, h = 0;
