@@ -8,10 +8,10 @@ PACKAGES=(
   libglfw3-dev libglm-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-dev glslang-tools spirv-tools
-  libtinygltf-dev libembree-dev libimgui-dev libstb-dev libtinyexr-dev
+  libtinygltf-dev libembree-dev libimgui-dev libstb-dev libtinyexr-dev libpng-dev libjpeg62-turbo-dev
   libgtest-dev libbenchmark-dev nlohmann-json3-dev libtbb-dev
   clang libclang-rt-14-dev libfuzzer-14-dev
-  xvfb imagemagick
+  xvfb imagemagick strace
 )
 
 missing=()

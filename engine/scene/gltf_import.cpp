@@ -4,6 +4,9 @@
 
 #include <tiny_gltf.h>
 
+#include "dyngi/engine/platform/files.h"
+#include "gltf_content_rules.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -121,8 +124,8 @@ double numberOr(const tinygltf::Value& obj, const char* key, double fallback) {
 
 class Importer {
  public:
-  Importer(const tinygltf::Model& model, ecs::World& world, AssetStore& assets, const ImportOptions& opts)
-      : model_(model), world_(world), assets_(assets), opts_(opts) {}
+  Importer(const tinygltf::Model& model, ecs::World& world, AssetStore& assets, const ImportOptions& opts, const std::string& loaderWarnings)
+      : model_(model), world_(world), assets_(assets), opts_(opts), loaderWarnings_(loaderWarnings) {}
 
   ImportReport run() {
     // Extensions: a required one the import cannot honour would render the file wrong; refuse it.
@@ -133,8 +136,10 @@ class Importer {
     // Phase 1: read and validate everything without touching the world.
     meshes_.resize(model_.meshes.size());
     for (size_t m = 0; m < model_.meshes.size(); ++m) meshes_[m] = readMesh(int(m));
+    if (std::string bad = content::checkValues(model_); !bad.empty()) fail(bad);
     validateNodes();
-    std::vector<int> roots = sceneRoots();
+    std::vector<int> roots;
+    if (std::string bad = content::sceneRoots(model_, roots); !bad.empty()) fail(bad);
     size_t meshNodes = 0;
     // Composes the world transforms the commit phase will write and checks them: finite local values
     // can still multiply into infinities (1e15 scale under a 1e15 scale).
@@ -227,6 +232,10 @@ class Importer {
       }
       if (auto jt = prim.attributes.find("JOINTS_0"), wt = prim.attributes.find("WEIGHTS_0");
           jt != prim.attributes.end() && wt != prim.attributes.end()) {
+        if (jt->second >= 0 && size_t(jt->second) < model_.accessors.size() &&
+            model_.accessors[size_t(jt->second)].componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+            model_.accessors[size_t(jt->second)].componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
+          fail(where + " JOINTS_0 must be unsigned bytes or shorts");
         AccessorReader jr(model_, jt->second, "JOINTS_0");
         AccessorReader wr(model_, wt->second, "WEIGHTS_0");
         if (jr.count() != n || wr.count() != n) fail(where + " JOINTS_0/WEIGHTS_0 count differs from POSITION count");
@@ -289,13 +298,6 @@ class Importer {
   }
 
   void validateNodes() {
-    for (size_t i = 0; i < model_.lights.size(); ++i) {
-      const auto& t = model_.lights[i].type;
-      if (t != "directional" && t != "spot" && t != "point")
-        fail("light " + std::to_string(i) + " has unknown type '" + t + "'");
-      if (!std::isfinite(model_.lights[i].intensity) || model_.lights[i].intensity < 0)
-        fail("light " + std::to_string(i) + " has an invalid intensity");
-    }
     for (size_t i = 0; i < model_.nodes.size(); ++i) {
       const auto& node = model_.nodes[i];
       std::string where = "node " + std::to_string(i) + (node.name.empty() ? "" : " '" + node.name + "'");
@@ -335,7 +337,11 @@ class Importer {
       int src = model_.textures[size_t(t)].source;
       if (src < 0 || size_t(src) >= model_.images.size()) fail(where + " texture has no valid image");
       const auto& img = model_.images[size_t(src)];
-      if (img.image.empty() || img.width <= 0 || img.height <= 0) fail(where + " texture image could not be decoded");
+      if (img.image.empty() || img.width <= 0 || img.height <= 0) {
+        // tinygltf only warns of an image it could not load: its first warning says why.
+        const std::string why = loaderWarnings_.substr(0, loaderWarnings_.find('\n'));
+        fail(where + " texture image could not be loaded" + (why.empty() ? "" : " (" + why + ")"));
+      }
       if (img.image.size() < size_t(img.width) * size_t(img.height) * size_t(std::max(img.component, 1)) * (img.bits == 16 ? 2u : 1u))
         fail(where + " texture image data is truncated");
     };
@@ -351,20 +357,6 @@ class Importer {
     for (auto& prims : meshes_)
       for (auto& p : prims)
         if (p.material >= int(model_.materials.size())) fail("a primitive references a missing material");
-  }
-
-  std::vector<int> sceneRoots() const {
-    std::vector<int> roots;
-    if (!model_.scenes.empty()) {
-      int s = model_.defaultScene >= 0 && size_t(model_.defaultScene) < model_.scenes.size() ? model_.defaultScene : 0;
-      roots = model_.scenes[size_t(s)].nodes;
-    } else {
-      std::vector<bool> isChild(model_.nodes.size(), false);
-      for (auto& n : model_.nodes) for (int c : n.children) isChild[size_t(c)] = true;
-      for (size_t i = 0; i < model_.nodes.size(); ++i) if (!isChild[i]) roots.push_back(int(i));
-    }
-    for (int r : roots) if (r < 0 || size_t(r) >= model_.nodes.size()) fail("scene references a missing node");
-    return roots;
   }
 
   static int lightIndex(const tinygltf::Node& node) {
@@ -609,8 +601,8 @@ class Importer {
       out.times.resize(keys);
       for (size_t k = 0; k < keys; ++k) {
         out.times[k] = in.readFloat(k, 0);
-        if (!std::isfinite(out.times[k])) fail(where + " has a non-finite key time");
-        if (k > 0 && out.times[k] < out.times[k - 1]) fail(where + " key times are not increasing");
+        if (!std::isfinite(out.times[k]) || out.times[k] < 0.0f) fail(where + " has a key time that is negative or not finite");
+        if (k > 0 && !(out.times[k] > out.times[k - 1])) fail(where + " key times are not increasing");
       }
       out.values.resize(val.count(), glm::vec4(0.0f));
       for (size_t k = 0; k < val.count(); ++k)
@@ -669,6 +661,7 @@ class Importer {
   ecs::World& world_;
   AssetStore& assets_;
   ImportOptions opts_;
+  std::string loaderWarnings_;
   ImportReport report_;
   std::vector<std::vector<PendingPrimitive>> meshes_;
   std::vector<std::vector<int>> materialsByMesh_;
@@ -695,10 +688,10 @@ const std::vector<std::string>& supportedGltfExtensions() {
 
 namespace {
 // Runs the importer on a parsed model; turns every error into "<name>: <problem>".
-std::string importModel(const tinygltf::Model& model, const std::string& name, ecs::World& world, AssetStore& assets,
-                        ImportReport* report, const ImportOptions& options) {
+std::string importModel(const tinygltf::Model& model, const std::string& warnings, const std::string& name, ecs::World& world,
+                        AssetStore& assets, ImportReport* report, const ImportOptions& options) {
   try {
-    ImportReport r = Importer(model, world, assets, options).run();
+    ImportReport r = Importer(model, world, assets, options, warnings).run();
     if (report) *report = r;
   } catch (const ImportError& ex) {
     return name + ": " + ex.what();
@@ -714,73 +707,50 @@ std::string parseFailure(const std::string& name, const std::string& err) {
 }
 
 // The error contract is one line: names and strings quoted from the file (a light type, a node name) or
-// a path from the command line may hold control characters, so they are written as escapes.
-std::string oneLine(const std::string& message) {
-  std::string out;
-  out.reserve(message.size());
-  for (unsigned char c : message) {
-    if (c == '\n') out += "\\n";
-    else if (c < 0x20 || c == 0x7f) {
-      char hex[8];
-      std::snprintf(hex, sizeof hex, "\\x%02x", unsigned(c));
-      out += hex;
-    } else {
-      out += char(c);
-    }
-  }
-  return out;
-}
-}  // namespace
+// a path from the command line may hold control characters and any length.
+std::string oneLine(const std::string& message) { return platform::oneLine(message, 1000); }
 
-namespace {
-// External buffers and images are read through this instead of tinygltf's own reader, which sizes its
-// vector from tellg(): a uri naming a directory or a device (a fuzzed "%%%..." uri decoded to one) gave
-// -1, an allocation of 2^63 bytes. Only regular files up to 4 GiB are read; anything else is tinygltf's
-// usual "failed to load" error, one line.
-bool readRegularFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+// Parses bytes under the content rules (docs/CONTENT.md) and imports them: the JSON's depth checked
+// before tinygltf recurses through it, files read only inside `baseDir` and the allowed folders, images
+// decoded by gltf_content_rules.
+std::string importBytes(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir, ecs::World& world,
+                        AssetStore& assets, ImportReport* report, const ImportOptions& options) {
   namespace fs = std::filesystem;
-  std::error_code ec;
-  const bool regular = fs::is_regular_file(path, ec);
-  const uintmax_t bytes = regular ? fs::file_size(path, ec) : 0;
-  if (!regular || ec || bytes > (uintmax_t(1) << 32)) {
-    if (err) *err += path + (regular ? ": too large or unreadable\n" : ": not a regular file\n");
-    return false;
+  if (std::string deep = content::checkJsonDepth(data, size); !deep.empty()) return name + ": " + deep;
+  content::ReadRules rules;
+  rules.maxImageDimension = options.maxImageDimension;
+  rules.maxImageBytes = options.maxImageBytes;
+  std::vector<std::string> folders = options.allowedFolders;
+  if (!baseDir.empty()) folders.push_back(baseDir);
+  for (const std::string& f : folders) {
+    std::error_code ec;
+    const fs::path canonical = fs::canonical(f, ec);
+    if (!ec) rules.folders.push_back(canonical.string());
   }
-  std::ifstream f(path, std::ios::binary);
-  out->resize(size_t(bytes));
-  if (bytes > 0 && !f.read(reinterpret_cast<char*>(out->data()), std::streamsize(bytes))) {
-    if (err) *err += path + ": could not be read\n";
-    return false;
+  tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks(content::containedFiles(rules));
+  loader.SetImageLoader(&content::decodeImage, &rules);
+  tinygltf::Model model;
+  std::string err, warn;
+  bool ok = false;
+  const unsigned length = unsigned(std::min<size_t>(size, 0xFFFFFFFFu));
+  try {
+    const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
+    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, length, baseDir)
+                : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(data), length, baseDir);
+  } catch (const std::exception& ex) {
+    err = ex.what();
   }
-  return true;
-}
-
-// A loader whose file reads go through readRegularFile.
-void guardFileReads(tinygltf::TinyGLTF& loader) {
-  loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readRegularFile, &tinygltf::WriteWholeFile, nullptr});
+  if (!ok) return parseFailure(name, err);
+  return importModel(model, warn, name, world, assets, report, options);
 }
 
 std::string importGltfFile(const std::string& path, ecs::World& world, AssetStore& assets, ImportReport* report,
                            const ImportOptions& options) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!fs::exists(path, ec)) return path + ": file not found";
-  if (fs::is_directory(path, ec)) return path + ": is a directory, not a glTF file";
-  tinygltf::TinyGLTF loader;
-  guardFileReads(loader);
-  tinygltf::Model model;
-  std::string err, warn;
-  std::string ext = fs::path(path).extension().string();
-  for (auto& ch : ext) ch = char(std::tolower(ch));
-  bool ok = false;
-  try {
-    ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                       : loader.LoadASCIIFromFile(&model, &err, &warn, path);
-  } catch (const std::exception& ex) {
-    err = ex.what();
-  }
-  if (!ok) return parseFailure(path, err);
-  return importModel(model, path, world, assets, report, options);
+  std::vector<uint8_t> bytes;
+  if (std::string bad = platform::readInputFile(path, bytes); !bad.empty()) return bad;
+  const std::string folder = std::filesystem::path(path).parent_path().string();
+  return importBytes(bytes.data(), bytes.size(), path, folder.empty() ? "." : folder, world, assets, report, options);
 }
 }  // namespace
 
@@ -791,21 +761,7 @@ std::string importGltf(const std::string& path, ecs::World& world, AssetStore& a
 
 std::string importGltfFromMemory(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                                  ecs::World& world, AssetStore& assets, ImportReport* report, const ImportOptions& options) {
-  tinygltf::TinyGLTF loader;
-  guardFileReads(loader);
-  tinygltf::Model model;
-  std::string err, warn;
-  bool ok = false;
-  try {
-    const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
-    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, unsigned(std::min<size_t>(size, 0xFFFFFFFFu)), baseDir)
-                : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(data),
-                                             unsigned(std::min<size_t>(size, 0xFFFFFFFFu)), baseDir);
-  } catch (const std::exception& ex) {
-    err = ex.what();
-  }
-  if (!ok) return oneLine(parseFailure(name, err));
-  return oneLine(importModel(model, name, world, assets, report, options));
+  return oneLine(importBytes(data, size, name, baseDir, world, assets, report, options));
 }
 
 }  // namespace dyngi::scene

@@ -199,7 +199,8 @@ Document build(const GltfSpec& spec) {
   j << ",\"extensionsUsed\":[" << joinStrings(used) << "]";
   if (!spec.extensionsRequired.empty()) j << ",\"extensionsRequired\":[" << joinStrings(quoted(spec.extensionsRequired)) << "]";
   if (!spec.lightsJson.empty()) j << ",\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[" << joinStrings(spec.lightsJson) << "]}}";
-  j << ",\"scene\":0,\"scenes\":[{\"nodes\":[";
+  if (!spec.extraMembersJson.empty()) j << "," << spec.extraMembersJson;
+  j << ",\"scene\":" << spec.sceneIndex << ",\"scenes\":[{\"nodes\":[";
   for (size_t i = 0; i < roots.size(); ++i) j << (i ? "," : "") << roots[i];
   j << "]}]";
   j << ",\"nodes\":[" << joinStrings(nodes) << "]";
@@ -220,6 +221,8 @@ void putU32(std::string& s, uint32_t v) {
   for (int i = 0; i < 4; ++i) s += char((v >> (8 * i)) & 0xff);
 }
 }  // namespace
+
+std::string dataUri(const std::string& mime, const std::vector<uint8_t>& bytes) { return "data:" + mime + ";base64," + base64(bytes); }
 
 std::string writeGltf(const GltfSpec& spec) {
   Document doc = build(spec);

@@ -66,7 +66,12 @@ struct GltfSpec {
   std::vector<std::string> extensionsUsed, extensionsRequired;  // names, beside the ones the writer adds
   std::vector<GltfSkinSpec> skins;
   std::vector<GltfAnimationSpec> animations;
+  int sceneIndex = 0;               // the file's "scene" (a test may point it past the list)
+  std::string extraMembersJson;     // raw top-level members, e.g. "\"samplers\":[...]" or a deep "extras"
 };
+
+// `bytes` as a data URI: "data:MIME;base64,...".
+std::string dataUri(const std::string& mime, const std::vector<uint8_t>& bytes);
 
 std::string writeGltf(const GltfSpec& spec);  // returns the .gltf JSON text
 std::string writeGlb(const GltfSpec& spec);   // returns the .glb bytes (JSON chunk + BIN chunk)

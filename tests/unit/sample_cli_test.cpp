@@ -5,15 +5,21 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
+#include <stb_image.h>
+
+#include "dyngi/engine/scene/components.h"
 #include "options.h"
+#include "support/gltf_writer.h"
+#include "support/hostile_content.h"
 #include "support/sample_run.h"
 #include "support/temp_dir.h"
 
 namespace {
-dyngi::test::SampleRun runSample(const std::string& args, const dyngi::test::TempDir& dir) {
-  return dyngi::test::runSample(DYNGI_SAMPLE_EXE, args, dir);
+dyngi::test::SampleRun runSample(const std::string& args, const dyngi::test::TempDir& dir, int timeoutSeconds = 120) {
+  return dyngi::test::runSample(DYNGI_SAMPLE_EXE, args, dir, timeoutSeconds);
 }
 }  // namespace
 
@@ -37,7 +43,7 @@ TEST(SampleCli, BadInputExitsWithCode2AndOneLine) {
       // Output paths go where they point: no directory is made on the side, before any rendering.
       {"--headless --frames 1 --size 8x8 --out " + dir.file("no/such/dir/x.png"), "does not exist"},
       {"--headless --frames 1 --size 8x8 --hdr-out /no-such-root-dir/x.exr", "does not exist"},
-      {"--headless --frames 1 --size 8x8 --stats " + dir.file(""), "is a directory"},
+      {"--headless --frames 1 --size 8x8 --stats " + dir.file(""), "is a folder"},
   };
   for (const Case& c : cases) {
     dyngi::test::SampleRun r = runSample(c.args, dir);
@@ -46,6 +52,122 @@ TEST(SampleCli, BadInputExitsWithCode2AndOneLine) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << ": " << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists(dir.file("no"))) << "a missing output directory was created";
+}
+
+// Special files and long or broken names (docs/CONTENT.md): refused before anything renders, exit 2, one
+// line, never a hang on a FIFO or a read of /dev/zero until memory runs out.
+TEST(SampleCli, SpecialFilesAndBadNamesAreRefusedBeforeRendering) {
+  dyngi::test::TempDir dir;
+  ASSERT_EQ(::mkfifo(dir.file("fifo").c_str(), 0600), 0);
+  const std::string longName = dir.file(std::string(300, 'n') + ".png");
+  const std::string missingShot = dir.write("shot.txt", "2 screenshot " + dir.file("no/such/dir/s.png") + "\n3 quit\n");
+  const std::string binary = dir.write("binary.txt", std::string("1 \x01\x02\x1b[2J\x7f\n", 9));
+  const std::string hugeToken = dir.write("huge.txt", "1 " + std::string(1 << 20, 'k') + "\n");
+  struct Case {
+    std::string args, mentions;
+  };
+  const Case cases[] = {
+      {"--headless --frames 1 --size 8x8 --out " + dir.file("fifo"), "is a FIFO"},
+      {"--headless --frames 1 --size 8x8 --stats " + dir.file("fifo"), "is a FIFO"},
+      {"--headless --frames 1 --size 8x8 --out " + longName, "longer than 255 characters"},
+      {"--headless --frames 1 --size 8x8 --out " + dir.file(std::string(5000, 'n')), "longer than 4095 characters"},
+      {"--headless --frames 1 --size 8x8 --scene " + dir.file("fifo"), "is a FIFO, not a regular file"},
+      {"--headless --frames 1 --size 8x8 --input-script " + dir.file("fifo"), "is a FIFO"},
+      {"--headless --frames 1 --size 8x8 --input-script /dev/zero", "is a character device"},
+      {"--headless --frames 1 --size 8x8 --input-script " + dir.file(""), "is a folder"},
+      {"--headless --frames 1 --size 8x8 --input-script " + missingShot, "does not exist"},
+      {"--headless --frames 1 --size 8x8 --input-script " + binary, "\\x1b[2J"},
+      {"--headless --frames 1 --size 8x8 --input-script " + hugeToken, "..."},
+      {"--headless --frames 1 --size 8x8 --scene \"$(printf '" + dir.file("a") + "\\nb.gltf')\"", "a\\nb.gltf"},
+  };
+  for (const Case& c : cases) {
+    dyngi::test::SampleRun r = runSample(c.args, dir, 30);
+    EXPECT_EQ(r.exitCode, 2) << c.args.substr(0, 200) << "\n" << r.err.substr(0, 400);
+    EXPECT_NE(r.err.find(c.mentions), std::string::npos) << c.args.substr(0, 200) << ": " << r.err.substr(0, 400);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args.substr(0, 200) << ": " << r.err.substr(0, 400);
+    EXPECT_LT(r.err.size(), 1100u) << c.args.substr(0, 200);
+  }
+}
+
+// A full disk is an error for every output kind: exit 1 naming the file, never "wrote".
+TEST(SampleCli, AFullDiskFailsEveryOutput) {
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  dyngi::test::TempDir dir;
+  for (const char* flag : {"--out", "--hdr-out", "--stats", "--memory-log"}) {
+    dyngi::test::SampleRun r = runSample(std::string("--headless --frames 1 --size 8x8 ") + flag + " /dev/full", dir, 60);
+    EXPECT_EQ(r.exitCode, 1) << flag << ": " << r.err;
+    EXPECT_NE(r.err.find("/dev/full: could not be written"), std::string::npos) << flag << ": " << r.err;
+    EXPECT_EQ(r.out.find("wrote /dev/full"), std::string::npos) << flag << ": " << r.out;
+  }
+}
+
+// The brightest light the content rules allow saturates to white in every technique: no inf / inf in the
+// tone map (black), no NaN in the GI (magenta).
+// Under strace, a scene whose URIs point outside its folder (relative, percent-encoded, absolute, a
+// buffer, a name that exists only in the working directory) never opens the file outside.
+TEST(SampleCli, UrisOutsideTheScenesFolderAreNeverOpened) {
+  if (std::system("strace -V >/dev/null 2>&1") != 0) GTEST_SKIP() << "strace is not installed (scripts/setup.sh installs it)";
+  dyngi::test::TempDir dir;
+  std::filesystem::create_directories(dir.file("scene"));
+  const std::vector<uint8_t> png = dyngi::test::smallPng();
+  dir.write("outside.png", std::string(png.begin(), png.end()));
+  dir.write("outside.bin", std::string(64, '\0'));
+  std::vector<std::string> scenes;
+  for (const std::string& uri : {std::string("../outside.png"), std::string("%2e%2e/outside.png"), std::string("..%2Foutside.png"),
+                                 dir.file("outside.png"), std::string("outside.png")}) {
+    dyngi::test::GltfSpec s = dyngi::test::texturedQuad();
+    s.imagesJson = {"{\"uri\":\"" + uri + "\"}"};
+    scenes.push_back(dir.write("scene/image" + std::to_string(scenes.size()) + ".gltf", dyngi::test::writeGltf(s)));
+  }
+  std::string text = dyngi::test::writeGltf(dyngi::test::texturedQuad());
+  const size_t data = text.find("\"uri\":\"data:application/octet-stream");
+  ASSERT_NE(data, std::string::npos);
+  text.replace(data, text.find('"', data + 7) - data + 1, "\"uri\":\"../outside.bin\"");
+  scenes.push_back(dir.write("scene/buffer.gltf", text));
+  for (const std::string& scene : scenes) {
+    const std::string trace = dir.file("trace.txt");
+    // Run from the folder that holds outside.png, so a working-directory fallback would find it.
+    const std::string strace = "env -C " + dir.file("") + " strace -f -qq -e trace=open,openat,openat2,creat -o " + trace + " " DYNGI_SAMPLE_EXE;
+    const dyngi::test::SampleRun r = runSample(strace, "--headless --frames 1 --size 16x16 --gi off --scene " + scene, dir);
+    EXPECT_EQ(r.exitCode, 2) << scene << ": " << r.err;
+    std::ifstream f(trace);
+    std::stringstream opened;
+    opened << f.rdbuf();
+    ASSERT_NE(opened.str().find("openat"), std::string::npos) << "strace recorded nothing for " << scene;
+    for (const char* outside : {"outside.png", "outside.bin"})
+      EXPECT_EQ(opened.str().find(outside), std::string::npos) << scene << " opened " << outside;
+  }
+}
+
+TEST(SampleCli, TheBrightestLightAllowedSaturatesWithoutNaN) {
+  dyngi::test::TempDir dir;
+  std::ifstream in(DYNGI_ASSETS_DIR "/cornell_box.gltf");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string gltf = text.str();
+  const size_t at = gltf.find("\"intensity\":6");
+  ASSERT_NE(at, std::string::npos);
+  gltf.replace(at, 13, "\"intensity\":" + std::to_string(int64_t(dyngi::scene::kMaxLightIntensity)));
+  const std::string scene = dir.write("bright.gltf", gltf);
+  for (const char* gi : {"off", "temporal", "vct"}) {
+    const std::string png = dir.file(std::string(gi) + ".png");
+    dyngi::test::SampleRun r = runSample("--headless --frames 3 --size 32x32 --gi " + std::string(gi) + " --scene " + scene + " --out " + png, dir);
+    ASSERT_EQ(r.exitCode, 0) << gi << ": " << r.err;
+    int w = 0, h = 0, n = 0;
+    unsigned char* p = stbi_load(png.c_str(), &w, &h, &n, 3);
+    ASSERT_NE(p, nullptr);
+    int white = 0, magenta = 0;
+    for (int i = 0; i < w * h; ++i) {
+      const unsigned char* c = p + 3 * i;
+      white += c[0] > 250 && c[1] > 250 && c[2] > 250;
+      magenta += c[0] > 250 && c[1] < 5 && c[2] > 250;
+    }
+    stbi_image_free(p);
+    EXPECT_EQ(magenta, 0) << gi;
+    // Direct light alone leaves the shadowed ceiling and box sides dark; the GI lights them too.
+    const int saturated = std::string(gi) == "off" ? w * h / 8 : w * h / 4;
+    EXPECT_GT(white, saturated) << gi << ": the lit floor and walls saturate";
+  }
 }
 
 // --help lists every --gi mode, every flag of the sample's table and every option of every technique

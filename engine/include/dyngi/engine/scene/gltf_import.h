@@ -7,7 +7,8 @@
 // becomes the active camera), KHR_lights_punctual point/spot/directional lights.
 //
 // Bad input never crashes and never half-populates the world: the file is read and validated in full
-// first, and any problem comes back as one line "<file>: <problem>".
+// first, and any problem comes back as one line "<file>: <problem>". The content rules (image formats,
+// limits, which files a URI may name, value ranges) are in docs/CONTENT.md.
 #include <cstdint>
 #include <string>
 
@@ -42,6 +43,10 @@ const std::vector<std::string>& supportedGltfExtensions();
 struct ImportOptions {
   bool markStatic = true;  // tag imported mesh entities StaticTag (DynamicTag otherwise); skinned ones are always dynamic
   std::string clip;        // animation clip to play (empty: the first)
+  // Folders beside the scene's own that its URIs may name files in; nothing outside them is opened.
+  std::vector<std::string> allowedFolders;
+  uint32_t maxImageDimension = 8192;           // texels a side; larger images are refused before decoding
+  uint64_t maxImageBytes = uint64_t(1) << 30;  // decoded bytes of all of a file's images together
 };
 
 // Returns an empty string on success, else "<path>: <problem>".
@@ -49,7 +54,8 @@ std::string importGltf(const std::string& path, ecs::World& world, AssetStore& a
                        ImportReport* report = nullptr, const ImportOptions& options = {});
 
 // The same from bytes in memory: a .glb when they start with "glTF", else .gltf text. External URIs
-// resolve against `baseDir`; `name` stands for the file in messages. (The fuzz target's entry point.)
+// resolve against `baseDir` and must name files inside it (or options.allowedFolders); `name` stands for
+// the file in messages. (The fuzz target's entry point.)
 std::string importGltfFromMemory(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                                  ecs::World& world, AssetStore& assets, ImportReport* report = nullptr,
                                  const ImportOptions& options = {});
