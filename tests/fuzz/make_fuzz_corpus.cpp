@@ -1,11 +1,14 @@
 // Writes the fuzzer's seed corpus: small valid .gltf and .glb files made by the test support code
-// (a quad, a lit and textured-free room with a camera, a skinned and animated two-bone bar).
+// (a quad, a lit and textured-free room with a camera, a skinned and animated two-bone bar) and the
+// hostile shapes the importer refuses (image bytes that lie about their format, headers promising huge
+// images, JSON near and past the depth limit, a graph that is not a forest), for the fuzzer to mutate.
 // usage: dyngi_make_fuzz_corpus DIR
 #include <cstdio>
 #include <fstream>
 #include <string>
 
 #include "support/gltf_writer.h"
+#include "support/hostile_content.h"
 
 using namespace dyngi::test;
 
@@ -63,6 +66,18 @@ GltfSpec skinnedBar() {
   return s;
 }
 
+GltfSpec texturedWith(const std::string& mime, const std::vector<uint8_t>& bytes) {
+  GltfSpec s = texturedQuad();
+  s.imagesJson = {R"({"uri":")" + dataUri(mime, bytes) + R"("})"};
+  return s;
+}
+
+GltfSpec deepExtras(int depth) {
+  GltfSpec s = quad();
+  s.extraMembersJson = "\"extras\":" + deepJsonArray(depth);
+  return s;
+}
+
 bool write(const std::string& path, const std::string& bytes) {
   std::ofstream f(path, std::ios::binary);
   f << bytes;
@@ -76,7 +91,17 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string dir = argv[1];
-  const std::pair<const char*, GltfSpec> scenes[] = {{"quad", quad()}, {"lit_room", litRoom()}, {"skinned_bar", skinnedBar()}};
+  const std::pair<const char*, GltfSpec> scenes[] = {{"quad", quad()},
+                                                      {"lit_room", litRoom()},
+                                                      {"skinned_bar", skinnedBar()},
+                                                      {"png_texture", texturedWith("image/png", smallPng())},
+                                                      {"pgm_as_png", texturedWith("image/png", pgm16(4, 4, true))},
+                                                      {"huge_png_header", texturedWith("image/png", pngHeader(16384, 16384))},
+                                                      {"huge_jpeg_header", texturedWith("image/jpeg", jpegHeader(9000, 9000))},
+                                                      {"hdr_as_png", texturedWith("image/png", truncatedRadianceHdr())},
+                                                      {"json_depth_60", deepExtras(60)},
+                                                      {"json_depth_200", deepExtras(200)},
+                                                      {"diamond_graph", diamondGraph(24)}};
   int written = 0;
   for (const auto& [name, spec] : scenes) {
     if (!write(dir + "/" + name + ".gltf", writeGltf(spec)) || !write(dir + "/" + name + ".glb", writeGlb(spec))) {
