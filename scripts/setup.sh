@@ -11,7 +11,7 @@ PACKAGES=(
   libtinygltf-dev libembree-dev libimgui-dev libstb-dev libtinyexr-dev libpng-dev libjpeg62-turbo-dev
   libgtest-dev libbenchmark-dev nlohmann-json3-dev libtbb-dev
   clang libclang-rt-14-dev libfuzzer-14-dev
-  xvfb imagemagick strace
+  xvfb imagemagick strace time
 )
 
 missing=()
