@@ -105,7 +105,7 @@ std::function<std::string(const Options&)> text(std::string Options::*member) {
 
 const std::vector<SampleFlag>& sampleFlags() {
   static const std::vector<SampleFlag> flags = {
-      {"scene", "PATH|NAME", "a .gltf/.glb file or a built-in scene (showcase: an uplight, mostly bounce light; two-rooms[-door]: the leak test)",
+      {"scene", "PATH|NAME", "a .gltf/.glb file or a built-in scene (showcase: an uplight, mostly bounce light; cornell-emissive: lit by an emissive quad only; two-rooms[-door]: the leak test)",
        [](Options& o, const std::string& v) { return (o.scene = v), std::string(); }, text(&Options::scene)},
       {"headless", "", "render offscreen, no window (also the fallback when no window opens)", on(&Options::headless)},
       {"size", "WxH", "render size",

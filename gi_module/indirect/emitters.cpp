@@ -32,6 +32,8 @@ EmitterSet::EmitterSet(const render::RenderSnapshot& snapshot, const scene::Asse
     const float radiance = emitterLuminance(factor * textureMean(assets, draw.material.emissiveTexture));
     if (!(radiance > 0.0f) || !std::isfinite(radiance)) continue;
     float entityTotal = 0.0f;
+    std::vector<float>& pdfs = pdfArea_[draw.entity];
+    pdfs.assign(m.indices.size() / 3, 0.0f);
     for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
       const glm::vec3 p0 = glm::vec3(draw.model * glm::vec4(m.positions[m.indices[t]], 1.0f));
       const glm::vec3 p1 = glm::vec3(draw.model * glm::vec4(m.positions[m.indices[t + 1]], 1.0f));
@@ -42,10 +44,18 @@ EmitterSet::EmitterSet(const render::RenderSnapshot& snapshot, const scene::Asse
       total_ += power;
       entityTotal += power;
       triangles_.push_back({d, uint32_t(t / 3), area, total_});
+      pdfs[t / 3] = power / area;  // divided by the total below: p(triangle) / A
     }
     if (entityTotal > 0.0f) sources_.push_back({draw.entity, entityTotal, factor});
   }
+  for (auto& [entity, pdfs] : pdfArea_)
+    for (float& p : pdfs) p = total_ > 0.0f ? p / total_ : 0.0f;
   if (!triangles_.empty()) surfaces_.emplace(snapshot, assets);
+}
+
+float EmitterSet::pdfArea(ecs::Entity entity, uint32_t primitive) const {
+  const auto it = pdfArea_.find(entity);
+  return it != pdfArea_.end() && primitive < it->second.size() ? it->second[primitive] : 0.0f;
 }
 
 float lightPower(const render::LightItem& l, const scene::Aabb& bounds) {
@@ -102,7 +112,10 @@ EmitterSample EmitterSet::sample(float u0, float u1, float u2, float u3) const {
   if (!surfaces_->at(h, point + side, -side, sh)) return s;
   s.position = point;
   s.normal = sh.shadingNormal;
+  s.faceNormal = side;
   s.flux = sh.emission * (kTwoPi * tri.area / p);
+  s.radiance = sh.emission;
+  s.pdfArea = p / tri.area;
   s.entity = draw.entity;
   return s;
 }

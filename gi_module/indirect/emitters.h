@@ -6,6 +6,7 @@
 // after. Emitters are two-sided, as the path tracer and the rasterizer treat them: a sample emits from a
 // side picked at random.
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -19,7 +20,10 @@ namespace dyngi::gi {
 struct EmitterSample {
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f, 1.0f, 0.0f};  // the side it emits from
+  glm::vec3 faceNormal{0.0f, 1.0f, 0.0f};  // the triangle's, on that side (what area and solid angle convert by)
   glm::vec3 flux{0.0f};                // Le(x) 2 pi A / p(triangle): one sample's estimate of all emitters' flux
+  glm::vec3 radiance{0.0f};            // Le(x), textured
+  float pdfArea = 0.0f;                // density of this point per unit area: p(triangle) / A; 0: no sample
   ecs::Entity entity{};
 };
 
@@ -33,6 +37,9 @@ class EmitterSet {
   const std::vector<EmitterSource>& sources() const { return sources_; }
   // u0 picks the triangle, u1 u2 the point, u3 the side.
   EmitterSample sample(float u0, float u1, float u2, float u3) const;
+  // The density per unit area with which sample() picks a point of this triangle (0: never), for
+  // weighting a surface hit against emitter sampling (the path tracer's MIS).
+  float pdfArea(ecs::Entity entity, uint32_t primitive) const;
 
  private:
   struct Triangle {
@@ -46,6 +53,7 @@ class EmitterSet {
   std::optional<SceneSurfaces> surfaces_;  // made only when something emits (it maps every draw)
   std::vector<Triangle> triangles_;
   std::vector<EmitterSource> sources_;
+  std::unordered_map<ecs::Entity, std::vector<float>> pdfArea_;  // per emitting draw, per primitive
   float total_ = 0.0f;
 };
 

@@ -9,6 +9,7 @@
 #include "dyngi/engine/scene/light_units.h"
 #include "dyngi/gi/job_pool.h"
 #include "bvh/scene_surfaces.h"
+#include "indirect/emitters.h"
 #include "sampling.h"
 
 namespace dyngi::gi {
@@ -19,7 +20,8 @@ const OptionTable<PathTracerSettings>& PathTracerSettings::table() {
           .add(DYNGI_OPTION(PathTracerSettings, spp), "path tracer samples per pixel", 1, 1000000)
           .add(DYNGI_OPTION(PathTracerSettings, bounces), "indirect bounces (0: direct light only)", 0, 64)
           .add(DYNGI_OPTION(PathTracerSettings, seed), "seed of the path tracer's random numbers", 0, 4294967295.0)
-          .add(DYNGI_OPTION(PathTracerSettings, pixelJitter), "samples spread over the pixel (off: through its centre, as the rasterizer samples: the reference for a GI image)", 0, 1);
+          .add(DYNGI_OPTION(PathTracerSettings, pixelJitter), "samples spread over the pixel (off: through its centre, as the rasterizer samples: the reference for a GI image)", 0, 1)
+          .add(DYNGI_OPTION(PathTracerSettings, emitterSampling), "emissive triangles sampled as lights, by power, with MIS against the bounce (off: found by bounces only)", 0, 1);
   return t;
 }
 namespace {
@@ -50,10 +52,12 @@ struct Rng {
 class Tracer {
  public:
   Tracer(const render::RenderSnapshot& s, const EmbreeScene& bvh, const scene::AssetStore& assets, const PathTracerSettings& st)
-      : snap_(s), bvh_(bvh), surfaces_(s, assets), settings_(st), sceneScale_(surfaces_.sceneScale()) {}
+      : snap_(s), bvh_(bvh), surfaces_(s, assets), emitters_(s, assets), settings_(st), sceneScale_(surfaces_.sceneScale()),
+        sampleEmitters_(st.emitterSampling && !emitters_.empty()) {}
 
   glm::vec3 radiance(glm::vec3 origin, glm::vec3 dir, Rng& rng) const {
     glm::vec3 L(0.0f), throughput(1.0f);
+    float bouncePdf = 0.0f;  // solid-angle density of the bounce that found this hit; 0: the camera ray
     for (uint32_t depth = 0;; ++depth) {
       RayHit h = bvh_.intersect(origin, dir, 0.0f, 1e30f);
       if (!h.hit) {
@@ -62,10 +66,12 @@ class Tracer {
       }
       SurfaceHit sh;
       if (!surfaces_.at(h, origin, dir, sh)) break;
-      L += throughput * sh.emission;
+      if (sh.emission != glm::vec3(0.0f)) L += throughput * sh.emission * bounceWeight(h, sh, dir, bouncePdf);
       if (glm::dot(sh.diffuseAlbedo, sh.diffuseAlbedo) <= 0.0f) break;
       L += throughput * directLight(sh);
       if (depth >= settings_.bounces) break;
+      // The emitters' light here is what the next hit's emission would add: sampled now, weighted by MIS.
+      if (sampleEmitters_) L += throughput * emitterLight(sh, rng);
       // Cosine-weighted bounce: the Lambert BRDF (albedo/pi) x cos / pdf (cos/pi) = albedo.
       throughput *= sh.diffuseAlbedo;
       if (depth + 1 >= settings_.rouletteAfter) {
@@ -75,6 +81,7 @@ class Tracer {
       }
       dir = cosineSample(sh.shadingNormal, rng);
       if (glm::dot(dir, sh.geometricNormal) <= 0.0f) break;  // shading normal tilted below the surface
+      bouncePdf = std::max(glm::dot(dir, sh.shadingNormal), 0.0f) / kPi;
       origin = offset(sh);
     }
     return L;
@@ -86,6 +93,36 @@ class Tracer {
   static glm::vec3 cosineSample(const glm::vec3& n, Rng& rng) {
     float u1 = rng.uniform(), u2 = rng.uniform();
     return cosineDirection(n, u1, u2);
+  }
+
+  // Power heuristic (Veach): the share of a contribution that the strategy with density `a` keeps.
+  static float powerHeuristic(float a, float b) { return a * a / (a * a + b * b); }
+
+  // The weight of emission found by a bounce, against emitter sampling finding the same point.
+  float bounceWeight(const RayHit& h, const SurfaceHit& sh, const glm::vec3& dir, float bouncePdf) const {
+    if (!sampleEmitters_ || bouncePdf <= 0.0f) return 1.0f;
+    const float cosY = std::abs(glm::dot(sh.geometricNormal, dir));
+    const float pdfArea = emitters_.pdfArea(h.entity, h.primitive);
+    if (pdfArea <= 0.0f || cosY <= 0.0f) return 1.0f;
+    return powerHeuristic(bouncePdf, pdfArea * h.t * h.t / cosY);
+  }
+
+  // One point on the emitters, chosen by power: its light on `sh`, shadowed, weighted against the bounce.
+  glm::vec3 emitterLight(const SurfaceHit& sh, Rng& rng) const {
+    const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+    const EmitterSample e = emitters_.sample(u0, u1, u2, 0.0f);
+    if (!(e.pdfArea > 0.0f)) return glm::vec3(0.0f);
+    const glm::vec3 to = e.position - sh.position;
+    const float d2 = glm::dot(to, to);
+    if (!(d2 > 0.0f)) return glm::vec3(0.0f);
+    const glm::vec3 wi = to / std::sqrt(d2);
+    const float cosX = glm::dot(sh.shadingNormal, wi), cosY = std::abs(glm::dot(e.faceNormal, wi));
+    // Directions the bounce cannot take (below either normal) carry no light here either.
+    if (cosX <= 0.0f || glm::dot(sh.geometricNormal, wi) <= 0.0f || cosY <= 1e-6f) return glm::vec3(0.0f);
+    if (bvh_.occluded(Segment{offset(sh), e.position}, 1e-4f * sceneScale_)) return glm::vec3(0.0f);
+    const float pdfLight = e.pdfArea * d2 / cosY;  // per solid angle at sh
+    const float weight = powerHeuristic(pdfLight, cosX / kPi);
+    return sh.diffuseAlbedo / kPi * e.radiance * (cosX * weight / pdfLight);
   }
 
   glm::vec3 directLight(const SurfaceHit& sh) const {
@@ -104,8 +141,10 @@ class Tracer {
   const render::RenderSnapshot& snap_;
   const EmbreeScene& bvh_;
   SceneSurfaces surfaces_;
+  EmitterSet emitters_;
   PathTracerSettings settings_;
   float sceneScale_ = 1.0f;
+  bool sampleEmitters_ = false;
 };
 
 }  // namespace

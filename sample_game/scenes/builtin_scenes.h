@@ -18,6 +18,11 @@ struct CornellLayout {
   static constexpr float kSpotOuterDeg = 40.0f;
   static constexpr float kSpotInnerDeg = 25.0f;
   static constexpr float kWhite = 0.75f;
+  // "cornell-emissive": the spot replaced by an emissive quad under the ceiling (two-sided, as every
+  // emitter), of about the spot's power downwards: pi x (2 x 0.25)^2 x 11 = 8.6 W against the spot's 8.8.
+  static constexpr float kEmitterHalfSize = 0.25f;  // m
+  static constexpr float kEmitterHeight = 1.98f;    // m
+  static constexpr float kEmitterRadiance = 11.0f;  // W/(m^2 sr)
 };
 
 // "showcase" (the main job's scene): the Cornell box of "cornell-dynamic" (a box sliding, a box turning)
@@ -45,7 +50,7 @@ const std::vector<std::string>& animatedSceneNames();  // what --animate takes (
 // static or dynamic tag.
 scene::Entity addSceneMesh(ecs::World& world, scene::AssetStore& assets, scene::MeshData mesh, const glm::vec3& albedo,
                            const scene::Transform& transform, bool dynamic, const char* name);
-// Builds `name` ("cornell", "cornell-dynamic", "showcase", "two-rooms", "two-rooms-door") into the world; adds a camera.
+// Builds `name` (builtinSceneNames()) into the world; adds a camera.
 void buildBuiltinScene(const std::string& name, ecs::World& world, scene::AssetStore& assets);
 
 void buildTwoRooms(bool doorway, ecs::World& world, scene::AssetStore& assets);

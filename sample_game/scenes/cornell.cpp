@@ -22,10 +22,22 @@ Light cornellSpot(glm::vec3 color) {
   light.innerConeAngle = glm::radians(CornellLayout::kSpotInnerDeg);
   return light;
 }
+
+void addCornellCamera(ecs::World& w) {
+  Entity cam = w.create();
+  Transform ct;
+  ct.translation = {0.0f, 1.0f, 3.9f};
+  w.add(cam, ct);
+  w.add(cam, WorldTransform{ct.matrix()});
+  w.add(cam, Camera{.yfov = glm::radians(40.0f), .znear = 0.05f, .zfar = 50.0f});
+  w.add(cam, ActiveCamera{});
+  w.add(cam, Name{"camera"});
+}
 }  // namespace
 
 const std::vector<std::string>& builtinSceneNames() {
-  static const std::vector<std::string> names = {"cornell", "cornell-dynamic", "showcase", "two-rooms", "two-rooms-door"};
+  static const std::vector<std::string> names = {"cornell", "cornell-dynamic", "cornell-emissive", "showcase", "two-rooms",
+                                                 "two-rooms-door"};
   return names;
 }
 
@@ -76,6 +88,16 @@ void buildBuiltinScene(const std::string& name, ecs::World& w, AssetStore& asset
   tallBox.rotation = glm::angleAxis(glm::radians(17.0f), glm::vec3(0, 1, 0));
   Entity tallE = addSceneMesh(w, assets, makeBox({0.3f, 0.6f, 0.3f}), white, tallBox, dynamic, "tall_box");
 
+  if (name == "cornell-emissive") {
+    // The only light: an emissive quad just under the ceiling (black, so it reflects nothing).
+    const float h = CornellLayout::kEmitterHalfSize;
+    Entity lamp = addSceneMesh(w, assets, makeQuad({-h, CornellLayout::kEmitterHeight, -h}, {2 * h, 0, 0}, {0, 0, 2 * h}),
+                               glm::vec3(0.0f), {}, false, "ceiling_lamp");
+    w.write<Material>(lamp).emissive = glm::vec3(CornellLayout::kEmitterRadiance);
+    addCornellCamera(w);
+    return;
+  }
+
   Entity spot = w.create();
   Transform st;
   st.translation = {0.0f, CornellLayout::kSpotHeight, 0.0f};
@@ -123,14 +145,7 @@ void buildBuiltinScene(const std::string& name, ecs::World& w, AssetStore& asset
     w.add(tallE, spin);
   }
 
-  Entity cam = w.create();
-  Transform ct;
-  ct.translation = {0.0f, 1.0f, 3.9f};
-  w.add(cam, ct);
-  w.add(cam, WorldTransform{ct.matrix()});
-  w.add(cam, Camera{.yfov = glm::radians(40.0f), .znear = 0.05f, .zfar = 50.0f});
-  w.add(cam, ActiveCamera{});
-  w.add(cam, Name{"camera"});
+  addCornellCamera(w);
 }
 
 namespace {

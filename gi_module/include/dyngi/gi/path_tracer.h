@@ -1,7 +1,9 @@
 #pragma once
 // The reference: a CPU path tracer over the same Embree scene, camera, lights, materials and light units
 // as the rasterizer. Lambert diffuse (base colour x texture x (1 - metallic)), emissive surfaces,
-// punctual lights by next-event estimation, cosine-sampled bounces, Russian roulette after a few.
+// punctual lights by next-event estimation, emissive triangles too (sampled by power, weighted against
+// the bounce that may hit them by multiple importance sampling), cosine-sampled bounces, Russian roulette
+// after a few. An emitter's light on a surface counts as one bounce, as the VPL techniques count it.
 // `bounces` counts indirect bounces: 0 = emission + direct light, 1 = plus one indirect bounce, ...
 #include <cstdint>
 #include <functional>
@@ -20,9 +22,10 @@ struct PathTracerSettings {
   uint32_t threads = 0;         // 0: all hardware threads
   uint64_t seed = 1;
   bool pixelJitter = true;      // false: every sample through the pixel centre (as the rasterizer samples)
+  bool emitterSampling = true;  // false: emissive surfaces found only by the bounces (unbiased, far noisier)
   glm::vec3 background{0.0f};   // radiance of rays that leave the scene
 
-  static const OptionTable<PathTracerSettings>& table();  // spp, bounces, seed, pixel-jitter
+  static const OptionTable<PathTracerSettings>& table();  // spp, bounces, seed, pixel-jitter, emitter-sampling
 };
 
 struct PathTracerStats {
