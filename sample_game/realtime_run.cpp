@@ -37,14 +37,11 @@ struct GiSetup {
   gi::VoxelScene* voxels = nullptr;  // the one the voxel views and stats read, if any
 };
 
-GiSetup setUpGi(const Options& o, render::VulkanContext& ctx, render::Renderer& renderer, const ecs::World& world,
-                const scene::AssetStore& assets) {
+GiSetup setUpGi(const Options& o, render::VulkanContext& ctx, render::Renderer& renderer, const scene::AssetStore& assets) {
   GiSetup g;
   const bool voxelView = o.view == "voxels" || o.view == "svo-steps";
   const gi::VoxelDebugView voxelDebug = o.view == "voxels" ? gi::VoxelDebugView::Voxels : gi::VoxelDebugView::SvoSteps;
   if (o.usesGiSystem()) {
-    if (world.count<scene::Light>() == 0)
-      std::fprintf(stderr, "dyngi_sample: note: VPLs come from punctual lights only; this scene has none, so no indirect light\n");
     g.systemOwned = std::make_unique<gi::GiSystem>(ctx, assets, o.giSettings);
     g.system = g.systemOwned.get();
     // A value the technique adjusted (a VPL count rounded to a multiple of the bounces) is reported as used.
@@ -173,7 +170,7 @@ class RealtimeRun {
       swapchain_->recreate(width, height);
     }
     renderer_.resize(width, height);
-    gi_ = setUpGi(o, ctx_, renderer_, world, assets);
+    gi_ = setUpGi(o, ctx_, renderer_, assets);
     session_ = std::make_unique<PlaySession>(o, ctx_, renderer_, scheduler_, assets, gi_.system, window_.get(), std::move(script));
     addSystems();
   }

@@ -86,6 +86,39 @@ TEST_F(RenderTest, EmissivePanelLightsTheRoomThroughBothVplTechniques) {
   }
 }
 
+// "cornell-emissive": the lamp hangs 2 cm under the ceiling, closer than SVO visibility lifts a segment's
+// end off its surface (1.5 voxels, 2.6 cm). The VPLs its back leaves on the ceiling would start their
+// segments under the lamp and light the room through it (the floor was 41 percent bright with 3
+// bounces); they are left out of the gather, as Embree visibility leaves them out by their own rays.
+TEST_F(RenderTest, LampUnderTheCeilingDoesNotLightTheRoomThroughItself) {
+  constexpr uint32_t kBounces = 3;
+  auto build = [](ecs::World& w, scene::AssetStore& a) { sample::buildBuiltinScene("cornell-emissive", w, a); };
+  render::ImageRgba reference;
+  for (const Case& c : cases(kBounces)) {
+    if (c.settings.technique != "temporal") continue;  // many lights bounce on the GPU through the SVO: Known limits
+    GiRun run(context(), c.settings, build, kSize, kSize);
+    run.step(3);
+    const Frame f = run.readFrame();
+    if (reference.empty()) reference = run.pathTraced(512, kBounces);
+    dumpTestImage(std::string("emitter_lamp_") + c.name, f.hdr, kSize, kSize);
+    const Regions regions = cornellRegions(f, run.assets, kSize);
+    ASSERT_TRUE(regions.masks.count("floor"));
+    size_t checked = 0;
+    for (const auto& [name, mask] : regions.masks) {
+      size_t n = 0;
+      for (uint8_t m : mask) n += m;
+      const double a = luminance(render::meanOver(f.hdr, &mask)), b = luminance(render::meanOver(reference, &mask));
+      dyngi::test::report("lamp %-4s %-16s %5zu px %.4f / %.4f = %.3f\n", c.name, name.c_str(), n, a, b, a / b);
+      // Left out: the boxes' faces (the tail of the error, not this leak) and the ceiling, which the lamp
+      // lights at grazing angles only, where the VPLs' clamp and its spread decide (0.82 SVO, 1.83 Embree).
+      if (n < 60 || name.find("box") != std::string::npos || name == "ceiling") continue;
+      EXPECT_NEAR(a / b, 1.0, 0.15) << c.name << ": " << name;
+      ++checked;
+    }
+    EXPECT_GE(checked, 4u) << c.name;
+  }
+}
+
 // The shared scene an artist would try first: CornellBox.glb, lit only by its emissive ceiling panel
 // (imported with KHR_materials_emissive_strength). The path tracer is Lambert only, and so are the VPLs.
 TEST_F(RenderTest, SharedEmissiveCornellBoxLightsTheRoomThroughBothVplTechniques) {

@@ -148,7 +148,35 @@ void TemporalIndirect::prepare(render::VulkanContext&, const render::RenderSnaps
       if (probes && bounce + 1 == B && !v.probeSurface.isNull()) put(probe++, v.probePosition, v.probeNormal, v.flux * v.probeAlbedo * tail, B, path);
     }
   }
+  dropTrappedVpls(gpuVpls);
   vpls_.upload(gpuVpls.data(), gpuVpls.size() * sizeof(gpu::GpuVpl));
+}
+
+// SVO visibility starts a VPL's segments liftVoxels off its surface. A VPL with another surface closer
+// than that along its normal (the ceiling over a lamp hung 2 cm under it) would start past that surface
+// and light the room through it; what it really lights is the surface in front of it, which the path's
+// next VPL carries. So it is left out of the gather; one Embree ray per VPL gathered says which.
+void TemporalIndirect::dropTrappedVpls(std::vector<gpu::GpuVpl>& gpuVpls) {
+  trappedVpls_ = 0;
+  if (settings_.visibility != VisibilityBackend::Svo || !bvh_ || !voxels_ || !voxels_->hasVolume()) return;
+  const float lift = settings_.vpl.liftVoxels * voxels_->volume().voxelSize;
+  if (!(lift > 0.0f)) return;
+  std::vector<Segment> segments;
+  std::vector<size_t> slots;
+  for (size_t i = 0; i < gpuVpls.size(); ++i) {
+    const gpu::GpuVpl& v = gpuVpls[i];
+    if (v.position.w < 0.0f) continue;
+    const glm::vec3 p(v.position), n(v.normal);
+    segments.push_back({p, p + n * lift});
+    slots.push_back(i);
+  }
+  std::vector<uint8_t> occluded(segments.size());
+  bvh_->occluded(segments.data(), segments.size(), occluded.data(), 0.05f * lift);  // off its own surface
+  for (size_t k = 0; k < slots.size(); ++k)
+    if (occluded[k]) {
+      gpuVpls[slots[k]].position.w = -1.0f;
+      ++trappedVpls_;
+    }
 }
 
 namespace {

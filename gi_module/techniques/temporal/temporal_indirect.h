@@ -27,6 +27,7 @@ namespace dyngi::gi {
 
 namespace gpu {
 struct AccumulatePush;
+struct GpuVpl;
 }
 
 struct TemporalVpl {
@@ -58,8 +59,10 @@ class TemporalIndirect final : public render::RenderFeature {
   void setVplsPerFrame(uint32_t count) { gathered_ = std::clamp(count, 1u, perSet_); }
   uint32_t setsRendered() const;  // sets rendered at least once
   double lastBvhVisibilityMs() const { return bvhMs_; }
+  uint32_t lastTrappedVpls() const { return trappedVpls_; }  // left out this frame: a surface within the SVO lift
 
  private:
+  void dropTrappedVpls(std::vector<gpu::GpuVpl>& gpuVpls);
   void computeBvhVisibility(render::FrameContext& frame, uint32_t perPixel);
   // The full reprojection (temporal_reproject.comp) of the pixels the gather queued, or of every pixel.
   void recordReprojection(render::FrameContext& frame, const gpu::AccumulatePush& push, bool queued);
@@ -92,6 +95,7 @@ class TemporalIndirect final : public render::RenderFeature {
   std::unique_ptr<class IndirectGatherPass> gatherPass_;
   std::unique_ptr<class IndirectFilterPass> filterPass_;
   double bvhMs_ = 0.0;
+  uint32_t trappedVpls_ = 0;
 };
 
 }  // namespace dyngi::gi

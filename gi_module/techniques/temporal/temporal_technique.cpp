@@ -65,7 +65,8 @@ class TemporalTechnique final : public Technique {
               {"invalidated_total", double(s.invalidatedTotal)},
               {"replaced_total", double(s.replacedTotal)},
               {"reshoot_budget", s.reshootBudget},
-              {"vpls_per_frame", feature_.vplsPerFrame()}}}};
+              {"vpls_per_frame", feature_.vplsPerFrame()},
+              {"trapped_last_frame", feature_.lastTrappedVpls()}}}};
   }
   // VPLs gathered per frame (an evenly spread subset of the set): the gather's cost is proportional to
   // them. Not the interleave K: K = 8 saves 37 ms of gather and adds 22 ms of filter at 768^2 (the
