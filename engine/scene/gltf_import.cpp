@@ -180,7 +180,8 @@ class Importer {
         if (t >= 0) dataUse[size_t(t)] = true;
     }
     for (size_t t = 0; t < model_.textures.size(); ++t) {
-      textureIds_.push_back(colourUse[t] || !dataUse[t] ? commitTexture(t, /*srgb=*/true) : kNoTexture);
+      // Only textures a material uses: those are the ones checked (an unused one may name no image).
+      textureIds_.push_back(colourUse[t] ? commitTexture(t, /*srgb=*/true) : kNoTexture);
       linearTextureIds_.push_back(dataUse[t] ? commitTexture(t, /*srgb=*/false) : kNoTexture);
     }
     for (auto& prims : meshes_) {

@@ -103,7 +103,7 @@ TEST_F(RenderTest, LampUnderTheCeilingDoesNotLightTheRoomThroughItself) {
       GiRun run(context(), c.settings, build, kSize, kSize);
       run.step(3);
       const Frame f = run.readFrame();
-      if (reference.empty()) reference = run.pathTraced(512, tail ? 8 : kBounces);
+      if (reference.empty()) reference = run.pathTraced(256, tail ? 8 : kBounces);  // regions of 1000+ pixels: 256 spp is ample
       dumpTestImage(std::string("emitter_lamp_") + c.name + (tail ? "_tail" : ""), f.hdr, kSize, kSize);
       const Regions regions = cornellRegions(f, run.assets, kSize);
       ASSERT_TRUE(regions.masks.count("floor"));
