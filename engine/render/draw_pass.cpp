@@ -3,6 +3,12 @@
 #include "shared/gpu_types.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
+#include <compare>
+#include <numeric>
+
+#include <glm/gtc/packing.hpp>
 #include <stdexcept>
 
 namespace dyngi::render {
@@ -54,25 +60,89 @@ uint32_t drawTextureBits(const FrameContext& frame, const DrawItem& d) {
   return bits;
 }
 
-void drawEach(const FrameContext& frame, std::optional<std::span<const size_t>> indices, const DrawPipelineFor& pipelineFor,
-              const DrawSetup& setup) {
+namespace {
+// What decides a batch: the mesh, and the textures and alpha mode every pass's pipeline variant and
+// descriptors follow from.
+struct BatchKey {
+  const GpuMesh* mesh;
+  std::array<scene::TextureId, 5> textures;
+  bool alphaMask;
+  auto operator<=>(const BatchKey&) const = default;
+};
+BatchKey batchKey(const DrawItem& d, const GpuMesh* mesh) {
+  const scene::Material& m = d.material;
+  return {mesh, {m.baseColorTexture, m.emissiveTexture, m.metallicRoughnessTexture, m.occlusionTexture, m.normalTexture}, m.alphaMask};
+}
+
+gpu::DrawInstance drawInstance(const DrawItem& d) {
+  const scene::Material& m = d.material;
+  gpu::DrawInstance r;
+  r.model = d.model;
+  r.baseColor = glm::vec4(glm::vec3(m.baseColor), m.alphaMask ? alphaMaskThreshold(m) : 1.0f);
+  r.emissive = glm::vec4(m.emissive, std::bit_cast<float>(glm::packHalf2x16(glm::vec2(m.occlusionStrength, m.normalScale))));
+  r.params = glm::vec4(m.metallic, m.roughness, m.uvTransform.offset);
+  r.uvLinear = m.uvTransform.linear();
+  return r;
+}
+}  // namespace
+
+void buildFrameInstances(VulkanContext& ctx, const RenderSnapshot& snapshot, const std::vector<GpuMesh*>& meshes, Buffer& records,
+                         FrameInstances& out) {
+  const size_t n = snapshot.draws.size();
+  std::vector<BatchKey> keys(n);
+  for (size_t i = 0; i < n; ++i) keys[i] = batchKey(snapshot.draws[i], meshes[i]);
+  out.drawOfSlot.resize(n);
+  std::iota(out.drawOfSlot.begin(), out.drawOfSlot.end(), 0u);
+  std::stable_sort(out.drawOfSlot.begin(), out.drawOfSlot.end(), [&](uint32_t a, uint32_t b) { return keys[a] < keys[b]; });
+  out.slotOfDraw.resize(n);
+  out.batchOfSlot.resize(n);
+  const VkDeviceSize bytes = std::max<VkDeviceSize>(n, 1) * sizeof(gpu::DrawInstance);
+  if (!records.valid() || records.size() < bytes)
+    records = Buffer(ctx, bytes + bytes / 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "draw instances");
+  auto* mapped = static_cast<gpu::DrawInstance*>(records.mapped());
+  uint32_t batch = 0;
+  for (uint32_t slot = 0; slot < n; ++slot) {
+    const uint32_t draw = out.drawOfSlot[slot];
+    out.slotOfDraw[draw] = slot;
+    if (slot > 0 && keys[draw] != keys[out.drawOfSlot[slot - 1]]) ++batch;
+    out.batchOfSlot[slot] = batch;
+    mapped[slot] = drawInstance(snapshot.draws[draw]);
+  }
+  records.flush();
+  out.records = &records;
+}
+
+void drawBatched(const FrameContext& frame, std::optional<std::span<const size_t>> indices, const DrawPipelineFor& pipelineFor,
+                 const BatchSetup& setup) {
+  const FrameInstances& inst = *frame.instances;
+  std::vector<uint32_t> slots;
+  if (indices) {
+    slots.reserve(indices->size());
+    for (size_t i : *indices) slots.push_back(inst.slotOfDraw[i]);
+    std::sort(slots.begin(), slots.end());
+  } else {
+    slots.resize(frame.snapshot.draws.size());
+    std::iota(slots.begin(), slots.end(), 0u);
+  }
   const Pipeline* bound = nullptr;
-  auto draw = [&](size_t i) {
-    const GpuMesh* mesh = frame.meshes[i];
-    if (!mesh || mesh->indexCount == 0) return;
-    const DrawItem& d = frame.snapshot.draws[i];
+  for (size_t k = 0; k < slots.size();) {
+    const uint32_t first = slots[k];
+    size_t end = k + 1;
+    while (end < slots.size() && slots[end] == slots[end - 1] + 1 && inst.batchOfSlot[slots[end]] == inst.batchOfSlot[first]) ++end;
+    const uint32_t count = uint32_t(end - k);
+    k = end;
+    const size_t drawIndex = inst.drawOfSlot[first];
+    const GpuMesh* mesh = frame.meshes[drawIndex];
+    if (!mesh || mesh->indexCount == 0) continue;
+    const DrawItem& d = frame.snapshot.draws[drawIndex];
     const Pipeline& pipeline = pipelineFor(d);
     if (&pipeline != bound) {
       vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.handle());
       bound = &pipeline;
     }
     setup(frame.cmd, d, pipeline);
-    drawMesh(frame.cmd, *mesh);
-  };
-  if (indices) {
-    for (size_t i : *indices) draw(i);
-  } else {
-    for (size_t i = 0; i < frame.snapshot.draws.size(); ++i) draw(i);
+    bindMesh(frame.cmd, *mesh);
+    vkCmdDrawIndexed(frame.cmd, mesh->indexCount, count, 0, 0, first);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <glm/gtc/packing.hpp>
 
+#include "dyngi/engine/render/draw_pass.h"
 #include "dyngi/engine/render/frame_uniforms.h"
 #include "shared/gpu_types.h"
 #include "passes/passes.h"
@@ -160,6 +161,7 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
   auto t0 = Clock::now();
   // Uploads first (they submit their own one-off work), then record the frame.
   const std::vector<GpuMesh*> meshes = uploadAssets(snapshot);
+  buildFrameInstances(ctx_, snapshot, meshes, drawInstances_, frameInstances_);
   auto textures = [&](scene::TextureId id) { return snapshot.assets ? textureView(*snapshot.assets, id) : whiteTexture_.view(); };
   for (RenderFeature* f : features_) f->prepare(ctx_, snapshot);
   shadow_->prepare(snapshot);
@@ -172,6 +174,7 @@ const FrameStats& Renderer::render(const RenderSnapshot& snapshot, Swapchain* sw
   FrameContext frame{ctx_, cmd_, timer_.get(), snapshot, targets_, frameUniforms_, fu, meshes, linearSampler_, nearestSampler_, textures,
                      submitAndWait};
   frame.lights = LightInputs{&shadow_->lights(), &shadow_->matrices(), &shadow_->shadowMap(), shadow_->lightCount()};
+  frame.instances = &frameInstances_;
   recordPasses(frame, textures);
   if (imageIndex != UINT32_MAX && !settings_.featuresOnly) recordPresentBlit(*swapchain, imageIndex);
   DYNGI_VK(vkEndCommandBuffer(cmd_));
@@ -265,6 +268,7 @@ const FrameStats& Renderer::recordHostFrame(const RenderSnapshot& snapshot, VkCo
   }
   auto t0 = Clock::now();
   const std::vector<GpuMesh*> meshes = uploadAssets(snapshot);
+  buildFrameInstances(ctx_, snapshot, meshes, drawInstances_, frameInstances_);
   auto textures = [&](scene::TextureId id) { return snapshot.assets ? textureView(*snapshot.assets, id) : whiteTexture_.view(); };
   for (RenderFeature* f : features_) f->prepare(ctx_, snapshot);
   shadow_->prepare(snapshot);
@@ -273,6 +277,7 @@ const FrameStats& Renderer::recordHostFrame(const RenderSnapshot& snapshot, VkCo
   auto noWait = [] { throw VulkanError("this technique reads the frame back mid-frame, which a host's frame cannot (use SVO visibility)"); };
   FrameContext frame{ctx_, cmd, timer_.get(), snapshot, targets_, frameUniforms_, fu, meshes, linearSampler_, nearestSampler_, textures, noWait};
   frame.lights = LightInputs{&shadow_->lights(), &shadow_->matrices(), &shadow_->shadowMap(), shadow_->lightCount()};
+  frame.instances = &frameInstances_;
   shadow_->execute(frame);
   fillGBuffer(frame);
   bool indirectWritten = false;

@@ -79,18 +79,21 @@ void Buffer::reset() {
   ctx_ = nullptr;
 }
 
+void Buffer::flush() {
+  if (!mapped_ || coherent_) return;
+  VkMappedMemoryRange r{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
+  r.memory = memory_;
+  r.offset = 0;
+  r.size = VK_WHOLE_SIZE;
+  vkFlushMappedMemoryRanges(ctx_->device(), 1, &r);
+}
+
 void Buffer::upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
   if (bytes == 0) return;
   if (offset + bytes > size_) throw VulkanError("Buffer::upload out of range");
   if (mapped_) {
     std::memcpy(static_cast<uint8_t*>(mapped_) + offset, data, bytes);
-    if (!coherent_) {
-      VkMappedMemoryRange r{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
-      r.memory = memory_;
-      r.offset = 0;
-      r.size = VK_WHOLE_SIZE;
-      vkFlushMappedMemoryRanges(ctx_->device(), 1, &r);
-    }
+    flush();
     return;
   }
   // Discrete GPUs: device-local memory is not mappable; copy through a staging buffer.

@@ -29,6 +29,19 @@ const OptionTable<VoxelSettings>& VoxelSettings::table() {
 }
 
 namespace {
+// Spans (first, count) merged where they overlap or touch, in order.
+std::vector<std::pair<uint64_t, uint64_t>> coalesceSpans(std::vector<std::pair<uint64_t, uint64_t>> spans) {
+  std::sort(spans.begin(), spans.end());
+  std::vector<std::pair<uint64_t, uint64_t>> out;
+  for (const auto& [first, count] : spans) {
+    if (count == 0) continue;
+    if (!out.empty() && first <= out.back().first + out.back().second)
+      out.back().second = std::max(out.back().second, first + count - out.back().first);
+    else
+      out.push_back({first, count});
+  }
+  return out;
+}
 constexpr uint32_t kAttributeInts = DYNGI_LEAF_ATTRIBUTE_INTS;  // ints per leaf in the attribute buffer
 // Leaf slots per fragment slot the attributes start with (grown after a build that needed more).
 constexpr uint64_t kAttributeSlotsPerFragment = 2;
@@ -240,6 +253,8 @@ render::Pipeline& VoxelScene::voxelizePipelineFor(uint32_t textureBits) {
   d.pushConstantBytes = sizeof(gpu::VoxelizePush);
   d.bindings = {{DYNGI_VOXELIZE_BINDING_FRAGMENTS, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_VOXELIZE_BINDING_COUNTERS, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_VOXELIZE_BINDING_INSTANCES, kSSBO, VK_SHADER_STAGE_VERTEX_BIT},
+                {DYNGI_VOXELIZE_BINDING_RANGES, kSSBO, VK_SHADER_STAGE_VERTEX_BIT},
                 {DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
@@ -258,37 +273,35 @@ bool VoxelScene::record(render::FrameContext& frame) {
   const uint32_t res = volume_.resolution, depth = volume_.depth();
   {
     render::ScopedPass scope(ctx_, frame.timer, cmd, "voxelize");
-    for (const Range& r : rangesToEmpty_)
-      vkCmdFillBuffer(cmd, fragments_.handle(), r.first * 16, r.capacity * 16, DYNGI_VOXEL_EMPTY);
+    // Neighbouring ranges and counters are filled by one command each (all of them after a full
+    // re-voxelization): a fill per entity costs per command.
+    std::vector<std::pair<uint64_t, uint64_t>> slotSpans, counterSpans;  // (first, count)
+    for (const Range& r : rangesToEmpty_) slotSpans.push_back({r.first, r.capacity});
     for (size_t i : drawsToVoxelize_) {
       const Range& r = ranges_.at(frame.snapshot.draws[i].entity);
-      vkCmdFillBuffer(cmd, fragments_.handle(), r.first * 16, r.capacity * 16, DYNGI_VOXEL_EMPTY);
-      vkCmdFillBuffer(cmd, counters_.handle(), uint64_t(r.counter) * 4, 4, 0);
+      slotSpans.push_back({r.first, r.capacity});
+      counterSpans.push_back({r.counter, 1});
     }
+    for (const auto& [first, count] : coalesceSpans(slotSpans)) vkCmdFillBuffer(cmd, fragments_.handle(), first * 16, count * 16, DYNGI_VOXEL_EMPTY);
+    for (const auto& [first, count] : coalesceSpans(counterSpans)) vkCmdFillBuffer(cmd, counters_.handle(), first * 4, count * 4, 0);
     render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                           VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     if (!drawsToVoxelize_.empty()) {
       // No attachments: the fragment shader appends to the entity's range.
       render::RenderingScope rendering(cmd, res, res);
-      const glm::mat4 toVoxel = volume_.worldToVoxelMatrix();
       auto pipelineFor = [&](const render::DrawItem& d) -> const Pipeline& {
         return voxelizePipelineFor(render::drawTextureBits(frame, d));
       };
-      render::drawEach(frame, drawsToVoxelize_, pipelineFor, [&](VkCommandBuffer c, const render::DrawItem& d, const Pipeline& pipeline) {
-        const Range& r = ranges_.at(d.entity);
-        gpu::VoxelizePush pc{};
-        pc.modelToVoxelRows = glm::mat3x4(glm::transpose(toVoxel * d.model));
-        pc.firstSlot = uint32_t(r.first);
-        pc.capacity = uint32_t(r.capacity);
-        pc.counterIndex = r.counter;
-        pc.resolution = res;
-        pc.albedo = glm::vec4(glm::vec3(d.material.baseColor), d.material.metallic);
-        pc.emission = glm::vec4(d.material.emissive, 0.0f);
-        pc.uvLinear = d.material.uvTransform.linear();
-        pc.uvOffset = glm::vec4(d.material.uvTransform.offset, render::alphaMaskThreshold(d.material), d.material.normalScale);
+      writeVoxelizeRanges(frame);
+      gpu::VoxelizePush pc{};
+      pc.worldToVoxel = volume_.worldToVoxelMatrix();
+      pc.resolution = res;
+      render::drawBatched(frame, drawsToVoxelize_, pipelineFor, [&](VkCommandBuffer c, const render::DrawItem& d, const Pipeline& pipeline) {
         DescriptorWrites()
             .storageBuffer(DYNGI_VOXELIZE_BINDING_FRAGMENTS, fragments_.handle())
             .storageBuffer(DYNGI_VOXELIZE_BINDING_COUNTERS, counters_.handle())
+            .storageBuffer(DYNGI_VOXELIZE_BINDING_INSTANCES, frame.instances->records->handle())
+            .storageBuffer(DYNGI_VOXELIZE_BINDING_RANGES, voxelizeRanges_.handle())
             .sampledImage(DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX, frame.textureView(d.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
             .sampledImage(DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, frame.textureView(d.material.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
             .sampledImage(DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX, frame.textureView(d.material.metallicRoughnessTexture), frame.linearSampler,
@@ -307,6 +320,19 @@ bool VoxelScene::record(render::FrameContext& frame) {
   }
   stats_.rebuilt = true;
   return false;  // the voxel scene feeds other stages; it does not write indirect light
+}
+
+// Each voxelized draw's fragment range at its instance slot (the other slots are not drawn).
+void VoxelScene::writeVoxelizeRanges(const render::FrameContext& frame) {
+  const VkDeviceSize bytes = std::max<VkDeviceSize>(frame.snapshot.draws.size(), 1) * sizeof(gpu::VoxelizeRange);
+  if (!voxelizeRanges_.valid() || voxelizeRanges_.size() < bytes)
+    voxelizeRanges_ = Buffer(ctx_, bytes + bytes / 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "voxelize ranges");
+  auto* out = static_cast<gpu::VoxelizeRange*>(voxelizeRanges_.mapped());
+  for (size_t i : drawsToVoxelize_) {
+    const Range& r = ranges_.at(frame.snapshot.draws[i].entity);
+    out[frame.instances->slotOfDraw[i]] = gpu::VoxelizeRange{uint32_t(r.first), uint32_t(r.capacity), r.counter, 0u};
+  }
+  voxelizeRanges_.flush();
 }
 
 void VoxelScene::recordAfterLighting(render::FrameContext& frame) {

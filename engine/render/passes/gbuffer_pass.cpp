@@ -1,7 +1,3 @@
-#include <bit>
-
-#include <glm/gtc/packing.hpp>
-
 #include "dyngi/engine/render/draw_pass.h"
 #include "shared/gpu_types.h"
 #include "passes.h"
@@ -25,9 +21,8 @@ Pipeline& GBufferPass::pipelineFor(uint32_t textureBits) {
   d.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8G8B8A8_UNORM,
                     VK_FORMAT_R16G16B16A16_SFLOAT};
   d.depthFormat = VK_FORMAT_D32_SFLOAT;
-  d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-  d.pushConstantBytes = sizeof(gpu::GBufferPush);
   d.bindings = {{DYNGI_GBUFFER_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_GBUFFER_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT},
                 {DYNGI_GBUFFER_BINDING_BASE_COLOR_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_GBUFFER_BINDING_EMISSIVE_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_GBUFFER_BINDING_METALLIC_ROUGHNESS_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
@@ -57,19 +52,14 @@ void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
                              {colorAttachment(t.position.view()), colorAttachment(t.normal.view()), colorAttachment(t.albedo.view()),
                               colorAttachment(t.emissive.view())},
                              depthAttachment(t.depth.view()));
-    drawEach(
+    drawBatched(
         frame, std::nullopt,
         [&](const DrawItem& d) -> const Pipeline& { return pipelineFor(drawTextureBits(frame, d)); },
         [&](VkCommandBuffer c, const DrawItem& d, const Pipeline& pipeline) {
           const scene::Material& m = d.material;
-          gpu::GBufferPush pc;
-          pc.model = d.model;
-          pc.baseColor = glm::vec4(glm::vec3(m.baseColor), m.alphaMask ? alphaMaskThreshold(m) : 1.0f);
-          pc.emissive = glm::vec4(m.emissive, std::bit_cast<float>(glm::packHalf2x16(glm::vec2(m.occlusionStrength, m.normalScale))));
-          pc.params = glm::vec4(m.metallic, m.roughness, m.uvTransform.offset);
-          pc.uvLinear = m.uvTransform.linear();
           DescriptorWrites()
               .uniformBuffer(DYNGI_GBUFFER_BINDING_FRAME, frame.frameUniforms.handle())
+              .storageBuffer(DYNGI_GBUFFER_BINDING_INSTANCES, frame.instances->records->handle())
               .sampledImage(DYNGI_GBUFFER_BINDING_BASE_COLOR_TEX, textures(m.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
               .sampledImage(DYNGI_GBUFFER_BINDING_EMISSIVE_TEX, textures(m.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
               .sampledImage(DYNGI_GBUFFER_BINDING_METALLIC_ROUGHNESS_TEX, textures(m.metallicRoughnessTexture), frame.linearSampler,
@@ -77,7 +67,6 @@ void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
               .sampledImage(DYNGI_GBUFFER_BINDING_OCCLUSION_TEX, textures(m.occlusionTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
               .sampledImage(DYNGI_GBUFFER_BINDING_NORMAL_TEX, textures(m.normalTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
               .push(ctx_, c, pipeline);
-          vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
         });
   }
   for (Image* c : colors)

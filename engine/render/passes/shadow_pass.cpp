@@ -22,6 +22,7 @@ ShadowPass::ShadowPass(VulkanContext& ctx, const Settings& settings) : ctx_(ctx)
   d.colorFormats = {VK_FORMAT_R32_SFLOAT};
   d.depthFormat = VK_FORMAT_D32_SFLOAT;
   d.pushConstantBytes = sizeof(gpu::ShadowPush);
+  d.bindings = {{DYNGI_SHADOW_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT}};
   // The depth bias is applied in shadow_depth.glsl (to the depth test and the lookup alike), as floats' bits.
   d.fragmentSpecialization = {std::bit_cast<uint32_t>(settings.depthBiasConstant), std::bit_cast<uint32_t>(settings.depthBiasSlope)};
   d.name = "shadow";
@@ -30,8 +31,7 @@ ShadowPass::ShadowPass(VulkanContext& ctx, const Settings& settings) : ctx_(ctx)
   d.vertex = DYNGI_SHADER(spv_shadow_masked_vert);
   d.fragment = DYNGI_SHADER(spv_shadow_masked_frag);
   setMeshVertexInput(d, /*normal=*/false, /*uv=*/true);
-  d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-  d.bindings = {{DYNGI_SHADOW_BINDING_BASE_COLOR_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  d.bindings.push_back({DYNGI_SHADOW_BINDING_BASE_COLOR_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT});
   d.name = "shadow_masked";
   maskedPipeline_ = Pipeline::graphics(ctx, d);
 
@@ -105,20 +105,17 @@ void ShadowPass::drawCasters(VkCommandBuffer cmd, const Layers& target, uint32_t
   const VkAttachmentLoadOp load = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
   RenderingScope rendering(cmd, size, size, {colorAttachment(target.lookup.layerView(layer), {{1.0f, 0.0f, 0.0f, 0.0f}}, load)},
                            depthAttachment(target.depth.layerView(layer), load));
-  drawEach(
+  const gpu::ShadowPush pc{viewProj};
+  drawBatched(
       frame, draws, [&](const DrawItem& d) -> const Pipeline& { return d.material.alphaMask ? maskedPipeline_ : pipeline_; },
       [&](VkCommandBuffer c, const DrawItem& d, const Pipeline& p) {
-        const scene::Material& m = d.material;
-        const gpu::ShadowPush pc{viewProj * d.model, m.uvTransform.linear(), glm::vec4(m.uvTransform.offset, alphaMaskThreshold(m), 0.0f)};
-        if (m.alphaMask) {
-          DescriptorWrites()
-              .sampledImage(DYNGI_SHADOW_BINDING_BASE_COLOR_TEX, frame.textureView(m.baseColorTexture), frame.linearSampler,
-                            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-              .push(ctx_, c, p);
-          vkCmdPushConstants(c, p.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
-        } else {
-          vkCmdPushConstants(c, p.layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(pc), &pc);
-        }
+        DescriptorWrites writes;
+        writes.storageBuffer(DYNGI_SHADOW_BINDING_INSTANCES, frame.instances->records->handle());
+        if (d.material.alphaMask)
+          writes.sampledImage(DYNGI_SHADOW_BINDING_BASE_COLOR_TEX, frame.textureView(d.material.baseColorTexture), frame.linearSampler,
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        writes.push(ctx_, c, p);
+        vkCmdPushConstants(c, p.layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(pc), &pc);
       });
 }
 

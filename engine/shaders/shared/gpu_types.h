@@ -50,10 +50,12 @@ DYNGI_GPU_STRUCT(GpuLight) {
   vec4 cone;            // x cos(outer), y cos(inner), z first shadow layer (as float; <0: none), w normal-offset scale
 };
 
-// Push constants of the G-buffer pass (<= 128 bytes, the guaranteed minimum).
-DYNGI_GPU_STRUCT(GBufferPush) {
+// One draw of the frame as the raster passes read it (a storage buffer of them, FrameInstances): its
+// transform and material constants. Draws sharing a mesh and textures go in one instanced draw, each
+// instance reading its record at gl_InstanceIndex.
+DYNGI_GPU_STRUCT(DrawInstance) {
   mat4 model;
-  vec4 baseColor;       // rgb linear factor; a: alphaMaskThreshold() in the alpha-mask variant (alpha is not stored)
+  vec4 baseColor;       // rgb linear factor; a: alphaMaskThreshold() for masked materials, else 1 (alpha is not stored)
   vec4 emissive;        // rgb outgoing radiance factor, w's bits: packHalf2x16(occlusion strength, normal scale)
   vec4 params;          // x metallic, y roughness, zw the texture coordinates' offset (KHR_texture_transform)
   vec4 uvLinear;        // the texture coordinates' linear map (shared/uv_transform.h)
@@ -68,8 +70,10 @@ DYNGI_GPU_STRUCT(GBufferPush) {
 #define DYNGI_GBUFFER_BINDING_METALLIC_ROUGHNESS_TEX 3
 #define DYNGI_GBUFFER_BINDING_OCCLUSION_TEX 4
 #define DYNGI_GBUFFER_BINDING_NORMAL_TEX 5
+#define DYNGI_GBUFFER_BINDING_INSTANCES 6
 // shadow (alpha-masked casters)
 #define DYNGI_SHADOW_BINDING_BASE_COLOR_TEX 0
+#define DYNGI_SHADOW_BINDING_INSTANCES 1
 // The material's textures, as bits of a pipeline variant (the G-buffer's; the voxelization and the RSMs
 // use the ones they read).
 #define DYNGI_MATERIAL_BASE_COLOR_TEX 1u
@@ -95,22 +99,20 @@ DYNGI_GPU_STRUCT(GBufferPush) {
 #define DYNGI_TONEMAP_BINDING_HDR 1
 #define DYNGI_TONEMAP_BINDING_LDR 2
 
-// Push constants of the shadow pass (one caster into one layer) and of the lighting pass, as member
-// lists: C++ gets a struct, the shader `layout(push_constant) uniform Push { DYNGI_SHADOW_PUSH };`.
-#define DYNGI_SHADOW_PUSH                                                                              \
-  mat4 lightViewProjModel;                                                                             \
-  vec4 uvLinear;           /* alpha-masked casters: KHR_texture_transform (shared/uv_transform.h), */ \
-  vec4 uvOffsetThreshold;  /* xy its offset, z alphaMaskThreshold() */
+// Push constants of the shadow pass (one shadow-map layer: the casters' instances are DrawInstances) and
+// of the lighting pass, as member lists: C++ gets a struct, the shader
+// `layout(push_constant) uniform Push { DYNGI_SHADOW_PUSH };`.
+#define DYNGI_SHADOW_PUSH mat4 lightViewProj;
 #define DYNGI_LIGHTING_PUSH uint hasIndirect;  /* 0: no feature wrote indirect light */
 
 #ifdef __cplusplus
 struct ShadowPush { DYNGI_SHADOW_PUSH };
 struct LightingPush { DYNGI_LIGHTING_PUSH };
-static_assert(sizeof(ShadowPush) == 96);
+static_assert(sizeof(ShadowPush) == 64);
 static_assert(sizeof(LightingPush) == 4);
 static_assert(sizeof(FrameUniforms) == 4 * 64 + 8 * 16);
 static_assert(sizeof(GpuLight) == 64);
-static_assert(sizeof(GBufferPush) == 128);  // the guaranteed push-constant minimum
+static_assert(sizeof(DrawInstance) == 128);
 }  // namespace dyngi::gpu
 #endif
 

@@ -189,6 +189,7 @@ render::Pipeline& ManyLights::rsmPipelineFor(uint32_t textureBits) {
   d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   d.pushConstantBytes = sizeof(gpu::RsmPush);
   d.bindings = {{DYNGI_RSM_BINDING_LAYERS, kSSBO, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
+                {DYNGI_RSM_BINDING_INSTANCES, kSSBO, VK_SHADER_STAGE_VERTEX_BIT},
                 {DYNGI_RSM_BINDING_LIGHTS, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_RSM_BINDING_BASE_COLOR_TEX, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT},
                 {DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX, kSampled, VK_SHADER_STAGE_FRAGMENT_BIT},
@@ -229,16 +230,12 @@ void ManyLights::recordReflectiveShadowMaps(render::FrameContext& frame) {
       auto pipelineFor = [&](const render::DrawItem& dr) -> const Pipeline& {
         return rsmPipelineFor(render::drawTextureBits(frame, dr));
       };
-      render::drawEach(frame, std::nullopt, pipelineFor, [&](VkCommandBuffer c, const render::DrawItem& dr, const Pipeline& pipeline) {
-        gpu::RsmPush pc{};
-        pc.model = dr.model;
-        pc.baseColor = glm::vec4(glm::vec3(dr.material.baseColor), dr.material.metallic);
-        pc.uvLinear = dr.material.uvTransform.linear();
-        pc.uvOffset = glm::vec4(dr.material.uvTransform.offset, render::alphaMaskThreshold(dr.material), dr.material.normalScale);
-        pc.layer = layer;
+      const gpu::RsmPush pc{layer};
+      render::drawBatched(frame, std::nullopt, pipelineFor, [&](VkCommandBuffer c, const render::DrawItem& dr, const Pipeline& pipeline) {
         DescriptorWrites()
             .storageBuffer(DYNGI_RSM_BINDING_LAYERS, layers_.handle())
             .storageBuffer(DYNGI_RSM_BINDING_LIGHTS, lights_.handle())
+            .storageBuffer(DYNGI_RSM_BINDING_INSTANCES, frame.instances->records->handle())
             .sampledImage(DYNGI_RSM_BINDING_BASE_COLOR_TEX, frame.textureView(dr.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
             .sampledImage(DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX, frame.textureView(dr.material.metallicRoughnessTexture), frame.linearSampler,
                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)

@@ -16,21 +16,27 @@ DYNGI_GPU_NAMESPACE_BEGIN
 #define DYNGI_VOXEL_EMPTY 0xFFFFFFFFu
 #define DYNGI_VOXEL_COORD_BITS 10
 
-// Push constants of the voxelization draw (<= 128 bytes).
+// Push constants of the voxelization draw (one batch of instances: each reads its transform and material
+// from the frame's DrawInstance records and its fragment range from VoxelizeRange, both at its slot).
 #ifdef __cplusplus
 struct alignas(16) VoxelizePush {
 #else
 struct VoxelizePush {
 #endif
-  mat3x4 modelToVoxelRows;  // object space -> voxel units ([0, resolution)^3): the affine map's three rows
-  uint firstSlot;       // the entity's fragment range: first slot,
+  mat4 worldToVoxel;    // world -> voxel units ([0, resolution)^3)
+  uint resolution;      // voxels per side
+  uint pad0, pad1, pad2;
+};
+// An instance's fragment range (storage buffer, at its FrameInstances slot).
+#ifdef __cplusplus
+struct alignas(16) VoxelizeRange {
+#else
+struct VoxelizeRange {
+#endif
+  uint firstSlot;       // first slot of the entity's range,
   uint capacity;        // its size,
   uint counterIndex;    // and the counter its fragments are appended with
-  uint resolution;      // voxels per side
-  vec4 albedo;          // rgb base colour factor, a metallic factor (diffuse = base x (1 - metallic))
-  vec4 emission;        // rgb emitted radiance (a unused)
-  vec4 uvLinear;        // KHR_texture_transform (engine/shaders/shared/uv_transform.h): the linear map,
-  vec4 uvOffset;        // and in xy the offset; z the alpha mask's threshold (alphaMaskThreshold()), w the normal scale
+  uint pad0;
 };
 
 // Per-level bookkeeping of the SVO build (storage buffer, one per level).
@@ -159,6 +165,8 @@ struct SvoCounters {
 #define DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX 3
 #define DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX 4
 #define DYNGI_VOXELIZE_BINDING_NORMAL_TEX 5
+#define DYNGI_VOXELIZE_BINDING_INSTANCES 6
+#define DYNGI_VOXELIZE_BINDING_RANGES 7
 
 
 #define DYNGI_SVO_MARK_PUSH uint firstChunk; uint depth;
@@ -187,8 +195,8 @@ struct SvoVoxelAttributesPush { DYNGI_SVO_VOXEL_ATTRIBUTES_PUSH };
 struct SvoMarchPush { DYNGI_SVO_MARCH_PUSH };
 struct VoxelDebugPush { DYNGI_VOXEL_DEBUG_PUSH };
 
-static_assert(sizeof(VoxelizePush) == 128 && offsetof(VoxelizePush, firstSlot) == 48 && offsetof(VoxelizePush, albedo) == 64 &&
-              offsetof(VoxelizePush, uvOffset) == 112);
+static_assert(sizeof(VoxelizePush) == 80 && offsetof(VoxelizePush, resolution) == 64);
+static_assert(sizeof(VoxelizeRange) == 16);
 static_assert(sizeof(SvoLevel) == 32 && offsetof(SvoLevel, dispatch) == 16);
 static_assert(sizeof(SvoCounters) == 16);
 static_assert(sizeof(SvoMarkPush) == 8 && sizeof(SvoLevelPush) == 8 && sizeof(SvoExpandPush) == 12);

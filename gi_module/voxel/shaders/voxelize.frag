@@ -34,6 +34,9 @@ layout(location = 9) flat in vec3 n2;
 layout(location = 10) flat in vec4 t0;
 layout(location = 11) flat in vec4 t1;
 layout(location = 12) flat in vec4 t2;
+layout(location = 13) flat in vec4 instAlbedo;    // rgb base colour factor, a metallic factor
+layout(location = 14) flat in vec4 instEmission;  // rgb emitted radiance, a the alpha mask's threshold
+layout(location = 15) flat in uvec4 instRange;    // first slot, capacity, counter of the entity's range; w the normal scale's bits
 
 const float kEps = 1e-4;  // voxel units: touching counts as overlapping, so nothing is missed
 
@@ -72,14 +75,14 @@ void main() {
   if (px.x < 0 || px.y < 0 || px.x >= res || px.y >= res) return;
 
   vec3 nrm = normalize(n);
-  vec3 emission = pc.emission.rgb;
+  vec3 emission = instEmission.rgb;
   for (int z = z0; z <= z1; ++z) {
     ivec3 v = ivec3(unproject(vec2(px), float(z), axis));
     vec3 center = vec3(v) + 0.5;
     if (!triangleOverlapsBox(center, vec3(0.5 + kEps), v0, v1, v2)) continue;
-    vec4 albedo = vec4(pc.albedo.rgb, 1.0);
-    float metallic = pc.albedo.a;
-    emission = pc.emission.rgb;
+    vec4 albedo = vec4(instAlbedo.rgb, 1.0);
+    float metallic = instAlbedo.a;
+    emission = instEmission.rgb;
     float alpha = 1.0;
     vec3 normal = nrm;
     if (kBaseColorTexture || kEmissiveTexture || kMetallicRoughnessTexture || kNormalTexture) {
@@ -105,15 +108,15 @@ void main() {
         // the fragments' normals are averaged on); the voxel's normal is then the mean of its fragments'.
         vec3 ns = normalize(bary.x * n0 + bary.y * n1 + bary.z * n2);
         vec4 tangent = vec4(bary.x * t0.xyz + bary.y * t1.xyz + bary.z * t2.xyz, t0.w);
-        normal = perturbNormal(ns, tangent, textureLod(normalTex, uv, 0.0).rgb, pc.uvOffset.w);
+        normal = perturbNormal(ns, tangent, textureLod(normalTex, uv, 0.0).rgb, uintBitsToFloat(instRange.w));
         if (dot(ns, nrm) < 0.0) normal = -normal;
       }
     }
-    if (kAlphaMask && alpha < pc.uvOffset.z) continue;  // cut out at the voxel's centre
+    if (kAlphaMask && alpha < instEmission.a) continue;  // cut out at the voxel's centre
     albedo.rgb *= 1.0 - metallic;  // the diffuse share
-    uint slot = atomicAdd(counters[pc.counterIndex], 1u);
-    if (slot >= pc.capacity) continue;  // over capacity: counted, so the host grows the range
+    uint slot = atomicAdd(counters[instRange.z], 1u);
+    if (slot >= instRange.y) continue;  // over capacity: counted, so the host grows the range
     uint coord = uint(v.x) | (uint(v.y) << 10) | (uint(v.z) << 20);
-    fragments[pc.firstSlot + slot] = uvec4(coord, packUnorm4x8(albedo), packSnorm4x8(vec4(normal, 0.0)), packEmission(emission));
+    fragments[instRange.x + slot] = uvec4(coord, packUnorm4x8(albedo), packSnorm4x8(vec4(normal, 0.0)), packEmission(emission));
   }
 }

@@ -11,6 +11,9 @@ layout(location = 0) in vec3 inVoxelPos[];
 layout(location = 1) in vec2 inUv[];
 layout(location = 2) in vec3 inNormal[];   // the normal texture's frame (voxelize_vertex.glsl), 0 without one
 layout(location = 3) in vec4 inTangent[];
+layout(location = 4) flat in vec4 inAlbedo[];    // the instance's (voxelize_vertex.glsl)
+layout(location = 5) flat in vec4 inEmission[];
+layout(location = 6) flat in uvec4 inRange[];
 layout(location = 0) flat out vec3 v0;
 layout(location = 1) flat out vec3 v1;
 layout(location = 2) flat out vec3 v2;
@@ -24,6 +27,9 @@ layout(location = 9) flat out vec3 n2;
 layout(location = 10) flat out vec4 t0;
 layout(location = 11) flat out vec4 t1;
 layout(location = 12) flat out vec4 t2;
+layout(location = 13) flat out vec4 albedo;
+layout(location = 14) flat out vec4 emission;
+layout(location = 15) flat out uvec4 range;
 
 // Projects a voxel-space point to the plane of the dominant axis: returns (u, v) in voxel units.
 vec2 project(vec3 p, uint a) { return a == 0u ? p.yz : (a == 1u ? p.zx : p.xy); }
@@ -43,6 +49,7 @@ void main() {
     n0 = inNormal[0]; n1 = inNormal[1]; n2 = inNormal[2];
     t0 = inTangent[0]; t1 = inTangent[1]; t2 = inTangent[2];
     axis = ax;
+    albedo = inAlbedo[0]; emission = inEmission[0]; range = inRange[0];
     gl_Position = vec4(corners[i] / res * 2.0 - 1.0, 0.5, 1.0);
     EmitVertex();
   }

@@ -151,6 +151,7 @@ class VoxelScene final : public render::RenderFeature {
   bool staleEverywhere_ = false;
 
   render::Buffer fragments_, counters_;
+  render::Buffer voxelizeRanges_;  // gpu::VoxelizeRange per FrameInstances slot (host-visible)
   render::Buffer attributes_;  // the leaf sums a build makes (scratch, zero between builds): DYNGI_LEAF_* in gi_gpu_types.h
   render::Image voxelAttributes_;
   uint64_t attributeLeaves_ = 0;  // leaf slots the attribute buffer holds
@@ -159,6 +160,7 @@ class VoxelScene final : public render::RenderFeature {
   // lavapipe would run the texture lookups of a branch not taken.
   render::Pipeline voxelize_[32];  // by the material's texture bits it reads (DYNGI_MATERIAL_*_TEX), + 8: alpha-masked, + 16: a normal texture
   render::Pipeline& voxelizePipelineFor(uint32_t textureBits);
+  void writeVoxelizeRanges(const render::FrameContext& frame);
   std::unique_ptr<class VoxelDebugPass> debugPass_;  // voxel/voxel_debug_pass.h
   VoxelStats stats_;
 };

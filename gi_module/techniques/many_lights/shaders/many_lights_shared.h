@@ -22,19 +22,8 @@ struct RsmLayer {
   uint pad0;
 };
 
-// Push constants of the RSM draw.
-#ifdef __cplusplus
-struct alignas(16) RsmPush {
-#else
-struct RsmPush {
-#endif
-  mat4 model;
-  vec4 baseColor;       // rgb linear base colour factor, a metallic factor (diffuse = base x (1 - metallic))
-  vec4 uvLinear;        // KHR_texture_transform (engine/shaders/shared/uv_transform.h): the linear map,
-  vec4 uvOffset;        // and in xy the offset; z the alpha mask's threshold (alphaMaskThreshold()), w the normal scale
-  uint layer;           // the RsmLayer drawn
-  uint pad0, pad1, pad2;
-};
+// Push constants of the RSM draw (one layer; the casters' instances are the frame's DrawInstances).
+#define DYNGI_RSM_PUSH uint layer; /* the RsmLayer drawn */
 
 // many_lights_debug
 #define DYNGI_MANY_LIGHTS_DEBUG_BINDING_FRAME 0
@@ -48,6 +37,7 @@ struct RsmPush {
 #define DYNGI_RSM_BINDING_BASE_COLOR_TEX 2
 #define DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX 3
 #define DYNGI_RSM_BINDING_NORMAL_TEX 4
+#define DYNGI_RSM_BINDING_INSTANCES 5
 // vpl_bounce
 #define DYNGI_VPL_BOUNCE_BINDING_VPLS 0
 #define DYNGI_VPL_BOUNCE_BINDING_NODES 1
@@ -97,7 +87,8 @@ struct VplTailPush { DYNGI_VPL_TAIL_PUSH };
 struct ManyLightsDebugPush { DYNGI_MANY_LIGHTS_DEBUG_PUSH };
 
 static_assert(sizeof(RsmLayer) == 96 && offsetof(RsmLayer, axis) == 64 && offsetof(RsmLayer, lightIndex) == 80);
-static_assert(sizeof(RsmPush) == 128 && offsetof(RsmPush, baseColor) == 64 && offsetof(RsmPush, layer) == 112);
+struct RsmPush { DYNGI_RSM_PUSH };
+static_assert(sizeof(RsmPush) == 4);
 static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && sizeof(VplSamplePush) == 16);
 static_assert(sizeof(VplBouncePush) == 44 && offsetof(VplBouncePush, parentFirst) == 16 && offsetof(VplBouncePush, seed) == 40);
 static_assert(sizeof(VplTailPush) == 8 && sizeof(ManyLightsDebugPush) == 12);

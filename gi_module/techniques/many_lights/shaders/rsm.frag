@@ -11,7 +11,7 @@ layout(set = 0, binding = DYNGI_RSM_BINDING_LIGHTS) readonly buffer Lights { Gpu
 layout(set = 0, binding = DYNGI_RSM_BINDING_BASE_COLOR_TEX) uniform sampler2D baseColorTex;
 layout(set = 0, binding = DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX) uniform sampler2D metallicRoughnessTex;
 layout(set = 0, binding = DYNGI_RSM_BINDING_NORMAL_TEX) uniform sampler2D normalTex;
-layout(push_constant) uniform Push { RsmPush pc; };
+layout(push_constant) uniform Push { DYNGI_RSM_PUSH };
 // Material variant (ManyLights::rsmPipelineFor): the lookup is compiled in only when a texture is bound.
 layout(constant_id = 0) const bool kBaseColorTexture = true;
 layout(constant_id = 1) const bool kMetallicRoughnessTexture = true;
@@ -21,21 +21,23 @@ layout(location = 0) in vec3 inWorld;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) in vec4 inTangent;
+layout(location = 4) flat in vec4 inBaseColor;  // rsm_vertex.glsl
+layout(location = 5) flat in vec2 inMaterial;
 layout(location = 0) out vec4 outPosition;  // xyz world, w 1
 layout(location = 1) out vec4 outNormal;    // xyz facing the light
 layout(location = 2) out vec4 outFlux;      // rgb reflected flux (W), a luminance
 void main() {
-  RsmLayer layer = layers[pc.layer];
-  GpuLight L = lights[layer.lightIndex];
-  vec3 albedo = pc.baseColor.rgb;
+  RsmLayer drawn = layers[layer];
+  GpuLight L = lights[drawn.lightIndex];
+  vec3 albedo = inBaseColor.rgb;
   float alpha = 1.0;
   if (kBaseColorTexture) {
     vec4 texel = texture(baseColorTex, inUv);
     albedo *= texel.rgb;
     alpha = texel.a;
   }
-  if (kAlphaMask && alpha < pc.uvOffset.z) discard;
-  float metallic = pc.baseColor.a;
+  if (kAlphaMask && alpha < inBaseColor.a) discard;
+  float metallic = inMaterial.x;
   if (kMetallicRoughnessTexture) metallic *= texture(metallicRoughnessTex, inUv).b;
   albedo *= 1.0 - metallic;  // the diffuse share
   vec3 n = normalize(inNormal);
@@ -43,20 +45,20 @@ void main() {
   vec3 flux;
   // The VPL's normal faces the light: decided on the interpolated normal, applied to the normal
   // texture's too (as the G-buffer does for the camera and SceneSurfaces for a path).
-  vec3 toSurface = layer.orthographic == 1u ? L.directionRange.xyz : inWorld - L.positionType.xyz;
+  vec3 toSurface = drawn.orthographic == 1u ? L.directionRange.xyz : inWorld - L.positionType.xyz;
   float facing = dot(n, toSurface) > 0.0 ? -1.0 : 1.0;
-  if (kNormalTexture) n = perturbNormal(n, inTangent, texture(normalTex, inUv).rgb, pc.uvOffset.w);
+  if (kNormalTexture) n = perturbNormal(n, inTangent, texture(normalTex, inUv).rgb, inMaterial.y);
   n *= facing;
-  if (layer.orthographic == 1u) {
+  if (drawn.orthographic == 1u) {
     // Irradiance E on a plane facing the light times the texel's area across the beam.
-    float texelSide = layer.axis.w / float(layer.resolution);
+    float texelSide = drawn.axis.w / float(drawn.resolution);
     flux = albedo * radiant * texelSide * texelSide;
   } else {
     vec3 d = inWorld - L.positionType.xyz;
     float dist = length(d);
     vec3 w = d / max(dist, 1e-6);
-    float cosAxis = max(dot(w, layer.axis.xyz), 1e-4);
-    float texel = layer.axis.w / float(layer.resolution);
+    float cosAxis = max(dot(w, drawn.axis.xyz), 1e-4);
+    float texel = drawn.axis.w / float(drawn.resolution);
     float solidAngle = texel * texel * cosAxis * cosAxis * cosAxis;
     float atten = rangeWindow(dist, L.directionRange.w);
     if (int(L.positionType.w) == DYNGI_LIGHT_SPOT) atten *= spotFalloff(dot(w, L.directionRange.xyz), L.cone.x, L.cone.y);

@@ -1,7 +1,7 @@
 #pragma once
 // What every raster pass repeats, written once: dynamic rendering over a set of attachments with the
-// viewport covering the target, and the per-draw loop over the frame's snapshot (draws with no GPU
-// geometry skipped, a pipeline bound only when it changes, the mesh bound and drawn).
+// viewport covering the target, and the loop over the frame's draws in instanced batches (draws with no
+// GPU geometry skipped, a pipeline bound only when it changes, one draw call per batch).
 #include <functional>
 #include <initializer_list>
 #include <optional>
@@ -59,11 +59,21 @@ uint32_t drawTextureBits(const FrameContext& frame, const DrawItem& draw);
 // A masked material's cut, as a threshold on the base-colour texture's alpha (scene/alpha_cut.h).
 // Shaders: `if (textureAlpha < threshold) discard;`.
 using scene::alphaMaskThreshold;
-// Records a draw's descriptors and push constants; drawEach then binds its mesh and draws it.
-using DrawSetup = std::function<void(VkCommandBuffer, const DrawItem&, const Pipeline&)>;
+// Records a batch's descriptors and push constants (the pass's, and the FrameInstances records the
+// vertex stage reads at gl_InstanceIndex); `first` is one of its draws, whose pipeline, mesh and
+// material textures all of them share. drawBatched then binds the mesh and draws the batch.
+using BatchSetup = std::function<void(VkCommandBuffer, const DrawItem& first, const Pipeline&)>;
 
-// The snapshot's draws `indices` (all of them when nullopt) that have GPU geometry, in order.
-void drawEach(const FrameContext& frame, std::optional<std::span<const size_t>> indices, const DrawPipelineFor& pipelineFor,
-              const DrawSetup& setup);
+// The snapshot's draws `indices` (all of them when nullopt) that have GPU geometry, as instanced draws:
+// one per run of FrameInstances slots with one batch, instances at their slots (firstInstance). The
+// order within a batch is the snapshot's; between batches it is FrameInstances' (depth-tested passes and
+// appends do not depend on it).
+void drawBatched(const FrameContext& frame, std::optional<std::span<const size_t>> indices, const DrawPipelineFor& pipelineFor,
+                 const BatchSetup& setup);
+
+// Builds FrameInstances for a snapshot: batches by mesh and textures, records written to `records`
+// (host-visible, grown as needed; frames are synchronous, so the last frame's are no longer read).
+void buildFrameInstances(VulkanContext& ctx, const RenderSnapshot& snapshot, const std::vector<GpuMesh*>& meshes, Buffer& records,
+                         FrameInstances& out);
 
 }  // namespace dyngi::render

@@ -68,8 +68,8 @@ inline void setFullViewport(VkCommandBuffer cmd, uint32_t width, uint32_t height
   vkCmdSetScissor(cmd, 0, 1, &sc);
 }
 
-// Binds a mesh's vertex and index buffers and draws it (one instance).
-inline void drawMesh(VkCommandBuffer cmd, const GpuMesh& mesh) {
+// Binds a mesh's vertex buffers (the tangents too when it has them) and its index buffer.
+inline void bindMesh(VkCommandBuffer cmd, const GpuMesh& mesh) {
   VkDeviceSize offset = 0;
   VkBuffer vertices = mesh.vertices.handle();
   vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
@@ -78,7 +78,6 @@ inline void drawMesh(VkCommandBuffer cmd, const GpuMesh& mesh) {
     vkCmdBindVertexBuffers(cmd, 1, 1, &tangents, &offset);
   }
   vkCmdBindIndexBuffer(cmd, mesh.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-  vkCmdDrawIndexed(cmd, mesh.indexCount, 1, 0, 0, 0);
 }
 
 // The frame's lights as the lighting pass sees them, for a feature that lights something itself
@@ -100,6 +99,17 @@ enum class SpecularSource : uint8_t {
              // targets.specular is not written, and the lighting reads one image instead of two
 };
 
+// The frame's draws as gpu::DrawInstance records in one storage buffer, in an order where draws that
+// share a mesh and a material's textures (so a pipeline and descriptors in every raster pass) are
+// consecutive: a pass draws each run of them with one instanced draw (drawBatched), each instance
+// reading its record at gl_InstanceIndex. Built by the renderer once a frame; valid while recording.
+struct FrameInstances {
+  const Buffer* records = nullptr;     // gpu::DrawInstance per slot
+  std::vector<uint32_t> slotOfDraw;    // indexed like snapshot.draws
+  std::vector<uint32_t> drawOfSlot;
+  std::vector<uint32_t> batchOfSlot;   // equal for neighbouring slots that one instanced draw may hold
+};
+
 struct FrameContext {
   VulkanContext& ctx;
   VkCommandBuffer cmd;
@@ -117,6 +127,7 @@ struct FrameContext {
   // feature that needs this frame's G-buffer on the CPU (ray-traced visibility); costs the overlap.
   std::function<void()> submitAndWait;
   LightInputs lights;
+  const FrameInstances* instances = nullptr;
   // Where a feature put this frame's indirect specular radiance (SpecularSource).
   SpecularSource specular = SpecularSource::None;
 };

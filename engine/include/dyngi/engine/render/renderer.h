@@ -123,6 +123,8 @@ class Renderer {
   std::unordered_map<scene::TextureId, Image> textures_;
   Image whiteTexture_;
   Buffer frameUniforms_;
+  Buffer drawInstances_;           // frameInstances_.records
+  FrameInstances frameInstances_;  // rebuilt every frame
   VkSampler linearSampler_ = VK_NULL_HANDLE;
   VkSampler nearestSampler_ = VK_NULL_HANDLE;
   VkCommandPool pool_ = VK_NULL_HANDLE;

@@ -38,6 +38,7 @@ class Buffer {
   // Writes `bytes` at `offset`: directly when the buffer is host-visible, else through a staging copy.
   void upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
   void invalidateForRead();  // make GPU writes visible to mapped() on non-coherent memory
+  void flush();              // make CPU writes through mapped() visible to the GPU on non-coherent memory
 
  private:
   void create(VkBufferUsageFlags usage, MemoryUsage memory, const char* name);
