@@ -16,7 +16,7 @@ uint64_t FragmentRanges::estimateFragments(const scene::MeshData& mesh, const gl
     double perimeter = glm::length(b - a) + glm::length(c - b) + glm::length(a - c);
     sum += 2.0 * (area + perimeter + 2.0);
   }
-  return uint64_t(sum * 1.25) + 64;
+  return uint64_t(sum * 1.25) + 16;
 }
 
 FragmentRanges::Need FragmentRanges::need(uint64_t estimate, const FragmentRange* previous) {
