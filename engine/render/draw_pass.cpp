@@ -98,7 +98,7 @@ void buildFrameInstances(VulkanContext& ctx, const RenderSnapshot& snapshot, con
   out.batchOfSlot.resize(n);
   const VkDeviceSize bytes = std::max<VkDeviceSize>(n, 1) * sizeof(gpu::DrawInstance);
   if (!records.valid() || records.size() < bytes)
-    records = Buffer(ctx, bytes + bytes / 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "draw instances");
+    records = Buffer(ctx, records.valid() ? bytes + bytes / 2 : bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "draw instances");
   auto* mapped = static_cast<gpu::DrawInstance*>(records.mapped());
   uint32_t batch = 0;
   for (uint32_t slot = 0; slot < n; ++slot) {

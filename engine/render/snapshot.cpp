@@ -35,6 +35,7 @@ RenderSnapshot extractSnapshot(const ecs::World& world, const scene::AssetStore&
   RenderSnapshot s;
   s.assets = &assets;
   s.frame = frame;
+  s.draws.reserve(world.count<MeshInstance>());  // grown by doubling, a large scene's list would be copied
   world.each<MeshInstance, WorldTransform>([&](Entity e, const MeshInstance& mi, const WorldTransform& wt) {
     if (mi.mesh >= assets.meshCount()) return;
     const scene::MeshData& mesh = assets.mesh(mi.mesh);

@@ -43,8 +43,14 @@ std::vector<std::pair<uint64_t, uint64_t>> coalesceSpans(std::vector<std::pair<u
   return out;
 }
 constexpr uint32_t kAttributeInts = DYNGI_LEAF_ATTRIBUTE_INTS;  // ints per leaf in the attribute buffer
-// Leaf slots per fragment slot the attributes start with (grown after a build that needed more).
+// The leaf slots the attributes start with: two per fragment slot, at most 2^20 (32 MB), and at least what
+// the last build's nodes need (what frameFinished grows them to after a build that needed more). Dense
+// fragments (many small instances) would otherwise reserve far more leaves than the SVO has.
 constexpr uint64_t kAttributeSlotsPerFragment = 2;
+constexpr uint64_t kAttributeLeavesAtFirst = 1u << 20;
+uint64_t startingAttributeLeaves(uint64_t fragmentSlots, uint64_t lastNodes) {
+  return std::max(std::min(kAttributeSlotsPerFragment * fragmentSlots, kAttributeLeavesAtFirst), lastNodes + lastNodes / 2);
+}
 }  // namespace
 
 VoxelScene::VoxelScene(render::VulkanContext& ctx, const VoxelSettings& settings) : ctx_(ctx), settings_(settings) {
@@ -74,7 +80,7 @@ void VoxelScene::setDebugView(VoxelDebugView v) {
 void VoxelScene::enableLeafAttributes() {
   if (!settings_.leafAttributes) {
     settings_.leafAttributes = true;
-    allocateAttributes(kAttributeSlotsPerFragment * stats_.fragmentCapacity);
+    allocateAttributes(startingAttributeLeaves(stats_.fragmentCapacity, stats_.nodes));
     storageMoved_ = true;  // build them
   }
 }
@@ -90,7 +96,9 @@ void VoxelScene::ensureCapacity(uint64_t slots) {
   if (fragments_.valid() && fragments_.size() >= slots * 16) return;
   std::vector<SlotCopy> keep;
   if (fragments_.valid() && ranges_.highWater() > 0) keep.push_back({0, 0, ranges_.highWater()});
-  reallocateFragments(std::max<uint64_t>(slots + slots / 2, 1u << 16), keep);
+  // Headroom for the next growth once something is stored; the first allocation holds what was asked.
+  const uint64_t headroom = keep.empty() ? 0 : slots / 2;
+  reallocateFragments(std::max<uint64_t>(slots + headroom, 1u << 16), keep);
 }
 
 void VoxelScene::reallocateFragments(uint64_t slots, const std::vector<SlotCopy>& keepSlots) {
@@ -106,7 +114,7 @@ void VoxelScene::reallocateFragments(uint64_t slots, const std::vector<SlotCopy>
   });
   fragments_ = std::move(fresh);
   stats_.fragmentCapacity = slots;
-  allocateAttributes(settings_.leafAttributes ? kAttributeSlotsPerFragment * slots : 0);
+  allocateAttributes(settings_.leafAttributes ? startingAttributeLeaves(slots, stats_.nodes) : 0);
   storageMoved_ = true;
 }
 
