@@ -6,17 +6,27 @@ namespace dyngi::gi {
 
 uint64_t FragmentRanges::estimateFragments(const scene::MeshData& mesh, const glm::mat4& m) {
   // Per triangle: its area projected on the dominant plane plus its perimeter (the columns it can touch),
-  // times two for the depth spread inside a column, plus slack. Overshoots are caught after the frame.
-  double sum = 0;
+  // times two for the depth spread inside a column, plus slack; overshoots are caught after the frame.
+  // A triangle gives a voxel one fragment at most, so the voxels of its bounding box (touching ones
+  // included: the overlap test counts contact) bound it exactly: small triangles take that bound, with
+  // no slack, and many small instances do not each reserve the slack of a large mesh.
+  constexpr float kTouch = 1e-3f;  // voxel units; above the voxelizer's contact epsilon
+  double loose = 0;
+  uint64_t bounded = 0;
   for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
     glm::vec3 a(m * glm::vec4(mesh.positions[mesh.indices[t]], 1)), b(m * glm::vec4(mesh.positions[mesh.indices[t + 1]], 1)),
         c(m * glm::vec4(mesh.positions[mesh.indices[t + 2]], 1));
     glm::vec3 n = glm::abs(glm::cross(b - a, c - a));
     double area = 0.5 * std::max({n.x, n.y, n.z});
     double perimeter = glm::length(b - a) + glm::length(c - b) + glm::length(a - c);
-    sum += 2.0 * (area + perimeter + 2.0);
+    const double estimate = 2.0 * (area + perimeter + 2.0);
+    const glm::vec3 lo = glm::floor(glm::min(a, glm::min(b, c)) - kTouch), hi = glm::floor(glm::max(a, glm::max(b, c)) + kTouch);
+    const glm::dvec3 span = glm::dvec3(hi - lo) + 1.0;
+    const double boxVoxels = span.x * span.y * span.z;
+    if (boxVoxels <= estimate) bounded += uint64_t(boxVoxels);
+    else loose += estimate;
   }
-  return uint64_t(sum * 1.25) + 16;
+  return bounded + (loose > 0 ? uint64_t(loose * 1.25) + 16 : 0);
 }
 
 FragmentRanges::Need FragmentRanges::need(uint64_t estimate, const FragmentRange* previous) {

@@ -370,6 +370,9 @@ void VoxelScene::frameFinished(render::VulkanContext&) {
     svo_->invalidateStaticOccupancy();  // the voxel attributes may miss the leaves that did not fit
     storageMoved_ = true;
   }
+  // Far more than the build needs (the fragments shrank, the room emptied): the scratch sums follow.
+  else if (settings_.leafAttributes && attributeLeaves_ > 2 * startingAttributeLeaves(stats_.fragmentCapacity, stats_.nodes))
+    allocateAttributes(startingAttributeLeaves(stats_.fragmentCapacity, stats_.nodes));
   const render::ImageDesc& kept = voxelAttributes_.desc();
   stats_.totalBytes = fragments_.size() + svo_->bytes() + attributes_.size() + uint64_t(kept.width) * kept.height * kept.depth * 16;
 }

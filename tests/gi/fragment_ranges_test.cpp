@@ -1,5 +1,6 @@
 // The voxel scene's fragment-range allocator on the CPU: ranges never overlap, counters are unique and
-// reused, a range is kept while it holds what its entity writes, compaction keeps every fragment.
+// reused, a range is kept while it holds what its entity writes, compaction keeps every fragment, the
+// estimate bounds what a triangle writes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <random>
 
 #include "dyngi/gi/fragment_ranges.h"
+#include "dyngi/gi/voxel.h"
 
 using dyngi::ecs::Entity;
 using namespace dyngi::gi;
@@ -119,5 +121,35 @@ TEST(FragmentRanges, RandomOperationsKeepTheRangesDisjoint) {
     if (rng() % 5 == 0) ranges.remove(entity(uint32_t(1 + rng() % 30)));
     if (ranges.wantsCompaction()) ranges.compact();
     expectConsistent(ranges);
+  }
+}
+
+// A triangle writes one fragment into each voxel it overlaps (contact included, as the voxelizer's
+// epsilon counts it): the estimate must bound that count for any triangle, and for one under a voxel
+// it must stay near it (its bounding box's voxels, no per-range slack), or many small instances each
+// reserve far more than they write.
+TEST(FragmentRanges, TheEstimateBoundsEachTrianglesVoxelsAndStaysNearItForSmallOnes) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> where(4.0f, 12.0f), unit(-1.0f, 1.0f);
+  for (float size : {0.05f, 0.3f, 0.9f, 2.5f, 9.0f}) {
+    for (int trial = 0; trial < 40; ++trial) {
+      const glm::vec3 a(where(rng), where(rng), where(rng));
+      dyngi::scene::MeshData mesh;
+      mesh.positions = {a, a + size * glm::vec3(unit(rng), unit(rng), unit(rng)), a + size * glm::vec3(unit(rng), unit(rng), unit(rng))};
+      mesh.indices = {0, 1, 2};
+      if (trial % 8 == 0) mesh.positions[0].y = mesh.positions[1].y = mesh.positions[2].y = 7.0f;  // in a voxel face: touches two layers
+      const glm::dvec3 p0(mesh.positions[0]), p1(mesh.positions[1]), p2(mesh.positions[2]);
+      const glm::ivec3 lo = glm::ivec3(glm::floor(glm::min(p0, glm::min(p1, p2)))) - 1, hi = glm::ivec3(glm::floor(glm::max(p0, glm::max(p1, p2)))) + 1;
+      uint64_t overlapped = 0;
+      for (int z = lo.z; z <= hi.z; ++z)
+        for (int y = lo.y; y <= hi.y; ++y)
+          for (int x = lo.x; x <= hi.x; ++x)
+            overlapped += triangleOverlapsBox(glm::dvec3(x, y, z) + 0.5, glm::dvec3(0.5 + 1e-4), p0, p1, p2) ? 1 : 0;
+      const uint64_t estimate = FragmentRanges::estimateFragments(mesh, glm::mat4(1.0f));
+      EXPECT_GE(estimate, overlapped) << "size " << size << ", trial " << trial;
+      if (size <= 0.3f) {  // the vertices within 0.6 voxels of each other on every axis
+        EXPECT_LE(estimate, 8u) << "size " << size << ": a triangle under a voxel spans 8 voxels at most";
+      }
+    }
   }
 }

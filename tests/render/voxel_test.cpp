@@ -332,9 +332,10 @@ TEST_F(VoxelTest, KeptStaticOccupancyFollowsEntitiesThatStartAndStopMoving) {
   EXPECT_EQ(voxels->stats().staticEntities, everyone - 2);
 }
 
-// Fine meshes: the per-entity range estimate overshoots small triangles several times over. After the
-// first frame the ranges are compacted to what they hold (static entities exactly, moving ones with
-// their slack); the SVO must not change, and later motion must still match a from-scratch build.
+// Fine meshes: the per-entity range estimate takes a small triangle's bounding box, so the first frame
+// holds little more than it writes. Removed entities leave holes; once the ranges hold more than twice
+// what they need they are compacted to what they hold (static entities exactly, moving ones with their
+// slack): the SVO must equal a from-scratch build, and later motion must still match one.
 TEST_F(VoxelTest, FragmentRangesAreCompactedWithoutLosingVoxels) {
   sample::buildBuiltinScene("cornell", world, assets);
   scene::MeshId sphere = assets.addMesh(scene::makeSphere(0.2f, 96, 48));
@@ -347,24 +348,34 @@ TEST_F(VoxelTest, FragmentRangesAreCompactedWithoutLosingVoxels) {
   attachVoxels(128, 32);
   step();
   const uint64_t firstCapacity = voxels->stats().fragmentCapacity, fragments = voxels->stats().fragments;
-  gi::DenseVoxelGrid before = leaves();
-  step();  // compacts: nothing moved, the SVO is rebuilt from the moved fragments
+  EXPECT_LE(firstCapacity, 2 * fragments) << "the first frame's ranges: small triangles bounded by their boxes";
+  // The room's walls, floor and ceiling go (the boxes and spheres stay): the next frame empties their
+  // ranges, the one after compacts.
+  std::vector<ecs::Entity> room;
+  world.each<scene::Name>([&](ecs::Entity e, const scene::Name& n) {
+    if (world.has<scene::MeshInstance>(e) && n.value != "short_box" && n.value != "tall_box") room.push_back(e);
+  });
+  ASSERT_FALSE(room.empty());
+  for (ecs::Entity e : room) world.destroy(e);
+  step();
+  step();
   const uint64_t compactCapacity = voxels->stats().fragmentCapacity;
-  dyngi::test::report("fragments %llu: slots %llu -> %llu after compaction; total %.1f MB\n", (unsigned long long)fragments,
-              (unsigned long long)firstCapacity, (unsigned long long)compactCapacity, double(voxels->stats().totalBytes) / (1 << 20));
+  dyngi::test::report("fragments %llu: slots %llu -> %llu after compaction (%llu fragments); total %.1f MB\n", (unsigned long long)fragments,
+                      (unsigned long long)firstCapacity, (unsigned long long)compactCapacity, (unsigned long long)voxels->stats().fragments,
+                      double(voxels->stats().totalBytes) / (1 << 20));
   EXPECT_LT(compactCapacity * 2, firstCapacity);
-  EXPECT_LE(fragments, compactCapacity);
-  EXPECT_EQ(voxels->stats().fragments, fragments) << "every fragment survived the move";
-  GridDiff same = diff(leaves(), before);
+  EXPECT_LE(voxels->stats().fragments, compactCapacity);
+  GridDiff same = diff(leaves(), scratchLeaves());
   EXPECT_EQ(same.missing + same.extra, 0u);
   // What is allocated follows what is held: fragments (the record, leaf attributes), the SVO's nodes
-  // with their cells and the occupancy pyramid, within a factor of 3 (the first frame held more than 3
-  // times that), besides the static attributes' fixed 16 bytes a voxel.
+  // with their cells and the occupancy pyramid, within a factor of 3, besides the static attributes'
+  // fixed 16 bytes a voxel and the smallest fragment store.
   const gi::VoxelStats& st = voxels->stats();
   const uint64_t pyramidBytes = ((((uint64_t(1) << 24) - 1) / 7) + 31) / 32 * 4;  // levels 0..7 of 128^3
   const uint64_t staticAttributeBytes = (uint64_t(1) << 21) * 16;               // 128^3 voxels
+  const uint64_t smallestStore = gi::FragmentRanges::kMinCompactSlots * (16 + 2 * 32);
   EXPECT_EQ(voxels->voxelAttributes().desc().width, 128u);
-  EXPECT_LT(st.totalBytes - staticAttributeBytes, 3 * (st.fragments * (16 + 32) + 2 * st.svoBytes + pyramidBytes));
+  EXPECT_LT(st.totalBytes - staticAttributeBytes, smallestStore + 3 * (st.fragments * (16 + 32) + 2 * st.svoBytes + pyramidBytes));
   // One sphere starts moving (its exact-size range is too small for a new pose: it gets a new one).
   for (int f = 0; f < 4; ++f) {
     world.write<scene::Transform>(spheres[1]).rotation = glm::angleAxis(0.4f * float(f + 1), glm::vec3(0.3f, 1.0f, 0.2f));
