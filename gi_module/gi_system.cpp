@@ -1,5 +1,6 @@
 #include "dyngi/gi/gi_system.h"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -124,14 +125,15 @@ std::vector<const char*> GiSystem::timedSections() const {
   return names;
 }
 
-double GiSystem::measureLastFrame() const {
-  if (!renderer_) return -1;
+double GiSystem::measureLastFrame() const { return renderer_ ? giCost(renderer_->lastStats().gpuMs) : -1; }
+
+double GiSystem::giCost(const std::vector<std::pair<std::string, double>>& gpuMs) const {
   const std::vector<const char*> sections = timedSections();
   double ms = 0;
   bool timed = false;
-  for (const auto& [name, gpuMs] : renderer_->lastStats().gpuMs)
+  for (const auto& [name, sectionMs] : gpuMs)
     for (const char* s : sections)
-      if (name == s) ms += gpuMs, timed = true;
+      if (name == s) ms += sectionMs, timed = true;
   if (!timed) return -1;  // no frame rendered yet, or timestamps off
   for (const auto& [name, cpuMs] : technique_->cpuMs()) ms += cpuMs;
   return ms;
@@ -139,7 +141,41 @@ double GiSystem::measureLastFrame() const {
 
 void GiSystem::frameTimed() {
   giMs_ = measureLastFrame();
-  if (budget_ && giMs_ >= 0 && !technique_->lastFrameWasOneOff()) budget_->onFrame(giMs_);
+  if (!budget_ || giMs_ < 0) return;
+  const bool oneOff = technique_->lastFrameWasOneOff();
+  if (!oneOff) budget_->onFrame(giMs_);
+  checkTiming(oneOff);
+}
+
+// A budget held on timestamps that do not bracket the GI's work would hold a cost the device does not
+// spend. After a few frames, a few frames are fenced (each section waited for and timed on the CPU) with
+// the timestamps written beside the fences: the same work seen both ways. When the timestamps hold less
+// than TimingCheck::kMinCoverage of the fenced cost, every later frame is fenced. A host's frames cannot
+// be fenced: they keep the timestamps, unchecked.
+void GiSystem::checkTiming(bool oneOffFrame) {
+  using Mode = render::GpuTimer::Mode;
+  TimingCheck& t = timing_;
+  if (!renderer_ || !renderer_->stageTiming() || renderer_->hostRecordsFrames()) return;
+  if (t.checking) {
+    const double stamped = giCost(renderer_->lastStats().gpuMsTimestamps);
+    if (oneOffFrame || stamped < 0) return;  // not a measure (or no timestamps beside the fences): the next frame
+    t.fencedMs += giMs_;
+    t.stampedMs += stamped;
+    if (++t.framesChecked < TimingCheck::kFencedFrames) return;
+    t.checking = false;
+    t.coverage = t.stampedMs / std::max(t.fencedMs, 1e-6);
+    t.fenced = t.coverage < TimingCheck::kMinCoverage;
+    if (!t.fenced) renderer_->setStageTiming(Mode::Timestamps);
+    return;
+  }
+  if (*renderer_->stageTiming() == Mode::Fenced) t.fenced = true;  // fenced by the renderer's settings
+  if (t.fenced || oneOffFrame) return;
+  if (++t.framesSeen == TimingCheck::kWarmupFrames || t.framesSeen % TimingCheck::kCheckEvery == 0) {
+    renderer_->setStageTiming(Mode::Fenced);
+    t.checking = true;
+    t.framesChecked = 0;
+    t.fencedMs = t.stampedMs = 0;
+  }
 }
 
 void GiSystem::updateTechnique(const render::RenderSnapshot& snapshot) {
@@ -170,6 +206,8 @@ GiStats GiSystem::stats() const {
   if (voxels_) s.voxels = voxels_->stats();
   s.syncMs = syncMs_;
   s.giMs = giMs_;
+  if (budget_ && (timing_.fenced || timing_.coverage >= 0)) s.budgetTiming = timing_.fenced ? "fenced" : "timestamps";
+  s.timestampCoverage = timing_.coverage;
   return s;
 }
 

@@ -87,7 +87,11 @@ void reportGi(const gi::GiSettings& settings, const GiSetup& g, RunStats& stats)
       out.floorLevel = b->floorLevel();
       out.knobs = b->knobValues();
       for (const gi::BudgetController::Change& c : b->changes()) out.trace.push_back({c.frame, c.level, c.medianMs, b->valuesAt(c.level)});
+      const gi::GiStats gs = gi->stats();
+      out.timing = gs.budgetTiming;
+      out.timestampCoverage = gs.timestampCoverage;
       stats.budget = out;
+      if (out.timing == "fenced" && stats.stageTimes != "fenced") stats.stageTimes = "timestamps, then fenced (the GI budget's timing check)";
       if (!out.met)
         std::fprintf(stderr, "dyngi_sample: note: the GI budget of %g ms was not met: the GI costs more with every knob at its floor\n",
                      out.budgetMs);

@@ -77,6 +77,8 @@ std::string RunStats::toJson() const {
     b["level"] = budget->level;
     b["floor_level"] = budget->floorLevel;
     b["knobs"] = knobs(budget->knobs);
+    b["timing"] = budget->timing;
+    b["timestamp_coverage"] = number(budget->timestampCoverage);
     b["trace"] = nlohmann::ordered_json::array();
     for (const BudgetStep& step : budget->trace)
       b["trace"].push_back({{"frame", step.frame}, {"level", step.level}, {"median_ms", number(step.medianMs)}, {"knobs", knobs(step.knobs)}});

@@ -37,7 +37,7 @@ class SampleSeries {
 
 struct RunStats {
   std::string scene, gi, device;
-  std::string stageTimes = "timestamps";  // how stages_ms was timed (--stage-times)
+  std::string stageTimes = "timestamps";  // how stages_ms was timed (--stage-times; the GI budget may fence later frames)
   uint32_t width = 0, height = 0;
   int frames = 0, warmupFrames = 0;
   SampleSeries frameMs;
@@ -61,6 +61,8 @@ struct RunStats {
     uint32_t level = 0, floorLevel = 0;
     std::vector<std::pair<std::string, double>> knobs;  // at the end
     std::vector<BudgetStep> trace;
+    std::string timing;            // what the controller read: "timestamps" or "fenced" (GiStats::budgetTiming)
+    double timestampCoverage = -1;  // the timestamped GI cost over a fenced frame's; -1: not checked
   };
   std::optional<Budget> budget;
   // The playable session at the end ("play" in the JSON; absent when neither a window nor a script ran

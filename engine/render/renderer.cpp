@@ -71,6 +71,12 @@ void Renderer::create() {
 
 Renderer::~Renderer() { releaseHandles(); }
 
+void Renderer::setStageTiming(GpuTimer::Mode mode) {
+  if (!timer_) return;
+  if (mode == GpuTimer::Mode::Fenced && hostFramePending_) throw VulkanError("a host's frame cannot be timed by fences");
+  timer_->setMode(mode);
+}
+
 void Renderer::releaseHandles() {
   vkDeviceWaitIdle(ctx_.device());
   if (fence_) vkDestroyFence(ctx_.device(), fence_, ctx_.allocator());
@@ -263,6 +269,7 @@ const FrameStats& Renderer::recordHostFrame(const RenderSnapshot& snapshot, VkCo
     if (timer_) {
       timer_->resolve(/*wait=*/false);
       stats_.gpuMs = timer_->results();
+    stats_.gpuMsTimestamps = timer_->timestampResults();
     }
     for (RenderFeature* f : features_) f->frameFinished(ctx_);
   }
@@ -341,6 +348,7 @@ void Renderer::submitFrame(Swapchain* swapchain, uint32_t imageIndex, Clock::tim
   if (timer_) {
     timer_->resolve();
     stats_.gpuMs = timer_->results();
+    stats_.gpuMsTimestamps = timer_->timestampResults();
   }
 }
 

@@ -36,6 +36,11 @@ struct GiStats {
   // The GI's cost of the last frame rendered: its GPU sections (voxel scene and technique) plus the
   // technique's CPU sections (cpuMs); what a GI budget holds. -1 before the first timed frame.
   double giMs = -1;
+  // What the budget reads: "timestamps", or "fenced" when a fenced check frame found that the device's
+  // timestamps miss part of the GI's work (lavapipe's miss compute passes) or the renderer was fenced
+  // from the start; empty until a budget has a verdict.
+  std::string budgetTiming;
+  double timestampCoverage = -1;  // the timestamped GI cost over the fenced check frame's (1: they bracket all of it)
 };
 
 class GiSystem final : public ecs::System {
@@ -80,6 +85,9 @@ class GiSystem final : public ecs::System {
   // apply from the next frame.
   void frameTimed();
   double measureLastFrame() const;  // the GI's cost in the renderer's last timed frame, or -1
+  // The GI's cost from a frame's pass times: its sections plus the technique's CPU sections; -1 if none.
+  double giCost(const std::vector<std::pair<std::string, double>>& gpuMs) const;
+  void checkTiming(bool oneOffFrame);  // frameTimed(): whether the budget can read timestamps
 
   // Makes the BVH, voxel scene, technique and budget for `settings` (the constructor and reset()).
   void build(const GiSettings& settings);
@@ -102,6 +110,19 @@ class GiSystem final : public ecs::System {
   render::Renderer* renderer_ = nullptr;                 // whose timings the budget reads; reset() swaps features in it
   std::unique_ptr<BudgetController> budget_;
   double giMs_ = -1;
+  // The budget's timing check (checkTiming): a few fenced frames now and then, timestamps beside them.
+  struct TimingCheck {
+    static constexpr double kMinCoverage = 0.8;    // timestamps bracketing less of the fenced cost are not read
+    static constexpr uint32_t kWarmupFrames = 4;   // timed frames (not one-off) before the first check
+    static constexpr uint32_t kFencedFrames = 3;   // frames a check fences
+    static constexpr uint32_t kCheckEvery = 300;   // timed frames between checks while the timestamps hold
+    uint64_t framesSeen = 0;
+    uint32_t framesChecked = 0;
+    double fencedMs = 0, stampedMs = 0;  // the check's frames, fenced and as their timestamps saw them
+    bool checking = false;  // the renderer fences the frames of a check
+    bool fenced = false;    // the budget reads fenced frames (the renderer times every frame so)
+    double coverage = -1;
+  } timing_;
   ChangeTracker changes_;  // the one change set per frame
   ChangeSet pending_;      // changes not yet handed to the technique (run() more often than render())
   double syncMs_ = 0;      // run() plus the last updateTechnique()

@@ -23,6 +23,9 @@ class GpuTimer {
   // reopens the command buffer (FrameContext::submitAndWait); every section's ends call it.
   void beginFrame(VkCommandBuffer cmd, std::function<void()> fence = {});
   Mode mode() const { return mode_; }
+  // Times the frames begun from now on in `mode` (between frames). Timestamps fall back to none on a
+  // device without them.
+  void setMode(Mode mode);
   uint32_t begin(VkCommandBuffer cmd, const char* name);
   void end(VkCommandBuffer cmd, uint32_t section);
   // Call after the frame's fence has signalled. wait = false: times not yet available are left out
@@ -30,17 +33,21 @@ class GpuTimer {
   void resolve(bool wait = true);
   // (name, milliseconds) of the last resolved frame, in recording order.
   const std::vector<std::pair<std::string, double>>& results() const { return results_; }
+  // A fenced frame's sections as the device's timestamps saw them (written beside the fences where the
+  // device has timestamps): how much of the fenced time they bracket. Empty for a timestamped frame.
+  const std::vector<std::pair<std::string, double>>& timestampResults() const { return timestampResults_; }
 
  private:
   using Clock = std::chrono::steady_clock;
   VulkanContext& ctx_;
   Mode mode_;
+  Mode frameMode_;  // the mode the last frame was begun with (what resolve() reads)
   VkQueryPool pool_ = VK_NULL_HANDLE;
   uint32_t max_;
   std::function<void()> fence_;
   std::vector<std::string> names_;
   std::vector<std::pair<Clock::time_point, Clock::time_point>> cpuTimes_;  // Fenced: per section
-  std::vector<std::pair<std::string, double>> results_;
+  std::vector<std::pair<std::string, double>> results_, timestampResults_;
 };
 
 // Debug label + timed section around one pass's commands.

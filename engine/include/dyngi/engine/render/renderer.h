@@ -6,6 +6,7 @@
 // change (see docs/ARCHITECTURE.md).
 #include <chrono>
 #include <functional>
+#include <optional>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -46,6 +47,8 @@ enum class TargetId { Position, Normal, Albedo, Emissive, Depth, Indirect, Specu
 
 struct FrameStats {
   std::vector<std::pair<std::string, double>> gpuMs;  // per pass, recording order
+  // A fenced frame's timestamps of the same passes, where the device has them (GpuTimer::timestampResults).
+  std::vector<std::pair<std::string, double>> gpuMsTimestamps;
   double cpuRecordMs = 0;   // building uploads and recording commands
   double cpuWaitMs = 0;     // waiting for the frame's fence
   bool presented = false;
@@ -76,6 +79,12 @@ class Renderer {
   // Renders one frame; when `swapchain` is given (and valid) the result is presented to it.
   const FrameStats& render(const RenderSnapshot& snapshot, Swapchain* swapchain = nullptr);
   const FrameStats& lastStats() const { return stats_; }
+  // How the passes are timed from the next frame on (RendererSettings::stageTiming); nothing when the
+  // renderer times nothing (gpuTimestamps off). Fenced is refused once a host records its frames.
+  std::optional<GpuTimer::Mode> stageTiming() const { return timer_ ? std::optional(timer_->mode()) : std::nullopt; }
+  void setStageTiming(GpuTimer::Mode mode);
+  // A host records the frames (recordHostFrame): they cannot be fenced.
+  bool hostRecordsFrames() const { return hostFramePending_; }
 
   // A host's frame (gi::GiContext): the shadow maps and the features recorded into `cmd`, a command
   // buffer the host submits. `fillGBuffer` writes the G-buffer targets (after the shadow maps),
