@@ -150,7 +150,7 @@ void GiSystem::frameTimed() {
 // A budget held on timestamps that do not bracket the GI's work would hold a cost the device does not
 // spend. After a few frames, a few frames are fenced (each section waited for and timed on the CPU) with
 // the timestamps written beside the fences: the same work seen both ways. When the timestamps hold less
-// than TimingCheck::kMinCoverage of the fenced cost, every later frame is fenced. A host's frames cannot
+// than kMinTimestampCoverage of the fenced cost, every later frame is fenced. A host's frames cannot
 // be fenced: they keep the timestamps, unchecked.
 void GiSystem::checkTiming(bool oneOffFrame) {
   using Mode = render::GpuTimer::Mode;
@@ -164,7 +164,7 @@ void GiSystem::checkTiming(bool oneOffFrame) {
     if (++t.framesChecked < TimingCheck::kFencedFrames) return;
     t.checking = false;
     t.coverage = t.stampedMs / std::max(t.fencedMs, 1e-6);
-    t.fenced = t.coverage < TimingCheck::kMinCoverage;
+    t.fenced = t.coverage < kMinTimestampCoverage;
     if (!t.fenced) renderer_->setStageTiming(Mode::Timestamps);
     return;
   }

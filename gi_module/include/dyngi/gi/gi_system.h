@@ -74,6 +74,9 @@ class GiSystem final : public ecs::System {
   bool setDebugView(std::string_view name);
   // The GI budget's controller, when GiSettings::budget asks for one.
   const BudgetController* budget() const { return budget_.get(); }
+  // A GI budget reads timestamps only while they bracket this share of a fenced frame's GI cost (within
+  // 15 percent of what the device spends); fenced frames otherwise (GiStats::budgetTiming).
+  static constexpr double kMinTimestampCoverage = 0.85;
   // Every GPU section the GI times: the voxel scene's (when it has one) and the technique's.
   std::vector<const char*> timedSections() const;
 
@@ -112,7 +115,6 @@ class GiSystem final : public ecs::System {
   double giMs_ = -1;
   // The budget's timing check (checkTiming): a few fenced frames now and then, timestamps beside them.
   struct TimingCheck {
-    static constexpr double kMinCoverage = 0.8;    // timestamps bracketing less of the fenced cost are not read
     static constexpr uint32_t kWarmupFrames = 4;   // timed frames (not one-off) before the first check
     static constexpr uint32_t kFencedFrames = 3;   // frames a check fences
     static constexpr uint32_t kCheckEvery = 300;   // timed frames between checks while the timestamps hold
