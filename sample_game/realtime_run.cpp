@@ -246,7 +246,8 @@ class RealtimeRun {
     session_->beginFrame(frame, time_.dt, world_, assets_, renderer_.width(), renderer_.height());
     scheduler_.runFrame(world_, time_);
     auto tExtract = Clock::now();
-    const render::RenderSnapshot snapshot = render::extractSnapshot(world_, assets_, frame);  // the frame's one snapshot
+    render::extractSnapshot(world_, assets_, frame, snapshot_);  // the frame's one snapshot, in last frame's memory
+    const render::RenderSnapshot& snapshot = snapshot_;
     const double extractMs = std::chrono::duration<double, std::milli>(Clock::now() - tExtract).count();
     const render::FrameStats& fs = renderer_.render(snapshot, swapchain_.get());
     if (swapchain_ && !fs.presented) swapchain_->recreate(renderer_.width(), renderer_.height());
@@ -289,6 +290,7 @@ class RealtimeRun {
   std::unique_ptr<platform::Window> window_;
   render::VulkanContext ctx_;
   render::Renderer renderer_;
+  render::RenderSnapshot snapshot_;  // this frame's, reusing last frame's memory
   std::unique_ptr<render::Swapchain> swapchain_;
   GiSetup gi_;
   ecs::Scheduler scheduler_;

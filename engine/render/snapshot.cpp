@@ -31,8 +31,21 @@ CameraView frameBounds(const scene::Aabb& bounds, float yfov) {
 }
 
 RenderSnapshot extractSnapshot(const ecs::World& world, const scene::AssetStore& assets, uint64_t frame) {
-  using namespace scene;
   RenderSnapshot s;
+  extractSnapshot(world, assets, frame, s);
+  return s;
+}
+
+void extractSnapshot(const ecs::World& world, const scene::AssetStore& assets, uint64_t frame, RenderSnapshot& into) {
+  using namespace scene;
+  std::vector<DrawItem> draws = std::move(into.draws);
+  std::vector<LightItem> lights = std::move(into.lights);
+  draws.clear();
+  lights.clear();
+  into = RenderSnapshot{};
+  into.draws = std::move(draws);
+  into.lights = std::move(lights);
+  RenderSnapshot& s = into;
   s.assets = &assets;
   s.frame = frame;
   s.draws.reserve(world.count<MeshInstance>());  // grown by doubling, a large scene's list would be copied
@@ -86,7 +99,6 @@ RenderSnapshot extractSnapshot(const ecs::World& world, const scene::AssetStore&
     s.camera.aspect = c.aspect;
   });
   if (!haveCamera) s.camera = frameBounds(s.sceneBounds);
-  return s;
 }
 
 }  // namespace dyngi::render

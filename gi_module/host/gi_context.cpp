@@ -117,6 +117,7 @@ struct GiContext::Impl {
   ecs::World world;
   ecs::Scheduler scheduler;
   render::Renderer renderer;
+  render::RenderSnapshot snapshot;  // this frame's, reusing last frame's memory
   GiSystem* gi = nullptr;  // owned by the scheduler
   Pipeline import_, export16_, export32_;
   render::Image blackTexture, whiteTexture;  // absent views: emission and metallic 0, roughness 1
@@ -290,7 +291,8 @@ void GiContext::recordFrame(VkCommandBuffer cmd, const FrameDesc& desc) {
   const double dt = im.frameCount == 0 ? 1.0 / 60.0 : std::max(desc.time - im.lastTime, 0.0);
   im.scheduler.runFrame(im.world, ecs::FrameTime{dt, desc.time, im.frameCount});
   im.lastTime = desc.time;
-  render::RenderSnapshot snapshot = render::extractSnapshot(im.world, im.assets, im.frameCount);
+  render::extractSnapshot(im.world, im.assets, im.frameCount, im.snapshot);
+  render::RenderSnapshot& snapshot = im.snapshot;
   snapshot.camera.view = desc.camera.view;
   snapshot.camera.position = glm::vec3(glm::inverse(desc.camera.view)[3]);
   snapshot.camera.fixedProjection = true;

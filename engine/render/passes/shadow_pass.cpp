@@ -172,18 +172,29 @@ void ShadowPass::execute(FrameContext& frame) {
 }
 
 // Casters, and which of them moved, turned or deformed lately (the first sight of one is no change).
+// Last frame's casters are usually the same entities in the same order: each is compared with the one
+// at its place, and looked up by entity only when that is another. Only casters that changed are
+// remembered with the frame they changed at.
 ShadowPass::CasterSets ShadowPass::gatherCasters(const FrameContext& frame) {
   CasterSets sets;
-  std::unordered_map<scene::Entity, const Caster*> before;
-  for (const Caster& c : renderedCasters_) before[c.entity] = &c;
+  std::unordered_map<scene::Entity, const Caster*> before;  // built on the first caster out of place
+  auto previous = [&](size_t place, scene::Entity e) -> const Caster* {
+    if (place < renderedCasters_.size() && renderedCasters_[place].entity == e) return &renderedCasters_[place];
+    if (before.empty())
+      for (const Caster& c : renderedCasters_) before[c.entity] = &c;
+    const auto it = before.find(e);
+    return it == before.end() ? nullptr : it->second;
+  };
+  sets.casters.reserve(frame.snapshot.draws.size());
   for (size_t i = 0; i < frame.snapshot.draws.size(); ++i) {
     const DrawItem& d = frame.snapshot.draws[i];
     const GpuMesh* mesh = frame.meshes[i];
     if (!d.castShadows || !mesh || mesh->indexCount == 0) continue;
     Caster c{d.entity, d.mesh, mesh->version, d.model};
-    auto it = before.find(d.entity);
-    uint64_t& changedAt = casterChangedAt_[d.entity];
-    if (rendered_ && (it == before.end() || !(*it->second == c))) changedAt = frameCounter_;
+    const Caster* was = previous(sets.casters.size(), d.entity);
+    uint64_t changedAt = 0;
+    if (rendered_ && (!was || !(*was == c))) changedAt = casterChangedAt_[d.entity] = frameCounter_;
+    else if (const auto it = casterChangedAt_.find(d.entity); it != casterChangedAt_.end()) changedAt = it->second;
     sets.casters.push_back(c);
     sets.all.push_back(i);
     const bool isMoving = changedAt > 0 && frameCounter_ - changedAt < kSettleFrames;
@@ -192,7 +203,8 @@ ShadowPass::CasterSets ShadowPass::gatherCasters(const FrameContext& frame) {
   }
   if (casterChangedAt_.size() > 2 * sets.casters.size() + 64) {  // forget casters that are gone
     std::unordered_map<scene::Entity, uint64_t> kept;
-    for (const Caster& c : sets.casters) kept[c.entity] = casterChangedAt_[c.entity];
+    for (const Caster& c : sets.casters)
+      if (const auto it = casterChangedAt_.find(c.entity); it != casterChangedAt_.end()) kept[c.entity] = it->second;
     casterChangedAt_ = std::move(kept);
   }
   return sets;

@@ -51,5 +51,8 @@ struct RenderSnapshot {
 CameraView frameBounds(const scene::Aabb& bounds, float yfov = 0.8f);
 
 RenderSnapshot extractSnapshot(const ecs::World& world, const scene::AssetStore& assets, uint64_t frame);
+// The same into `into`, keeping its lists' memory: a frame loop that keeps one snapshot does not allocate
+// (and fault in) a large scene's draw list again every frame.
+void extractSnapshot(const ecs::World& world, const scene::AssetStore& assets, uint64_t frame, RenderSnapshot& into);
 
 }  // namespace dyngi::render

@@ -1,0 +1,65 @@
+// Extracting into a snapshot that held another frame must give what a fresh extraction gives, in the
+// memory it already has.
+#include <gtest/gtest.h>
+
+#include "dyngi/engine/render/snapshot.h"
+#include "dyngi/engine/scene/assets.h"
+#include "dyngi/engine/scene/components.h"
+
+using namespace dyngi;
+
+namespace {
+// `quads` mesh entities in a row, `lights` point lights, a camera when asked.
+void fill(ecs::World& w, scene::AssetStore& a, int quads, int lights, bool camera) {
+  const scene::MeshId quad = a.addMesh(scene::makeQuad({-0.5f, -0.5f, 0}, {1, 0, 0}, {0, 1, 0}));
+  for (int i = 0; i < quads; ++i) {
+    const ecs::Entity e = w.create();
+    scene::Transform t;
+    t.translation = {float(i), 0.0f, 0.0f};
+    w.add(e, scene::WorldTransform{t.matrix()});
+    w.add(e, scene::MeshInstance{quad, true});
+    w.add(e, scene::Material{.baseColor = glm::vec4(0.1f * float(i), 0.5f, 0.5f, 1.0f)});
+  }
+  for (int i = 0; i < lights; ++i) {
+    const ecs::Entity e = w.create();
+    w.add(e, scene::WorldTransform{glm::mat4(1.0f)});
+    w.add(e, scene::Light{.type = scene::LightType::Point, .intensity = 1.0f + float(i)});
+  }
+  if (camera) {
+    const ecs::Entity e = w.create();
+    scene::Transform t;
+    t.translation = {0.0f, 1.0f, 5.0f};
+    w.add(e, scene::WorldTransform{t.matrix()});
+    w.add(e, scene::Camera{.yfov = 0.7f});
+    w.add(e, scene::ActiveCamera{});
+  }
+}
+}  // namespace
+
+TEST(Snapshot, ExtractingIntoAnOldSnapshotGivesAFreshOneInItsMemory) {
+  ecs::World big, small;
+  scene::AssetStore bigAssets, smallAssets;
+  fill(big, bigAssets, 6, 3, false);
+  fill(small, smallAssets, 3, 1, true);
+  render::RenderSnapshot reused = render::extractSnapshot(big, bigAssets, 7);
+  ASSERT_EQ(reused.draws.size(), 6u);
+  const render::DrawItem* memory = reused.draws.data();
+  render::extractSnapshot(small, smallAssets, 9, reused);
+  const render::RenderSnapshot fresh = render::extractSnapshot(small, smallAssets, 9);
+  EXPECT_EQ(reused.draws.data(), memory) << "the draw list is rewritten in place";
+  ASSERT_EQ(reused.draws.size(), fresh.draws.size());
+  for (size_t i = 0; i < fresh.draws.size(); ++i) {
+    EXPECT_EQ(reused.draws[i].entity, fresh.draws[i].entity);
+    EXPECT_EQ(reused.draws[i].model, fresh.draws[i].model);
+    EXPECT_EQ(reused.draws[i].material.baseColor, fresh.draws[i].material.baseColor);
+  }
+  ASSERT_EQ(reused.lights.size(), fresh.lights.size());
+  EXPECT_EQ(reused.lights[0].light.intensity, fresh.lights[0].light.intensity);
+  EXPECT_EQ(reused.camera.view, fresh.camera.view);
+  EXPECT_EQ(reused.camera.yfov, fresh.camera.yfov);
+  EXPECT_EQ(reused.sceneBounds.min, fresh.sceneBounds.min);
+  EXPECT_EQ(reused.sceneBounds.max, fresh.sceneBounds.max);
+  EXPECT_EQ(reused.frame, 9u);
+  EXPECT_EQ(reused.assets, &smallAssets);
+  EXPECT_EQ(reused.skippedDraws, fresh.skippedDraws);
+}
