@@ -67,6 +67,17 @@ bool optionWidget(PanelContext& p, const gi::OptionRef& r) {
   return done;
 }
 
+// The GI budget as it runs: the level on its ladder, each knob's value now, what the cost is read from.
+void budgetStatus(const gi::GiSystem& system) {
+  const gi::BudgetController* b = system.budget();
+  if (!b) return;
+  const gi::GiStats st = system.stats();
+  ImGui::Text("GI budget %.1f ms: level %u of %u", b->budgetMs(), b->level(), b->floorLevel());
+  ImGui::Text("  %s", b->budgetMet() ? "met" : "not met, every knob at its floor");
+  for (const auto& [knob, value] : b->knobValues()) ImGui::Text("  %s %g", knob.c_str(), value);
+  if (!st.budgetTiming.empty()) ImGui::TextDisabled("  cost: %s (stamps held %.2f)", st.budgetTiming.c_str(), st.timestampCoverage);
+}
+
 void giSection(PanelContext& p) {
   ImGui::TextUnformatted("Global illumination");
   for (const std::string& m : GiControl::modes()) {
@@ -88,6 +99,7 @@ void giSection(PanelContext& p) {
     ImGui::EndCombo();
   }
   remember(p, "view");
+  budgetStatus(*system);
   if (ImGui::CollapsingHeader("Technique options", ImGuiTreeNodeFlags_DefaultOpen)) {
     bool changed = false;
     for (const gi::OptionRef& r : entry.options(p.gi.settings())) changed |= optionWidget(p, r);
