@@ -1,7 +1,7 @@
 #version 460
 // The traced diffuse light (E / pi, AO in alpha) averaged over a line of traced pixels along one axis (run
 // along x, then along y: a 2D window for 2 (2r + 1) taps instead of (2r + 1)^2), each weighted by a tent
-// in its distance and by how well its surface matches this one's (vct_surface_match.glsl, the upsample's
+// in its distance and by how well its surface matches this one's (shared/surface_match.glsl, the upsample's
 // test), so light stays on its own surface. The traced pixels turned their cone sets by different angles
 // (vct_trace.comp): the average is the hemisphere seen through all of their cones, where one pixel's few
 // cones would miss the same directions over a face. A value vct_reproject.comp marked missing (alpha < 0)
@@ -17,7 +17,7 @@ layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_IN, rgba16f) uniform readonly
 layout(set = 0, binding = DYNGI_VCT_FILTER_BINDING_OUT, rgba16f) uniform writeonly image2D filtered;
 layout(push_constant) uniform Push { DYNGI_VCT_FILTER_PUSH };
 #include "vct_surface.glsl"
-#include "vct_surface_match.glsl"
+#include "shared/surface_match.glsl"
 
 void main() {
   ivec2 q = ivec2(gl_GlobalInvocationID.xy);
@@ -40,7 +40,7 @@ void main() {
     if (!vctUnpackSurface(imageLoad(surfaces, o), qp, qn)) continue;
     float tent = 1.0 - float(abs(i)) / float(radius + 1);
     vec4 value = imageLoad(traced, o);
-    float w = value.a < 0.0 ? 0.0 : tent * vctSurfaceMatch(p, n, qp, qn, scale);
+    float w = value.a < 0.0 ? 0.0 : tent * surfaceMatch(p, n, qp, qn, scale);
     sum += w * value;
     total += w;
   }

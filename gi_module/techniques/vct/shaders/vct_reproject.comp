@@ -30,7 +30,7 @@ layout(set = 0, binding = DYNGI_VCT_REPROJECT_BINDING_OUT_DIFFUSE, rgba16f) unif
 layout(set = 0, binding = DYNGI_VCT_REPROJECT_BINDING_OUT_SPECULAR, rgba16f) uniform writeonly image2D outSpecular;
 layout(set = 0, binding = DYNGI_VCT_REPROJECT_BINDING_OUT_SURFACE, rgba32ui) uniform writeonly uimage2D outSurface;
 layout(push_constant) uniform Push { DYNGI_VCT_REPROJECT_PUSH };
-#include "vct_surface_match.glsl"
+#include "shared/surface_match.glsl"
 #include "vct_trace_phase.glsl"
 #include "vct_surface.glsl"
 
@@ -44,7 +44,7 @@ bool lastFrameAt(vec3 p, vec3 n, float planeScale, ivec2 full, ivec2 low, out iv
   from = ivec2(floor((pixel - float(h)) / float(s) + 0.5));
   if (any(lessThan(from, ivec2(0))) || any(greaterThanEqual(from, low))) return false;
   vec3 qp, qn;
-  return vctUnpackSurface(imageLoad(previousSurface, from), qp, qn) && vctSurfaceMatch(p, n, qp, qn, planeScale) > 0.5;
+  return vctUnpackSurface(imageLoad(previousSurface, from), qp, qn) && surfaceMatch(p, n, qp, qn, planeScale) > 0.5;
 }
 
 void main() {

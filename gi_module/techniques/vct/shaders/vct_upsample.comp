@@ -25,7 +25,7 @@ layout(push_constant) uniform Push { DYNGI_VCT_UPSAMPLE_PUSH };
 // specular image is neither filled nor written.
 layout(constant_id = 0) const bool kSpecular = true;
 #include "vct_surface.glsl"
-#include "vct_surface_match.glsl"
+#include "shared/surface_match.glsl"
 
 // One invocation per block of traceScale x traceScale pixels that share their 4 nearest traced pixels:
 // those are read once for the block (a pixel's own reads were 14 loads, 12 of them its neighbours').
@@ -68,7 +68,7 @@ void main() {
       vec4 bestDiffuse = vec4(0.0, 0.0, 0.0, 1.0), bestSpecular = vec4(0.0);
       for (int i = 0; i < 4; ++i) {
         ivec2 o = ivec2(i & 1, i >> 1);
-        float match = seen[i] ? vctSurfaceMatch(pos.xyz, n, qp[i], qn[i], scale) : 0.0;
+        float match = seen[i] ? surfaceMatch(pos.xyz, n, qp[i], qn[i], scale) : 0.0;
         float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
         float w = d[i].a < 0.0 ? 0.0 : bilinear * match, ws = sp[i].a < 0.0 ? 0.0 : bilinear * match;
         diffuse += w * d[i];
