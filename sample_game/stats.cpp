@@ -112,14 +112,19 @@ std::string RunStats::table() const {
     t << line;
   }
   if (budget) {
+    auto knobValue = [](double v) {  // counts as integers, fractions as they are (1/16: 0.0625)
+      char text[32];
+      std::snprintf(text, sizeof text, "%g", v);
+      return std::string(text);
+    };
     std::string knobs;
-    for (auto& [name, v] : budget->knobs) knobs += " " + name + " " + std::to_string(int64_t(v));
+    for (auto& [name, v] : budget->knobs) knobs += " " + name + " " + knobValue(v);
     std::snprintf(line, sizeof line, "  gi budget %.3f ms: %s, level %u of %u, %zu changes, at the end%s\n", budget->budgetMs,
                   budget->met ? "met" : "NOT met at the floor", budget->level, budget->floorLevel, budget->trace.size(), knobs.c_str());
     t << line;
     for (const BudgetStep& step : budget->trace) {
       std::string values;
-      for (auto& [name, v] : step.knobs) values += " " + name + " " + std::to_string(int64_t(v));
+      for (auto& [name, v] : step.knobs) values += " " + name + " " + knobValue(v);
       std::snprintf(line, sizeof line, "    frame %4llu: level %2u after a median of %7.2f ms:%s\n", (unsigned long long)step.frame, step.level,
                     step.medianMs, values.c_str());
       t << line;
