@@ -87,9 +87,11 @@ void IndirectGatherPass::record(render::FrameContext& frame, render::Image& raw,
 
 IndirectFilterPass::IndirectFilterPass(render::VulkanContext& ctx) : ctx_(ctx) {}
 
+bool IndirectFilterPass::compensates(const VplOptions& vpl) { return vpl.clampCompensation > 0 && vpl.distanceClamp > 0.0f; }
+
 void IndirectFilterPass::record(render::FrameContext& frame, render::Image& input, uint32_t K, const VplOptions& vpl) {
   K = std::clamp(K, 1u, 8u);
-  const bool compensate = vpl.clampCompensation > 0 && vpl.distanceClamp > 0.0f;
+  const bool compensate = compensates(vpl);
   const uint32_t spec[] = {K, compensate ? 1u : 0u};
   render::Pipeline& rows = rows_[K - 1];
   if (!rows.handle()) {

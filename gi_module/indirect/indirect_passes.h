@@ -13,6 +13,8 @@
 
 namespace dyngi::gi {
 
+struct VplOptions;
+
 class IndirectGatherPass {
  public:
   // The plain gather (gather.comp), or a technique's variant: a shader that includes gather.glsl, with
@@ -46,13 +48,15 @@ class IndirectGatherPass {
 
 class IndirectFilterPass {
  public:
+  // Whether record() runs the clamp compensation with these options ("compensate" in stats).
+  static bool compensates(const VplOptions& vpl);
   explicit IndirectFilterPass(render::VulkanContext& ctx);
   // Filters `input` (interleaved K x K, K in 1..8; rgba32ui packed as in filter_input.glsl) into
   // frame.targets.indirect ("filter" in stats): a separable geometry-aware tent (shaders/filter_tent.glsl),
   // with vpl.filterPlaneTolerance. Between its passes, unless vpl.clampCompensation or vpl.distanceClamp is
   // 0, it traces the light the gather's distance clamp dropped (shaders/compensate.comp, "compensate" in
   // stats: short screen-space rays for one pixel in 4 x 4), which the second pass adds.
-  void record(render::FrameContext& frame, render::Image& input, uint32_t K, const struct VplOptions& vpl);
+  void record(render::FrameContext& frame, render::Image& input, uint32_t K, const VplOptions& vpl);
 
  private:
   void recordCompensation(render::FrameContext& frame, const VplOptions& vpl);

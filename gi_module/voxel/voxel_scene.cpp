@@ -166,6 +166,8 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     haveVolume_ = true;
     allDirty_ = true;
   }
+  updatesThisFrame_ = allDirty_ || updateInterval_ <= 1 || frameIndex_ % updateInterval_ == 0;
+  if (!updatesThisFrame_) return;  // dirty_ and removed_ keep what changed for the next update
   const glm::mat4 toVoxel = volume_.worldToVoxelMatrix();
 
   // Entities that disappeared from the draw list count as removed.
@@ -244,6 +246,10 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   }
   stats_.entitiesVoxelized = uint32_t(drawsToVoxelize_.size());
   if (rebuildSvo_) svo_->plan(ranges_, frameIndex_, voxelizedThisFrame_, removedNow, stats_);
+}
+
+QualityKnob VoxelScene::updateFractionKnob() {
+  return {"voxel_update_fraction", {1.0, 0.5, 0.25}, [this](double v) { setUpdateInterval(uint32_t(std::lround(1.0 / std::max(v, 1e-6)))); }};
 }
 
 render::Pipeline& VoxelScene::voxelizePipelineFor(uint32_t textureBits) {

@@ -3,7 +3,10 @@
 // views switch, and it reads the renderer's snapshot with every change since it last ran.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <string_view>
 
 #include "render/gi_run.h"
 #include "render/render_fixture.h"
@@ -41,6 +44,19 @@ TEST_F(RenderTest, EveryTechniqueTimesTheSectionsItDeclaresAndReportsTheOptionsI
       }
     }
     EXPECT_FALSE(run.gi->setDebugView("no-such-view"));
+  }
+  // On a smaller screen the VPL techniques also time the reduction and the upsample, and count them.
+  for (const char* technique : {"temporal", "many-lights"}) {
+    SCOPED_TRACE(technique);
+    gi::GiSettings s = settingsFor(*gi::findTechnique(technique));
+    s.temporal.vpl.gatherScale = s.manyLights.vpl.gatherScale = 2.0f;
+    GiRun run(context(), s, "cornell", 64, 64);
+    run.step(3);
+    const std::vector<const char*> sections = run.gi->technique().timedSections();
+    for (std::string_view name : {"reduce", "upsample"}) {
+      EXPECT_TRUE(run.gpuSections.count(std::string(name))) << name;
+      EXPECT_NE(std::find(sections.begin(), sections.end(), name), sections.end()) << name;
+    }
   }
   EXPECT_THROW(gi::GiSystem(context(), scene::AssetStore{}, gi::GiSettings{.technique = "no-such-technique"}), std::invalid_argument);
 }

@@ -40,6 +40,27 @@ struct GpuVpl {
 #define DYNGI_FILTER_BINDING_COMPENSATION 4         // filter_columns: that image, read
 #define DYNGI_COMPENSATE_SCALE 4                    // the compensation is traced for one pixel in 4 x 4
 
+// The reduced screen (reduced_screen.h): the G-buffer at 1/s of the resolution for the gather and the
+// filter (reduce_gbuffer.comp), and their light back to every pixel (upsample_indirect.comp).
+#define DYNGI_REDUCE_BINDING_POSITION 0
+#define DYNGI_REDUCE_BINDING_NORMAL 1
+#define DYNGI_REDUCE_BINDING_ALBEDO 2
+#define DYNGI_REDUCE_BINDING_EMISSIVE 3
+#define DYNGI_REDUCE_BINDING_OUT_POSITION 4
+#define DYNGI_REDUCE_BINDING_OUT_NORMAL 5
+#define DYNGI_REDUCE_BINDING_OUT_ALBEDO 6
+#define DYNGI_REDUCE_BINDING_OUT_EMISSIVE 7
+#define DYNGI_UPSAMPLE_BINDING_FRAME 0
+#define DYNGI_UPSAMPLE_BINDING_POSITION 1
+#define DYNGI_UPSAMPLE_BINDING_NORMAL 2
+#define DYNGI_UPSAMPLE_BINDING_LOW_POSITION 3
+#define DYNGI_UPSAMPLE_BINDING_LOW_NORMAL 4
+#define DYNGI_UPSAMPLE_BINDING_LOW_INDIRECT 5
+#define DYNGI_UPSAMPLE_BINDING_OUT_INDIRECT 6
+// Full-resolution pixels per reduced pixel along x and y (the full size over the reduced size): reduced
+// pixel q's centre is the full-resolution point (q + 0.5) scale, and it samples the pixel there.
+#define DYNGI_REDUCED_SCREEN_PUSH float scaleX; float scaleY;
+
 // Bindings of the shared indirect gather (gather.glsl); a technique's gather variant adds its own after
 // them (temporal_gather.comp).
 #define DYNGI_GATHER_BINDING_FRAME 0
@@ -106,11 +127,13 @@ struct GatherPush {
 #ifdef __cplusplus
 struct IndirectFilterPush { DYNGI_INDIRECT_FILTER_PUSH };
 struct CompensatePush { DYNGI_COMPENSATE_PUSH };
+struct ReducedScreenPush { DYNGI_REDUCED_SCREEN_PUSH };
 
 static_assert(sizeof(GpuVpl) == 48 && offsetof(GpuVpl, normal) == 16 && offsetof(GpuVpl, flux) == 32);
 static_assert(sizeof(GatherPush) == 80 && offsetof(GatherPush, distanceClamp) == 16 && offsetof(GatherPush, vplCount) == 32 &&
               offsetof(GatherPush, firstVpl) == 48 && offsetof(GatherPush, chunkBegin) == 64 && offsetof(GatherPush, clampSpread) == 72);
 static_assert(sizeof(IndirectFilterPush) == 4);
+static_assert(sizeof(ReducedScreenPush) == 8);
 static_assert(sizeof(CompensatePush) == 20 && offsetof(CompensatePush, planeTolerance) == 16);
 #endif
 

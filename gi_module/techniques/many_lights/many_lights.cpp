@@ -7,6 +7,7 @@
 #include "dyngi/engine/render/light_views.h"
 #include "techniques/many_lights/shaders/many_lights_shared.h"
 #include "indirect/indirect_passes.h"
+#include "indirect/reduced_screen.h"
 #include "spirv/many_lights_debug.comp.spv.h"
 #include "spirv/rsm.frag.spv.h"
 #include "spirv/rsm.vert.spv.h"
@@ -53,6 +54,7 @@ ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const Man
   const Binding tailB[] = {{DYNGI_VPL_TAIL_BINDING_VPLS, kSSBO, kCS}};
   tail_ = Pipeline::compute(ctx, DYNGI_SHADER(spv_vpl_tail_comp), tailB, sizeof(gpu::VplTailPush), "vpl_tail");
   gatherPass_ = std::make_unique<IndirectGatherPass>(ctx);
+  reduced_ = std::make_unique<ReducedScreen>(ctx);
   filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
   const Binding debugB[] = {{DYNGI_MANY_LIGHTS_DEBUG_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kCS},
                             {DYNGI_MANY_LIGHTS_DEBUG_BINDING_G_ALBEDO, kSampled, kCS},
@@ -123,16 +125,25 @@ void ManyLights::ensureRsm(uint32_t layers) {
 }
 
 void ManyLights::resize(render::VulkanContext& ctx, uint32_t width, uint32_t height) {
+  width_ = width;
+  height_ = height;
   render::ImageDesc d;
-  d.width = width;
-  d.height = height;
+  d.width = ReducedScreen::reducedSize(width, gatherScale());
+  d.height = ReducedScreen::reducedSize(height, gatherScale());
   d.format = VK_FORMAT_R32G32B32A32_UINT;  // filter_input.glsl's packing: light with depth and normal
   d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   d.name = "indirect raw (interleaved)";
   raw_ = Image(ctx, d);
 }
 
-void ManyLights::prepare(render::VulkanContext&, const render::RenderSnapshot& snapshot) {
+bool ManyLights::screenReduced() const {
+  return ReducedScreen::reducedSize(width_, gatherScale()) != width_ || ReducedScreen::reducedSize(height_, gatherScale()) != height_;
+}
+
+void ManyLights::prepare(render::VulkanContext& ctx, const render::RenderSnapshot& snapshot) {
+  if (raw_.valid() && (raw_.desc().width != ReducedScreen::reducedSize(width_, gatherScale()) ||
+                       raw_.desc().height != ReducedScreen::reducedSize(height_, gatherScale())))
+    resize(ctx, width_, height_);  // a GI budget moved the gather scale
   settings_.vpl.bounces = std::clamp(settings_.vpl.bounces, 1u, 3u);
   settings_.vpl.interleave = std::clamp(settings_.vpl.interleave, 1u, 8u);
   perBounce_ = vplCount() / settings_.vpl.bounces;  // the one rounding rule (VplOptions::effectiveVplCount)
@@ -345,8 +356,10 @@ void ManyLights::recordGatherAndFilter(render::FrameContext& frame) {
   pc.interleave = K;
   pc.visibility = settings_.visibility == VisibilityBackend::Svo ? DYNGI_VISIBILITY_SVO : DYNGI_VISIBILITY_NONE;
   pc.svoDepth = vol.depth();
-  gatherPass_->record(frame, raw_, in);
-  filterPass_->record(frame, raw_, K, settings_.vpl);
+  render::FrameContext& screen = reduced_->begin(frame, gatherScale());
+  gatherPass_->record(screen, raw_, in);
+  filterPass_->record(screen, raw_, K, settings_.vpl);
+  reduced_->finish(frame);
 }
 
 void ManyLights::recordAfterLighting(render::FrameContext& frame) {

@@ -3,7 +3,8 @@
 // importance-sampled from RSM flux, extra bounces shot through the voxel scene, an interleaved KxK
 // gather with SVO-restart visibility, a geometry-aware merge filter. Writes targets.indirect; the
 // engine's lighting pass adds albedo x indirect to direct light. Stages: rsm, vpl_generate, vpl_bounce,
-// indirect, filter (plus the voxel scene's voxelize and svo_build).
+// indirect, filter (plus the voxel scene's voxelize and svo_build; reduce and upsample when the gather
+// runs on a smaller screen, ReducedScreen).
 #include <algorithm>
 #include <memory>
 #include <vector>
@@ -29,6 +30,7 @@ class ManyLights final : public render::RenderFeature {
   void resize(render::VulkanContext& ctx, uint32_t width, uint32_t height) override;
 
   ManyLightsOptions& settings() { return settings_; }
+  const ManyLightsOptions& settings() const { return settings_; }
   // VPLs per frame as used: the requested count rounded down to a multiple of the bounces, or fewer
   // while a GI budget lowers it (setVplsPerFrame; 0 gives the requested count back).
   uint32_t vplCount() const {
@@ -36,6 +38,13 @@ class ManyLights final : public render::RenderFeature {
     return perFrame_ ? std::clamp(perFrame_ / b * b, b, requested) : requested;
   }
   void setVplsPerFrame(uint32_t count) { perFrame_ = count; }
+  // How many times smaller a side the gather's and filter's screen is (ReducedScreen):
+  // VplOptions::gatherScale times a GI budget's factor (setBudgetGatherScale).
+  float gatherScale() const { return std::clamp(settings_.vpl.gatherScale * budgetGatherScale_, 1.0f, 8.0f); }
+  void setBudgetGatherScale(float factor) { budgetGatherScale_ = std::max(1.0f, factor); }
+  float budgetGatherScale() const { return budgetGatherScale_; }
+  // Whether the screen passes run on a smaller screen (then "reduce" and "upsample" are timed).
+  bool screenReduced() const;
   // Emissive surfaces as VPL sources (vpl/emitters.h), before prepare(): the first bounce's VPLs are
   // split between the RSMs and the emitters in proportion to the lights' and the emitters' power; the
   // emitters' are sampled here on the CPU (stratified, the same every frame while nothing changes).
@@ -58,6 +67,8 @@ class ManyLights final : public render::RenderFeature {
   ManyLightsOptions settings_;
   uint32_t rsmLayers_ = 0, rsmLayersUsed_ = 0, perBounce_ = 0;
   uint32_t perFrame_ = 0;  // a GI budget's VPL count (0: the options')
+  float budgetGatherScale_ = 1.0f;
+  uint32_t width_ = 0, height_ = 0;  // the frame's (resize)
   render::Image rsmPosition_, rsmNormal_, rsmFlux_, rsmDepth_;
   render::Buffer layers_, lights_, rowPrefix_, rowCdf_, vpls_;
   struct EmitterVpl {  // gpu::GpuVpl's layout
@@ -73,6 +84,7 @@ class ManyLights final : public render::RenderFeature {
   render::Pipeline cdfRows_, cdfTotal_, sample_, bounce_, tail_, debug_;
   std::unique_ptr<class IndirectGatherPass> gatherPass_;
   std::unique_ptr<class IndirectFilterPass> filterPass_;
+  std::unique_ptr<class ReducedScreen> reduced_;
 };
 
 }  // namespace dyngi::gi

@@ -1,6 +1,8 @@
 // The many-lights technique in the GI system's contract: VPLs from RSMs every frame, SVO visibility.
 #include "dyngi/gi/gi_settings.h"
 #include "techniques/many_lights/many_lights.h"
+#include "indirect/indirect_passes.h"
+#include "indirect/reduced_screen.h"
 #include "techniques/registry_entries.h"
 
 namespace dyngi::gi {
@@ -20,7 +22,7 @@ namespace {
 class ManyLightsTechnique final : public Technique {
  public:
   ManyLightsTechnique(const TechniqueServices& services, const ManyLightsOptions& options)
-      : assets_(services.assets), feature_(services.ctx, *services.voxels, options) {}
+      : assets_(services.assets), voxels_(*services.voxels), feature_(services.ctx, *services.voxels, options) {}
   std::vector<render::RenderFeature*> features() override { return {&feature_}; }
   void update(const TechniqueFrame& frame) override { feature_.prepareEmitters(frame.snapshot, assets_); }
   std::vector<OptionRef> options() override { return bindOptions(feature_.settings()); }
@@ -32,20 +34,33 @@ class ManyLightsTechnique final : public Technique {
     else return false;
     return true;
   }
-  std::vector<const char*> timedSections() const override { return {"rsm", "vpl_generate", "vpl_bounce", "indirect", "filter"}; }
-  // VPLs per frame: cost proportional to them in every stage after the RSMs.
+  std::vector<const char*> timedSections() const override {
+    std::vector<const char*> s = {"rsm", "vpl_generate", "vpl_bounce", "indirect", "filter"};
+    if (IndirectFilterPass::compensates(feature_.settings().vpl)) s.push_back("compensate");
+    if (feature_.screenReduced()) s.insert(s.end(), {"reduce", "upsample"});
+    return s;
+  }
+  // First the fraction of pixels the gather and the filter run on (ReducedScreen): per millisecond
+  // saved it loses the least (docs/QUALITY.md, "The GI budget"). Then the VPLs per frame: cost
+  // proportional to them in every stage after the RSMs. Last the fraction of frames that update the
+  // voxels (their cost is lag).
   std::vector<QualityKnob> qualityKnobs() override {
     const uint32_t bounces = feature_.settings().vpl.bounces;
-    return {{"vpls_per_frame", geometricLevels(feature_.vplCount(), kBudgetFloorFraction, kBudgetStepRatio, bounces),
-             [this](double v) { feature_.setVplsPerFrame(uint32_t(v)); }}};
+    return {gatherFractionKnob([this](float factor) { feature_.setBudgetGatherScale(factor); }),
+            {"vpls_per_frame", geometricLevels(feature_.vplCount(), kBudgetFloorFraction, kBudgetStepRatio, bounces),
+             [this](double v) { feature_.setVplsPerFrame(uint32_t(v)); }},
+            voxels_.updateFractionKnob()};
   }
   std::map<std::string, std::map<std::string, double>> statsSections() const override {
-    return {{"vpl", {{"count", feature_.vplCount()}}}};
+    return {{"vpl", {{"count", feature_.vplCount()}, {"gather_scale", feature_.gatherScale()},
+                     {"gather_fraction", 1.0 / (double(feature_.budgetGatherScale()) * feature_.budgetGatherScale())},
+                     {"voxel_update_fraction", 1.0 / double(voxels_.updateInterval())}}}};
   }
   ManyLights& feature() { return feature_; }
 
  private:
   const scene::AssetStore& assets_;
+  VoxelScene& voxels_;
   ManyLights feature_;
 };
 

@@ -8,6 +8,7 @@
 #include "techniques/temporal/shaders/temporal_shared.h"
 #include "spirv/temporal_reproject.comp.spv.h"
 #include "indirect/indirect_passes.h"
+#include "indirect/reduced_screen.h"
 #include "spirv/temporal_gather.comp.spv.h"
 
 #include "gpu_aliases.h"
@@ -30,6 +31,7 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
   gatherPass_ = std::make_unique<IndirectGatherPass>(ctx, DYNGI_SHADER(spv_temporal_gather_comp), accumulate, uint32_t(sizeof(gpu::AccumulatePush)),
                                                      "temporal_gather");
   filterPass_ = std::make_unique<IndirectFilterPass>(ctx);
+  reduced_ = std::make_unique<ReducedScreen>(ctx);
   maxSetsPerFrame_ = std::clamp(settings.catchUpSets, 1u, sets_);
   // With the bounce tail a set's slots can hold one probe per gathered VPL after them (prepare).
   const uint32_t slotsBound = perSet_ * (settings.vpl.bounceTail ? 2u : 1u);
@@ -60,7 +62,10 @@ uint32_t TemporalIndirect::setsRendered() const {
   return n;
 }
 
-void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t width, uint32_t height) {
+void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t fullWidth, uint32_t fullHeight) {
+  width_ = fullWidth;
+  height_ = fullHeight;
+  const uint32_t width = ReducedScreen::reducedSize(fullWidth, gatherScale()), height = ReducedScreen::reducedSize(fullHeight, gatherScale());
   auto make = [&](VkFormat f, uint32_t layers, VkImageViewType viewType, const char* name) {
     render::ImageDesc d;
     d.width = width;
@@ -81,7 +86,14 @@ void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t width, uint32
   std::fill(lastRendered_.begin(), lastRendered_.end(), -1);  // stored buffers are gone
 }
 
-void TemporalIndirect::prepare(render::VulkanContext&, const render::RenderSnapshot&) {
+bool TemporalIndirect::screenReduced() const {
+  return ReducedScreen::reducedSize(width_, gatherScale()) != width_ || ReducedScreen::reducedSize(height_, gatherScale()) != height_;
+}
+
+void TemporalIndirect::prepare(render::VulkanContext& ctx, const render::RenderSnapshot&) {
+  if (accumulated_.valid() && (accumulated_.desc().width != ReducedScreen::reducedSize(width_, gatherScale()) ||
+                               accumulated_.desc().height != ReducedScreen::reducedSize(height_, gatherScale())))
+    resize(ctx, width_, height_);  // a GI budget moved the gather scale: the sets start over
   // Sets mostly stale (a light switched or jumped, and the burst reshot their VPLs) leave the average
   // until they are gathered again: the running sums hold them, so this frame reprojects in full.
   droppedSets_ = false;
@@ -232,6 +244,12 @@ void TemporalIndirect::computeBvhVisibility(render::FrameContext& frame, uint32_
 bool TemporalIndirect::record(render::FrameContext& frame) {
   if (!accumulated_.valid()) return false;
   if (settings_.visibility == VisibilityBackend::Svo && !voxels_->hasVolume()) return false;
+  recordScreen(reduced_->begin(frame, gatherScale()));
+  reduced_->finish(frame);
+  return true;
+}
+
+void TemporalIndirect::recordScreen(render::FrameContext& frame) {
   const uint32_t K = interleave(), K2 = K * K;
   const uint32_t perPixel = (slots_ + K2 - 1) / K2;
   // (No ScopedPass here: the mid-frame submit would split a debug label across command buffers; the
@@ -325,7 +343,6 @@ bool TemporalIndirect::record(render::FrameContext& frame) {
     recordReprojection(frame, acc, incremental);
   }
   filterPass_->record(frame, accumulated_, K, settings_.vpl);
-  return true;
 }
 
 void TemporalIndirect::recordReprojection(render::FrameContext& frame, const gpu::AccumulatePush& push, bool queued) {

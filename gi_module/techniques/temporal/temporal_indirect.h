@@ -10,7 +10,8 @@
 // geometry-aware filter (the discontinuity buffer) removes the interleaving pattern.
 // Stages: indirect (the gather, which also stores the set and accumulates in O(1) the pixels whose
 // camera and surface did not change), reproject (every set reprojected for the other pixels: those the
-// gather queued, or all when the camera moved), filter;
+// gather queued, or all when the camera moved), filter; reduce and upsample around them when they run
+// on a smaller screen (ReducedScreen: VplOptions::gatherScale, a GI budget's gather_fraction);
 // the Embree visibility's CPU time is reported separately.
 #include <algorithm>
 #include <memory>
@@ -48,6 +49,7 @@ class TemporalIndirect final : public render::RenderFeature {
   void resize(render::VulkanContext& ctx, uint32_t width, uint32_t height) override;
 
   TemporalOptions& settings() { return settings_; }
+  const TemporalOptions& settings() const { return settings_; }
   VplPaths& paths() { return paths_; }
   uint32_t lastRenderedSet() const { return currentSet_; }
   uint32_t lastFrameSetCount() const { return uint32_t(frameSets_.size()); }  // sets gathered (more while catching up)
@@ -57,6 +59,13 @@ class TemporalIndirect final : public render::RenderFeature {
   uint32_t setSize() const { return perSet_; }
   uint32_t vplsPerFrame() const { return gathered_; }
   void setVplsPerFrame(uint32_t count) { gathered_ = std::clamp(count, 1u, perSet_); }
+  // How many times smaller a side the screen passes' screen is (ReducedScreen): VplOptions::gatherScale
+  // times a GI budget's factor. A change restarts the sets' history (their images are remade at the new size).
+  float gatherScale() const { return std::clamp(settings_.vpl.gatherScale * budgetGatherScale_, 1.0f, 8.0f); }
+  void setBudgetGatherScale(float factor) { budgetGatherScale_ = std::max(1.0f, factor); }
+  float budgetGatherScale() const { return budgetGatherScale_; }
+  // Whether the screen passes run on a smaller screen (then "reduce" and "upsample" are timed).
+  bool screenReduced() const;
   uint32_t setsRendered() const;  // sets rendered at least once
   double lastBvhVisibilityMs() const { return bvhMs_; }
   uint32_t lastTrappedVpls() const { return trappedVpls_; }  // left out this frame: a surface within the SVO lift
@@ -64,6 +73,8 @@ class TemporalIndirect final : public render::RenderFeature {
  private:
   void dropTrappedVpls(std::vector<gpu::GpuVpl>& gpuVpls);
   void computeBvhVisibility(render::FrameContext& frame, uint32_t perPixel);
+  // The gather, the reprojection and the filter on `screen` (the frame's, or the reduced one).
+  void recordScreen(render::FrameContext& screen);
   // The full reprojection (temporal_reproject.comp) of the pixels the gather queued, or of every pixel.
   void recordReprojection(render::FrameContext& frame, const gpu::AccumulatePush& push, bool queued);
 
@@ -94,6 +105,9 @@ class TemporalIndirect final : public render::RenderFeature {
   std::vector<glm::mat4> setCameras_;   // CPU copy: which sets were stored from the current camera
   std::unique_ptr<class IndirectGatherPass> gatherPass_;
   std::unique_ptr<class IndirectFilterPass> filterPass_;
+  std::unique_ptr<class ReducedScreen> reduced_;
+  float budgetGatherScale_ = 1.0f;
+  uint32_t width_ = 0, height_ = 0;  // the frame's (resize); the images are at the reduced size
   double bvhMs_ = 0.0;
   uint32_t trappedVpls_ = 0;
 };

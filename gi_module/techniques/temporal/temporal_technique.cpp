@@ -4,6 +4,8 @@
 #include "techniques/temporal/temporal_indirect.h"
 #include "techniques/temporal/vpl_paths.h"
 #include "techniques/temporal/shaders/temporal_shared.h"
+#include "indirect/indirect_passes.h"
+#include "indirect/reduced_screen.h"
 #include "techniques/registry_entries.h"
 
 namespace dyngi::gi {
@@ -31,7 +33,8 @@ namespace {
 class TemporalTechnique final : public Technique {
  public:
   TemporalTechnique(const TechniqueServices& services, const TemporalOptions& options)
-      : bvh_(services.bvh), assets_(services.assets), paths_(options), feature_(services.ctx, paths_, services.voxels, &services.bvh) {}
+      : bvh_(services.bvh), assets_(services.assets), voxels_(services.voxels), paths_(options),
+        feature_(services.ctx, paths_, services.voxels, &services.bvh) {}
 
   // VPLs on a re-coloured surface keep their paths and take the new albedo (so does every later bounce);
   // those on a surface that moved or deformed, with their later bounces, are invalidated; then up to the
@@ -50,7 +53,12 @@ class TemporalTechnique final : public Technique {
     used_.vpl.interleave = feature_.settings().vpl.interleave;
     return bindOptions(used_);
   }
-  std::vector<const char*> timedSections() const override { return {"indirect", "reproject", "filter"}; }
+  std::vector<const char*> timedSections() const override {
+    std::vector<const char*> s = {"indirect", "reproject", "filter"};
+    if (IndirectFilterPass::compensates(feature_.settings().vpl)) s.push_back("compensate");
+    if (feature_.screenReduced()) s.insert(s.end(), {"reduce", "upsample"});
+    return s;
+  }
   std::map<std::string, double> cpuMs() const override {
     const VplPathStats& s = paths_.stats();
     std::map<std::string, double> ms = {{"gi_vpl_invalidate", s.invalidateMs}, {"gi_vpl_replace", s.replaceMs}};
@@ -66,10 +74,15 @@ class TemporalTechnique final : public Technique {
               {"replaced_total", double(s.replacedTotal)},
               {"reshoot_budget", s.reshootBudget},
               {"vpls_per_frame", feature_.vplsPerFrame()},
+              {"gather_scale", feature_.gatherScale()},
+              {"gather_fraction", 1.0 / (double(feature_.budgetGatherScale()) * feature_.budgetGatherScale())},
+              {"voxel_update_fraction", voxels_ ? 1.0 / double(voxels_->updateInterval()) : 1.0},
               {"trapped_last_frame", feature_.lastTrappedVpls()}}}};
   }
-  // VPLs gathered per frame (an evenly spread subset of the set): the gather's cost is proportional to
-  // them. Not the interleave K: K = 8 saves 37 ms of gather and adds 22 ms of filter at 768^2 (the
+  // First the fraction of pixels the gather, the reprojection and the filter run on (ReducedScreen):
+  // per millisecond saved it loses the least (docs/QUALITY.md, "The GI budget"). Then the VPLs gathered
+  // per frame (an evenly spread subset of the set): the gather's cost is proportional to them. Last,
+  // with SVO visibility, the fraction of frames that update the voxels (their cost is lag). Not the interleave K: K = 8 saves 37 ms of gather and adds 22 ms of filter at 768^2 (the
   // filter's window is K x K). Not the reshoot budget: its cost is CPU path tracing (0.02 ms here) and
   // lowering it is exactly what slows the reaction to a change.
   // Its floor gathers at least one VPL in each of the K x K sub-images: one with none would have no
@@ -77,8 +90,11 @@ class TemporalTechnique final : public Technique {
   std::vector<QualityKnob> qualityKnobs() override {
     const double set = feature_.setSize(), K = std::clamp(feature_.settings().vpl.interleave, 1u, 8u);
     const double floorFraction = std::min(1.0, std::max(kBudgetFloorFraction, K * K / set));
-    return {{"vpls_per_frame", geometricLevels(set, floorFraction, kBudgetStepRatio),
-             [this](double v) { feature_.setVplsPerFrame(uint32_t(v)); }}};
+    std::vector<QualityKnob> knobs = {gatherFractionKnob([this](float factor) { feature_.setBudgetGatherScale(factor); }),
+                                      {"vpls_per_frame", geometricLevels(set, floorFraction, kBudgetStepRatio),
+                                       [this](double v) { feature_.setVplsPerFrame(uint32_t(v)); }}};
+    if (voxels_) knobs.push_back(voxels_->updateFractionKnob());  // SVO visibility
+    return knobs;
   }
   bool lastFrameWasOneOff() const override { return feature_.lastFrameSetCount() > 1; }
   VplPaths& paths() { return paths_; }
@@ -87,6 +103,7 @@ class TemporalTechnique final : public Technique {
  private:
   EmbreeScene& bvh_;
   const scene::AssetStore& assets_;
+  VoxelScene* voxels_;  // with SVO visibility
   VplPaths paths_;
   TemporalIndirect feature_;
   TemporalOptions used_;  // what options() binds: the paths' options as used

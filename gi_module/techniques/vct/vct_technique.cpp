@@ -104,7 +104,10 @@ class VctTechnique final : public Technique {
   }
   std::vector<const char*> timedSections() const override { return VoxelConeTracing::timedSections(); }
   // The fraction of its pixels the trace keeps (1, 1/4, 1/16: the trace scale times 1, 2, 4): the cone
-  // trace is most of the cost and scales with it; the upsample fills the rest.
+  // trace scales with it; the upsample fills the rest. Not the voxel updates' fraction of frames
+  // (VoxelScene::updateFractionKnob): with geometry moving, the voxels and their radiance are most of
+  // VCT's cost, and updating them one frame in N makes the frames' cost bimodal (docs/QUALITY.md,
+  // "The GI budget").
   std::vector<QualityKnob> qualityKnobs() override {
     return {{"trace_fraction", {1.0, 0.25, 0.0625},
              [this](double v) { feature_.setBudgetScaleFactor(uint32_t(std::lround(1.0 / std::sqrt(std::max(v, 1e-6))))); }}};
@@ -118,7 +121,8 @@ class VctTechnique final : public Technique {
               {"traced_this_frame", s.tracedFraction},
               {"specular_cones", s.specularCones ? 1.0 : 0.0},
               {"trace_history_drops", double(historyDrops_)},
-              {"cleared_voxels", double(s.clearedVoxels)}}}};
+              {"cleared_voxels", double(s.clearedVoxels)},
+              {"voxel_update_fraction", 1.0 / double(voxels_.updateInterval())}}}};
   }
 
  private:

@@ -414,12 +414,16 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
     return false;
   }
   prepareFrame(frame);
-  recordInject(frame);
-  {
-    render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "mips");
-    recordMips(frame.cmd, /*levelZeroIsDirect=*/true);
+  // The radiance follows the voxels: refreshed when they may update (VoxelScene::updatesThisFrame, each
+  // frame unless a GI budget puts the voxel updates off) and whenever the SVO was rebuilt.
+  if (frames_ == 0 || voxels_.updatesThisFrame() || voxels_.stats().rebuilt) {
+    recordInject(frame);
+    {
+      render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "mips");
+      recordMips(frame.cmd, /*levelZeroIsDirect=*/true);
+    }
+    recordBounces(frame);
   }
-  recordBounces(frame);
   const TraceFrame trace = beginTrace(frame);
   recordTrace(frame, trace);
   recordUpsample(frame, trace, recordFilter(frame, trace));

@@ -15,6 +15,7 @@
 #include "dyngi/engine/ecs/scheduler.h"
 #include "dyngi/engine/render/pipeline.h"
 #include "dyngi/engine/render/render_feature.h"
+#include "dyngi/gi/budget_controller.h"
 #include "dyngi/gi/bvh.h"
 #include "dyngi/gi/fragment_ranges.h"
 #include "dyngi/gi/options.h"
@@ -83,6 +84,18 @@ class VoxelScene final : public render::RenderFeature {
   // Builds the leaf attributes from now on (a technique that reads them: radiance injection).
   void enableLeafAttributes();
 
+  // Voxel updates (re-voxelization, the SVO's rebuild) on one frame in `interval` only, what changed in
+  // between gathered for that frame: a GI budget's knob (voxelUpdateKnob). Its cost is lag: a moving
+  // object's voxels trail it by up to interval - 1 frames. The first frame and a full re-voxelization
+  // are never put off.
+  void setUpdateInterval(uint32_t interval) { updateInterval_ = std::max(1u, interval); }
+  uint32_t updateInterval() const { return updateInterval_; }
+  // Whether this frame may update the voxels (prepare): what a technique whose voxel data follows the
+  // voxels' (VCT's radiance) refreshes on.
+  bool updatesThisFrame() const { return updatesThisFrame_; }
+  // The budget's knob over it: the fraction of frames that update (1, 1/2, 1/4).
+  QualityKnob updateFractionKnob();
+
   const VoxelVolume& volume() const { return volume_; }
   bool hasVolume() const { return haveVolume_; }
   const VoxelStats& stats() const { return stats_; }
@@ -135,6 +148,8 @@ class VoxelScene final : public render::RenderFeature {
   VoxelVolume volume_;
   bool haveVolume_ = false;
   bool allDirty_ = true;
+  uint32_t updateInterval_ = 1;
+  bool updatesThisFrame_ = true;
   std::unordered_set<ecs::Entity> dirty_, removed_;
   FragmentRanges ranges_;  // where each entity's fragments live in fragments_
   std::unique_ptr<class SvoBuilder> svo_;  // the SVO over fragments_ (voxel/svo_builder.h)

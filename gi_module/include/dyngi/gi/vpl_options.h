@@ -20,6 +20,9 @@ struct VplOptions {
   // techniques gather one more bounce (each last-bounce VPL's probe), scaled to carry every later one.
   bool bounceTail = false;
   uint32_t interleave = 4;             // K: the G-buffer is split into K x K sub-images
+  // The gather and the filter run on a screen gatherScale times smaller a side, and a depth- and
+  // normal-aware upsample fills the rest (indirect/reduced_screen.h); a GI budget raises it further.
+  float gatherScale = 1.0f;
   float distanceClamp = 0.01f;         // B (world units^2): G = cos cos / max(B, d^2)
   // The light the clamp drops for VPLs within sqrt(B) of a pixel, given back spread within sqrt(B) on the
   // pixel's plane and stretched this many times along the corner (shaders/shared/clamp_spread.h): the

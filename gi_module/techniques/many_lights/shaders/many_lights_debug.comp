@@ -34,11 +34,13 @@ void main() {
   }
   if (i >= uint(size.x * size.y)) return;
   ivec2 px = ivec2(i % uint(size.x), i / uint(size.x));
-  ivec2 tile = size / int(K);
-  ivec2 sub = min(px / max(tile, ivec2(1)), ivec2(int(K) - 1));
-  ivec2 src = (px - sub * tile) * int(K) + sub;
-  src = clamp(src, ivec2(0), size - 1);
+  // The gather's screen: the frame's, or the reduced one (VplOptions::gatherScale).
+  ivec2 rawSize = imageSize(raw), at = px * rawSize / size;
+  ivec2 tile = rawSize / int(K);
+  ivec2 sub = min(at / max(tile, ivec2(1)), ivec2(int(K) - 1));
+  ivec2 src = (at - sub * tile) * int(K) + sub;
+  src = clamp(src, ivec2(0), rawSize - 1);
   // Each sub-image alone is a (noisier) estimate of the whole indirect light: shown at full scale.
-  vec4 srcAlbedo = texelFetch(gAlbedo, src, 0);
+  vec4 srcAlbedo = texelFetch(gAlbedo, clamp(src * size / rawSize, ivec2(0), size - 1), 0);
   imageStore(hdr, px, vec4(filterLight(imageLoad(raw, src)) * srcAlbedo.rgb * (1.0 - srcAlbedo.a), 1.0));
 }
