@@ -1,5 +1,6 @@
 #include "dyngi/gi/gi_system.h"
 
+#include <cmath>
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
@@ -59,6 +60,22 @@ void GiSystem::build(const GiSettings& s) {
   indirectView_ = std::make_unique<GiIndirectView>(ctx_);
   if (view_ != "final" && !setDebugView(view_)) view_ = "final";  // the same view after a rebuild, when it still exists
   if (s.budget.budgetMs > 0.0f) budget_ = std::make_unique<BudgetController>(s.budget.budgetMs, technique_->qualityKnobs());
+  technique_->spreadOneOffWork(budget_ != nullptr);
+}
+
+void GiSystem::setBudgetMs(double budgetMs) {
+  settings_.budget.budgetMs = std::isfinite(budgetMs) && budgetMs > 0.0 ? float(budgetMs) : 0.0f;
+  if (settings_.budget.budgetMs == 0.0f) {
+    if (budget_)
+      for (const QualityKnob& k : budget_->knobs())
+        if (k.apply && !k.levels.empty()) k.apply(k.levels.front());
+    budget_.reset();
+    technique_->spreadOneOffWork(false);
+    return;
+  }
+  if (budget_) budget_->setBudgetMs(settings_.budget.budgetMs);
+  else budget_ = std::make_unique<BudgetController>(settings_.budget.budgetMs, technique_->qualityKnobs());
+  technique_->spreadOneOffWork(true);
 }
 
 void GiSystem::attach(render::Renderer& renderer) {

@@ -93,6 +93,15 @@ std::string exposureOf(Options& o, const std::string& v) {
   return {};
 }
 
+std::string frameBudgetOf(Options& o, const std::string& v) {
+  float f = 0;
+  auto r = std::from_chars(v.data(), v.data() + v.size(), f);
+  if (r.ec != std::errc() || r.ptr != v.data() + v.size() || !std::isfinite(f) || f < 0 || f > 10000)
+    return "--frame-budget-ms wants milliseconds in 0..10000, got '" + v + "'";
+  o.frameBudgetMs = f;
+  return {};
+}
+
 std::function<std::string(Options&, const std::string&)> into(std::string Options::*member) {
   return [member](Options& o, const std::string& v) { return (o.*member = v), std::string(); };
 }
@@ -139,6 +148,10 @@ const std::vector<SampleFlag>& sampleFlags() {
          std::snprintf(b, sizeof b, "%g", double(o.exposure));
          return std::string(b);
        }},
+      {"frame-budget-ms", "X",
+       "hold the whole frame near X ms by giving the GI budget what the rest of the frame leaves (0: off; default 100 in a window "
+       "without --gi-budget-ms or --input-script, else off)",
+       frameBudgetOf},
       {"validation", "", "enable the Vulkan validation layer (missing: an error)", on(&Options::validation)},
       {"help", "", "this text", on(&Options::help)},
       {"help-markdown", "", "every option as Markdown (docs/OPTIONS.md)", on(&Options::helpMarkdown)},

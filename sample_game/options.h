@@ -46,6 +46,15 @@ struct Options {
   std::string ui = "auto";                  // on | off | auto (on in a window, off headless): the settings panel
   std::string stageTimes = "timestamps";    // timestamps | fenced (render::GpuTimer::Mode)
   float exposure = 1.0f;
+  // The whole frame's milliseconds to hold while a GI technique runs (play/frame_budget.h); -1: the
+  // default, kWindowFrameBudgetMs in an interactive window unless a GI budget is given, else off. 0: off.
+  float frameBudgetMs = -1.0f;
+  static constexpr float kWindowFrameBudgetMs = 100.0f;
+  // Scripted runs keep the default off: their frames must not depend on the machine's speed.
+  double frameBudgetFor(bool interactiveWindow) const {
+    if (frameBudgetMs >= 0.0f) return frameBudgetMs;
+    return interactiveWindow && giSettings.budget.budgetMs == 0.0f ? kWindowFrameBudgetMs : 0.0;
+  }
   bool validation = false;
   bool help = false;
   bool helpMarkdown = false;

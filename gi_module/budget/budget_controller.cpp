@@ -91,12 +91,26 @@ void BudgetController::moveTo(uint32_t level, double medianMs) {
     if (knobs_[k].apply && !knobs_[k].levels.empty()) knobs_[k].apply(knobs_[k].levels[at[k]]);
 }
 
+void BudgetController::setBudgetMs(double budgetMs) {
+  if (!(budgetMs > 0.0)) throw std::invalid_argument("a GI budget must be positive");
+  budget_ = budgetMs;
+  sinceChange_.clear();
+  backoff_ = 0;
+  upBlockedUntil_ = 0;
+  blockedAtMs_ = 0.0;
+  met_ = true;
+}
+
 bool BudgetController::onFrame(double giMs) {
   if (!std::isfinite(giMs) || giMs < 0.0) return false;  // a frame that could not be timed
   measured_.push_back(giMs);
   sinceChange_.push_back(giMs);
-  if (sinceChange_.size() < settings_.window) return false;
-  std::vector<double> last(sinceChange_.end() - settings_.window, sinceChange_.end());
+  // Far over the budget before any decision: decide on the first few frames.
+  const bool farOverAtStart = changes_.empty() && sinceChange_.size() >= settings_.firstWindow &&
+                              std::all_of(sinceChange_.begin(), sinceChange_.end(), [&](double ms) { return ms > 2.0 * budget_; });
+  if (sinceChange_.size() < settings_.window && !farOverAtStart) return false;
+  const size_t n = std::min<size_t>(sinceChange_.size(), settings_.window);
+  std::vector<double> last(sinceChange_.end() - n, sinceChange_.end());
   std::nth_element(last.begin(), last.begin() + last.size() / 2, last.end());
   const double median = last[last.size() / 2];
   if (pendingLearn_) {

@@ -47,6 +47,26 @@ void GiControl::apply() {
   }
 }
 
+void GiControl::setFrameBudget(double targetMs) {
+  const bool wasOn = frameBudget_.target() > 0.0;
+  frameBudget_.setTarget(targetMs);
+  if (wasOn && !(frameBudget_.target() > 0.0)) {
+    settings_.budget.budgetMs = 0.0f;
+    if (system_) system_->setBudgetMs(0.0);
+  }
+}
+
+void GiControl::frameFinished(double frameMs) {
+  gi::GiSystem* s = system();
+  if (!s || !(frameBudget_.target() > 0.0)) return;
+  double budget = frameBudget_.onFrame(frameMs, s->stats().giMs);
+  if (budget == 0.0 && !s->budget() && frameBudget_.giBudget() > 0.0) budget = frameBudget_.giBudget();  // a rebuild started without it
+  if (budget > 0.0) {
+    s->setBudgetMs(budget);
+    settings_.budget.budgetMs = float(budget);  // what a rebuild (another technique, an edit) starts from
+  }
+}
+
 bool GiControl::setView(const std::string& view) {
   if (!system() || !system_->setDebugView(view)) return false;
   view_ = view;

@@ -9,6 +9,7 @@
 #include "dyngi/engine/ecs/scheduler.h"
 #include "dyngi/engine/render/renderer.h"
 #include "dyngi/gi/gi_system.h"
+#include "play/frame_budget.h"
 
 namespace dyngi::sample {
 
@@ -31,6 +32,12 @@ class GiControl {
   gi::GiSystem* everMade() const { return system_; }  // for the run's stats, even when switched off
   const std::string& view() const { return view_; }
   bool setView(const std::string& view);
+  // The frame budget (0: off), and each rendered frame's wall-clock milliseconds for it: the GI's budget
+  // follows what the rest of the frame leaves.
+  const FrameBudget& frameBudget() const { return frameBudget_; }
+  // 0 turns it off and the GI budget with it.
+  void setFrameBudget(double targetMs);
+  void frameFinished(double frameMs);
 
  private:
   render::VulkanContext& ctx_;
@@ -41,6 +48,7 @@ class GiControl {
   gi::GiSettings settings_;
   std::string mode_;
   std::string view_ = "final";
+  FrameBudget frameBudget_;
 };
 
 }  // namespace dyngi::sample

@@ -99,6 +99,13 @@ void giSection(PanelContext& p) {
     ImGui::EndCombo();
   }
   remember(p, "view");
+  // The frame budget (--frame-budget-ms): the GI budget below follows what the rest of the frame leaves.
+  float frameBudget = float(p.gi.frameBudget().target());
+  if (ImGui::DragFloat("frame budget", &frameBudget, 1.0f, 0.0f, 1000.0f, frameBudget > 0.0f ? "%.0f ms" : "off", ImGuiSliderFlags_AlwaysClamp) &&
+      double(frameBudget) != p.gi.frameBudget().target())
+    p.gi.setFrameBudget(frameBudget);
+  remember(p, "frame budget");
+  helpTooltip("hold the whole frame near this by giving the GI budget what the rest of the frame leaves (0: off)");
   budgetStatus(*system);
   if (ImGui::CollapsingHeader("Technique options", ImGuiTreeNodeFlags_DefaultOpen)) {
     bool changed = false;

@@ -21,6 +21,7 @@ PlaySession::PlaySession(const Options& o, render::VulkanContext& ctx, render::R
     renderer.addFeature(ui_.get());
   }
   if (gi && o.view != "final") gi_.setView(o.view);
+  gi_.setFrameBudget(o.frameBudgetFor(window && !script_));
 }
 
 void PlaySession::beginFrame(uint64_t frame, double dt, ecs::World& world, scene::AssetStore& assets, uint32_t width, uint32_t height) {
@@ -55,6 +56,7 @@ bool PlaySession::endFrame(uint64_t frame, const render::RenderSnapshot& snapsho
   haveCamera_ = true;
   const gi::GiSystem* system = gi_.system();
   timings_.push(frameMs, stats, system ? system->stats().giMs : 0.0);
+  gi_.frameFinished(frameMs);
   if (input_.keyPressed(GLFW_KEY_F12)) {
     char name[64];
     std::snprintf(name, sizeof name, "dyngi_screenshot_%03d.png", ++screenshots_);

@@ -168,3 +168,39 @@ TEST(BudgetController, IgnoresFramesThatCouldNotBeTimed) {
   EXPECT_TRUE(c.measured().empty());
   EXPECT_THROW(BudgetController(0.0, gi.knobs()), std::invalid_argument);
 }
+
+// A frame budget moves the GI's budget while it runs (setBudgetMs): the controller holds the new one
+// from the next window on, down and back up, without starting over from full quality.
+TEST(BudgetController, ANewBudgetIsHeldFromTheNextWindow) {
+  SyntheticGi gi;
+  BudgetController c(30.0, gi.knobs());
+  run(gi, c, 300);
+  const uint32_t at30 = c.level();
+  EXPECT_NEAR(median(slice(c.measured(), 200, 300)), 30.0, 30.0 * 0.15);
+  c.setBudgetMs(20.0);
+  EXPECT_EQ(c.level(), at30) << "the level stays until the controller has measured against the new budget";
+  EXPECT_DOUBLE_EQ(c.budgetMs(), 20.0);
+  run(gi, c, 300);
+  EXPECT_GT(c.level(), at30);
+  EXPECT_NEAR(median(slice(c.measured(), 500, 600)), 20.0, 20.0 * 0.15);
+  c.setBudgetMs(30.0);
+  run(gi, c, 600);
+  EXPECT_EQ(c.level(), at30) << "back up where the old budget held";
+  EXPECT_THROW(c.setBudgetMs(0.0), std::invalid_argument);
+}
+
+// A start far over the budget (every frame over twice it) is left after firstWindow frames, not a whole
+// window; a start near the budget waits for the window as before.
+TEST(BudgetController, AStartFarOverTheBudgetIsLeftAfterAFewFrames) {
+  SyntheticGi far;  // 36 ms at full quality
+  BudgetController fast(12.0, far.knobs());
+  run(far, fast, int(BudgetControllerSettings{}.firstWindow));
+  ASSERT_EQ(fast.changes().size(), 1u);
+  EXPECT_EQ(fast.changes().front().frame, BudgetControllerSettings{}.firstWindow);
+  SyntheticGi near;
+  BudgetController patient(30.0, near.knobs());  // 36 ms: over, but not twice
+  run(near, patient, int(BudgetControllerSettings{}.window) - 1);
+  EXPECT_TRUE(patient.changes().empty());
+  run(near, patient, 1);
+  EXPECT_EQ(patient.changes().size(), 1u);
+}

@@ -36,6 +36,8 @@ TEST(SampleCli, BadInputExitsWithCode2AndOneLine) {
       {"--headless --scene " + empty, "empty scene"},
       {"--gi unknown-mode", "unknown --gi mode"},
       {"--size 0x0", "--size"},
+      {"--frame-budget-ms -5", "--frame-budget-ms"},
+      {"--frame-budget-ms nan", "--frame-budget-ms"},
       {"--no-such-flag", "unknown option"},
       {"--headless --view vpls", "is a view of --gi many-lights"},
       {"--headless --gi svo", "is now --gi temporal"},

@@ -67,6 +67,9 @@ class TemporalIndirect final : public render::RenderFeature {
   // Whether the screen passes run on a smaller screen (then "reduce" and "upsample" are timed).
   bool screenReduced() const;
   uint32_t setsRendered() const;  // sets rendered at least once
+  // Sets gathered in one frame while some hold no light: TemporalOptions::catchUpSets, or one (a GI
+  // budget spreads the catch-up over frames; the sets without light stay out of the average meanwhile).
+  void setCatchUpOneSetAFrame(bool one) { maxSetsPerFrame_ = one ? 1u : std::clamp(settings_.catchUpSets, 1u, sets_); }
   double lastBvhVisibilityMs() const { return bvhMs_; }
   uint32_t lastTrappedVpls() const { return trappedVpls_; }  // left out this frame: a surface within the SVO lift
 

@@ -97,6 +97,7 @@ class TemporalTechnique final : public Technique {
     return knobs;
   }
   bool lastFrameWasOneOff() const override { return feature_.lastFrameSetCount() > 1; }
+  void spreadOneOffWork(bool spread) override { feature_.setCatchUpOneSetAFrame(spread); }
   VplPaths& paths() { return paths_; }
   TemporalIndirect& feature() { return feature_; }
 

@@ -50,6 +50,9 @@ struct BudgetOptions {
 
 struct BudgetControllerSettings {
   uint32_t window = 9;             // frames per decision (their median is the measured cost)
+  // The first decision's frames when they all cost over twice the budget: a start far over it (a
+  // window's default quality at 768^2) is left after a few frames, not a whole window of them.
+  uint32_t firstWindow = 3;
   double overTolerance = 0.1;      // lower the quality above budget x (1 + this)
   double assumedStepRatio = 0.85;  // cost ratio of a ladder step not measured yet
   uint32_t backoffFrames = 30;     // a failed up-step waits this long, doubled at each failure
@@ -65,6 +68,9 @@ class BudgetController {
   bool onFrame(double giMs);
 
   double budgetMs() const { return budget_; }
+  // A new budget from the next frame on (a frame budget that moves the GI's share): the level stays,
+  // the next decision waits for a whole window, and earlier failures are forgotten.
+  void setBudgetMs(double budgetMs);
   uint32_t level() const { return level_; }
   uint32_t floorLevel() const { return uint32_t(ladder_.size()) - 1; }
   // False while the controller sits at the floor and the cost is still above the budget.

@@ -74,6 +74,9 @@ class GiSystem final : public ecs::System {
   bool setDebugView(std::string_view name);
   // The GI budget's controller, when GiSettings::budget asks for one.
   const BudgetController* budget() const { return budget_.get(); }
+  // Sets the GI budget while it runs (settings().budget follows): a controller is made at the
+  // technique's full quality when there was none, and 0 removes it, the knobs back at full quality.
+  void setBudgetMs(double budgetMs);
   // A GI budget reads timestamps only while they bracket this share of a fenced frame's GI cost (within
   // 15 percent of what the device spends); fenced frames otherwise (GiStats::budgetTiming).
   static constexpr double kMinTimestampCoverage = 0.85;

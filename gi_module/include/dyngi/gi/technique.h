@@ -64,6 +64,9 @@ class Technique {
   // technique catching up several sets after a light switch): a GI budget leaves such frames out, so a
   // few heavy frames do not throw the knobs to their floor for the seconds it takes to climb back.
   virtual bool lastFrameWasOneOff() const { return false; }
+  // While a GI budget holds the cost: one-off work is spread over frames instead (the temporal
+  // technique catches up one set a frame), so no frame costs several of the budget's.
+  virtual void spreadOneOffWork(bool /*spread*/) {}
 };
 
 // One registered technique.
