@@ -57,7 +57,7 @@ render::FrameContext& ReducedScreen::begin(render::FrameContext& frame, float sc
   const uint32_t w = reducedSize(t.width, scale), h = reducedSize(t.height, scale);
   scale_ = glm::vec2(float(double(t.width) / w), float(double(t.height) / h));
   frame_.reset();
-  if (w == t.width && h == t.height) return frame;
+  if (!reduces(t.width, t.height, scale)) return frame;
   if (targets_.width != w || targets_.height != h) makeTargets(w, h);
   if (!uniformBuffer_.valid())
     uniformBuffer_ = Buffer(ctx_, sizeof(::dyngi::gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUsage::Upload, "reduced frame uniforms");

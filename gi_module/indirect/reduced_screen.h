@@ -23,6 +23,10 @@ class ReducedScreen {
   static uint32_t reducedSize(uint32_t full, float scale) {
     return std::max(1u, uint32_t(std::lround(double(full) / std::max(1.0, double(scale)))));
   }
+  // Whether a width x height frame at `scale` gets a smaller screen (begin() then reduces it).
+  static bool reduces(uint32_t width, uint32_t height, float scale) {
+    return reducedSize(width, scale) != width || reducedSize(height, scale) != height;
+  }
 
   // The frame the screen passes record into: `frame` itself at scale 1; otherwise the reduced frame,
   // after recording the G-buffer's reduction ("reduce" in stats). Its targets.indirect is where the

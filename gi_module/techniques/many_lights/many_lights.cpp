@@ -136,9 +136,7 @@ void ManyLights::resize(render::VulkanContext& ctx, uint32_t width, uint32_t hei
   raw_ = Image(ctx, d);
 }
 
-bool ManyLights::screenReduced() const {
-  return ReducedScreen::reducedSize(width_, gatherScale()) != width_ || ReducedScreen::reducedSize(height_, gatherScale()) != height_;
-}
+bool ManyLights::screenReduced() const { return ReducedScreen::reduces(width_, height_, gatherScale()); }
 
 void ManyLights::prepare(render::VulkanContext& ctx, const render::RenderSnapshot& snapshot) {
   if (raw_.valid() && (raw_.desc().width != ReducedScreen::reducedSize(width_, gatherScale()) ||

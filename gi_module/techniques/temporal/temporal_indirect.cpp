@@ -86,9 +86,7 @@ void TemporalIndirect::resize(render::VulkanContext& ctx, uint32_t fullWidth, ui
   std::fill(lastRendered_.begin(), lastRendered_.end(), -1);  // stored buffers are gone
 }
 
-bool TemporalIndirect::screenReduced() const {
-  return ReducedScreen::reducedSize(width_, gatherScale()) != width_ || ReducedScreen::reducedSize(height_, gatherScale()) != height_;
-}
+bool TemporalIndirect::screenReduced() const { return ReducedScreen::reduces(width_, height_, gatherScale()); }
 
 void TemporalIndirect::prepare(render::VulkanContext& ctx, const render::RenderSnapshot&) {
   if (accumulated_.valid() && (accumulated_.desc().width != ReducedScreen::reducedSize(width_, gatherScale()) ||
