@@ -21,6 +21,7 @@ double percentile(std::vector<double> v, double p) {
 }
 
 void SampleSeries::push(double v) {
+  max_ = seen_ == 0 ? v : std::max(max_, v);
   ++seen_;
   if (kept_.size() < kCapacity) {
     if (kept_.capacity() == 0) kept_.reserve(kCapacity);  // all at once: a run's memory is flat from its first frame
@@ -46,7 +47,7 @@ std::string RunStats::toJson() const {
   j["device"] = device;
   j["frames"] = frames;
   j["warmup_frames"] = warmupFrames;
-  j["frame_ms"] = {{"median", number(frameMs.percentile(0.5))}, {"p95", number(frameMs.percentile(0.95))}};
+  j["frame_ms"] = {{"median", number(frameMs.percentile(0.5))}, {"p95", number(frameMs.percentile(0.95))}, {"max", number(frameMs.max())}};
   auto medians = [](const std::map<std::string, SampleSeries>& m) {
     nlohmann::ordered_json o = nlohmann::ordered_json::object();
     for (auto& [name, v] : m) o[name] = number(v.percentile(0.5));
@@ -64,7 +65,8 @@ std::string RunStats::toJson() const {
   }
   for (auto& [name, value] : namedSettings) j["settings"][name] = value;
   if (play) j["play"] = {{"gi_mode", play->giMode}, {"selected", play->selected}, {"last_action", play->lastAction}, {"scripted", play->scripted}};
-  if (!giMs.empty()) j["gi_ms"] = {{"median", number(giMs.percentile(0.5))}, {"p95", number(giMs.percentile(0.95))}};
+  if (!giMs.empty())
+    j["gi_ms"] = {{"median", number(giMs.percentile(0.5))}, {"p95", number(giMs.percentile(0.95))}, {"max", number(giMs.max())}};
   if (budget) {
     auto knobs = [](const std::vector<std::pair<std::string, double>>& values) {
       nlohmann::ordered_json o = nlohmann::ordered_json::object();

@@ -28,9 +28,11 @@ class SampleSeries {
   uint64_t seen() const { return seen_; }                   // samples pushed over the run
   const std::vector<double>& kept() const { return kept_; }  // at most kCapacity
   double percentile(double p) const { return sample::percentile(kept_, p); }
+  double max() const { return max_; }  // over every sample pushed, kept or not
 
  private:
   std::vector<double> kept_;
+  double max_ = 0.0;
   uint64_t seen_ = 0;
   uint64_t rng_ = 0x9E3779B97F4A7C15ull;
 };

@@ -58,6 +58,7 @@ TEST(RunStats, SeriesKeepEverySampleUpToCapacityThenABoundedUniformSubset) {
   EXPECT_EQ(longRun.kept().capacity(), capacityBefore) << "no allocation after the first sample";
   EXPECT_NEAR(longRun.percentile(0.5), 5e5, 0.05 * 1e6);
   EXPECT_NEAR(longRun.percentile(0.95), 9.5e5, 0.05 * 1e6);
+  EXPECT_EQ(longRun.max(), 999999.0) << "the maximum is exact, kept or not";
   // Samples late in the run are represented: a run whose second half is slower shows it in its median.
   SampleSeries stepUp;
   for (int i = 0; i < 200000; ++i) stepUp.push(i < 100000 ? 10.0 : 30.0);
