@@ -1,5 +1,6 @@
 #include "outputs.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "dyngi/engine/platform/files.h"
@@ -64,12 +65,20 @@ int MemoryLog::close() {
 
 void MemoryLog::frameRendered(int rendered, const render::VulkanContext& ctx) {
   if (!file_.isOpen() || rendered % kEvery != 0) return;
-  uint64_t deviceBytes = 0;
-  for (uint32_t h = 0; h < VK_MAX_MEMORY_HEAPS; ++h) deviceBytes += ctx.heapBytesInUse(h);
+  const uint64_t deviceBytes = ctx.deviceBytesInUse();
   char line[128];
   std::snprintf(line, sizeof line, "%d\t%llu\t%llu\t%llu\n", rendered, (unsigned long long)residentKiB(), (unsigned long long)ctx.liveAllocations(),
                 (unsigned long long)deviceBytes);
   file_.write(line);
+}
+
+void addMemory(RunStats& stats, const render::VulkanContext& ctx) {
+  constexpr double kMiB = 1024.0 * 1024.0;
+  auto& m = stats.sections["memory"];
+  m["device_mb"] = double(ctx.deviceBytesInUse()) / kMiB;
+  m["device_peak_mb"] = double(ctx.deviceBytesPeak()) / kMiB;
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) == 0) m["resident_peak_mb"] = double(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB
 }
 
 void addSettings(RunStats& stats, const std::vector<gi::OptionRef>& options) {

@@ -25,6 +25,10 @@ int writeStats(const Options& o, const RunStats& stats);
 // Options as the stats' "settings" report them, by flag name: a number (bools 0 or 1), or a choice's name.
 void addSettings(RunStats& stats, const std::vector<gi::OptionRef>& options);
 
+// The stats' "memory" object: device memory allocated now and at its peak, and the process's peak
+// resident memory (on an integrated device or lavapipe the device memory is part of the latter).
+void addMemory(RunStats& stats, const render::VulkanContext& ctx);
+
 // --memory-log: every kEvery rendered frames, resident memory and live Vulkan allocations.
 class MemoryLog {
  public:

@@ -269,8 +269,9 @@ class RealtimeRun {
                                   session_->scripted()};
     stats.width = renderer_.width();
     stats.height = renderer_.height();
-    stats.scalars["draws"] = double(render::extractSnapshot(world_, assets_, 0).draws.size());
+    stats.scalars["draws"] = double(snapshot_.draws.size());  // the last frame's
     stats.scalars["validation_errors"] = ctx_.validationErrorCount();
+    addMemory(stats, ctx_);
     if (preview_) stats.scalars["path_preview_spp"] = preview_->samplesPerPixel();
     reportGi(session_->gi().settings(), gi_, stats);
     int status = session_->status();

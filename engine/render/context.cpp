@@ -1,5 +1,7 @@
 #include "dyngi/engine/render/context.h"
 
+#include <algorithm>
+
 #include <cstdio>
 #include <cstring>
 
@@ -342,7 +344,14 @@ VkDeviceMemory VulkanContext::allocateMemory(const VkMemoryRequirements& req, ui
   DYNGI_VK(r);
   heapUsed_[heap] += req.size;
   ++liveAllocations_;
+  peakUsed_ = std::max(peakUsed_, deviceBytesInUse());
   return memory;
+}
+
+VkDeviceSize VulkanContext::deviceBytesInUse() const {
+  VkDeviceSize total = 0;
+  for (VkDeviceSize used : heapUsed_) total += used;
+  return total;
 }
 
 void VulkanContext::freeMemory(VkDeviceMemory memory, VkDeviceSize bytes, uint32_t memoryType) {

@@ -20,9 +20,22 @@ namespace {
 constexpr uint32_t kMinNodeGroups = 1u << 12;  // the node pool never shrinks below this (128 KB)
 // The leaf list holds at most one entry per node of the pool, after its header.
 VkDeviceSize leafListBytes(uint32_t groups) { return (VkDeviceSize(groups) * 8 * DYNGI_SVO_LEAF_ENTRY_UINTS + DYNGI_SVO_LEAF_LIST_HEADER) * 4; }
+uint32_t depthOf(uint32_t resolution) {
+  uint32_t depth = 0;
+  while ((1u << depth) < resolution) ++depth;
+  return depth;
+}
+// The groups a full tree of `depth` takes: the root's, then one per node of levels 0..depth-1 (8^l
+// each), so a pool this large never overflows (at 128^3, 299,594 groups: 38 MB with the leaf list).
+uint64_t fullTreeGroups(uint32_t depth) {
+  uint64_t groups = 1;
+  for (uint32_t l = 0; l < depth; ++l) groups += uint64_t(1) << (3 * l);
+  return groups;
+}
 }  // namespace
 
-SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t maxNodeGroups) : ctx_(ctx), maxNodeGroups_(maxNodeGroups) {
+SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t maxNodeGroups)
+    : ctx_(ctx), maxNodeGroups_(uint32_t(std::min<uint64_t>(maxNodeGroups, fullTreeGroups(depthOf(resolution))))) {
   const Binding markB[] = {{DYNGI_SVO_MARK_BINDING_FRAGMENTS, kSSBO, kCS},
                            {DYNGI_SVO_MARK_BINDING_OCCUPANCY, kSSBO, kCS},
                            {DYNGI_SVO_MARK_BINDING_CHUNKS, kSSBO, kCS},
@@ -66,8 +79,7 @@ SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t
   }
   static_assert(DYNGI_VOXEL_ATTRIBUTES_STEP_STATIC == 0 && DYNGI_VOXEL_ATTRIBUTES_STEP_MERGE == 3, "voxelAttributes_ is indexed by step");
   // One bit per cell of every level 0..depth (DYNGI_SVO_LEVEL_BASE): level depth + 1 would start here.
-  uint32_t depth = 0;
-  while ((1u << depth) < resolution) ++depth;
+  const uint32_t depth = depthOf(resolution);
   const uint64_t pyramidBits = 8 + 8 * (((uint64_t(1) << (3 * depth)) - 1) / 7);
   for (Buffer& pyramid : occupancy_)
     pyramid = Buffer(ctx, (pyramidBits + 31) / 32 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -75,7 +87,7 @@ SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t
   staticOccupancy_ = Buffer(ctx, occupancy_[0].size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                             MemoryUsage::GpuOnly, "svo static occupancy pyramid");
   // The first build gets the whole pool; afterwards it follows what the SVO uses (resizeNodePool).
-  nodeGroupCapacity_ = std::max(maxNodeGroups, 2u);
+  nodeGroupCapacity_ = std::max(maxNodeGroups_, 2u);
   nodes_ = Buffer(ctx, VkDeviceSize(nodeGroupCapacity_) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo nodes");
   nodeCells_ = Buffer(ctx, VkDeviceSize(nodeGroupCapacity_) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo node cells");
   leafList_ = Buffer(ctx, leafListBytes(nodeGroupCapacity_), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,

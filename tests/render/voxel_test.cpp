@@ -434,6 +434,31 @@ TEST_F(VoxelTest, DebugViewIsWhatTheDisplayImageShows) {
   EXPECT_GT(differing, shown.size() / 10) << "the debug view looks unlike the lit frame";
 }
 
+// A volume with every voxel occupied needs the full tree: the pool, bounded by the full tree's groups
+// rather than the setting's limit, holds it without overflow (one group fewer would overflow).
+TEST_F(VoxelTest, AFullVolumeFitsTheNodePoolAFullTreeNeeds) {
+  constexpr uint32_t kRes = 16;
+  // A sheet through the middle of every layer of voxels, each a little wider than the volume.
+  scene::MeshId sheet = assets.addMesh(scene::makeQuad({-0.1f, -0.1f, 0.0f}, {1.2f, 0.0f, 0.0f}, {0.0f, 1.2f, 0.0f}));
+  for (uint32_t z = 0; z < kRes; ++z) {
+    scene::Transform t;
+    t.translation = {0.0f, 0.0f, (float(z) + 0.5f) / float(kRes)};
+    addMeshEntity(sheet, t);
+  }
+  attachVoxels(kRes, 16);
+  voxels->setVolume(gi::VoxelVolume{.origin = glm::vec3(0.0f), .voxelSize = 1.0f / float(kRes), .resolution = kRes});
+  step();
+  const auto& st = voxels->stats();
+  uint64_t fullTree = 1;  // the root's group, then one per node of levels 0..depth-1
+  for (uint64_t n = 1; n < kRes * kRes * kRes; n *= 8) fullTree += n;
+  dyngi::test::report("full %u^3 volume: %llu leaves, %llu nodes (full tree %llu groups), overflow %d\n", kRes,
+                      (unsigned long long)st.leaves, (unsigned long long)st.nodes, (unsigned long long)fullTree, int(st.poolOverflow));
+  EXPECT_EQ(st.leaves, uint64_t(kRes) * kRes * kRes);
+  EXPECT_FALSE(st.poolOverflow);
+  EXPECT_EQ(st.nodes, 8 * fullTree);
+  EXPECT_EQ(diff(leaves(), gi::voxelizeBruteForce(voxelSpaceTriangles(snapshot, voxels->volume()), kRes)).missing, 0u);
+}
+
 // The node pool shrinks to what the first build used; when the scene then needs more, the build that
 // overflows is conservative (no voxel missing) and the pool grows so the next one is exact.
 TEST_F(VoxelTest, NodePoolGrowsWhenTheSceneNeedsMore) {

@@ -64,6 +64,8 @@ class VulkanContext {
   void freeMemory(VkDeviceMemory memory, VkDeviceSize bytes, uint32_t memoryType);
   uint64_t liveAllocations() const { return liveAllocations_.load(); }
   VkDeviceSize heapBytesInUse(uint32_t heap) const { return heapUsed_[heap]; }
+  VkDeviceSize deviceBytesInUse() const;                      // over every heap
+  VkDeviceSize deviceBytesPeak() const { return peakUsed_; }  // the most deviceBytesInUse() has been
   // True when some memory type is both device-local and host-visible (integrated GPUs, lavapipe):
   // uploads can then write directly instead of going through a staging buffer.
   bool hasHostVisibleDeviceLocal() const { return hostVisibleDeviceLocal_; }
@@ -115,6 +117,7 @@ class VulkanContext {
   std::atomic<uint32_t> validationErrors_{0};
   std::atomic<uint64_t> liveAllocations_{0};
   VkDeviceSize heapUsed_[VK_MAX_MEMORY_HEAPS] = {};
+  VkDeviceSize peakUsed_ = 0;
   std::atomic<uint32_t> validationWarnings_{0};
 
   PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;
