@@ -62,7 +62,9 @@ void extractSnapshot(const ecs::World& world, const scene::AssetStore& assets, u
     d.mesh = mi.mesh;
     d.model = wt.matrix;
     d.castShadows = mi.castShadows;
-    if (const Material* m = world.tryGet<Material>(e)) d.material = *m;
+    // Clamped as the importer and the host API clamp: a component written directly (a system, a script,
+    // a host's ECS code) cannot carry a NaN or an overflowing value into lighting.
+    if (const Material* m = world.tryGet<Material>(e)) d.material = inContentRange(*m);
     s.sceneBounds.extend(worldBounds);
     s.draws.push_back(d);
   });
@@ -74,7 +76,7 @@ void extractSnapshot(const ecs::World& world, const scene::AssetStore& assets, u
   world.each<Light, WorldTransform>([&](Entity e, const Light& l, const WorldTransform& wt) {
     LightItem li;
     li.entity = e;
-    li.light = l;
+    li.light = inContentRange(l);
     li.position = glm::vec3(wt.matrix[3]);
     glm::vec3 dir = -glm::vec3(wt.matrix[2]);
     float len = glm::length(dir);

@@ -2,6 +2,8 @@
 // memory it already has.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "dyngi/engine/render/snapshot.h"
 #include "dyngi/engine/scene/assets.h"
 #include "dyngi/engine/scene/components.h"
@@ -62,4 +64,36 @@ TEST(Snapshot, ExtractingIntoAnOldSnapshotGivesAFreshOneInItsMemory) {
   EXPECT_EQ(reused.frame, 9u);
   EXPECT_EQ(reused.assets, &smallAssets);
   EXPECT_EQ(reused.skippedDraws, fresh.skippedDraws);
+}
+
+// A light or material component written directly, out of the content ranges, reaches lighting clamped
+// into them, as the importer and the host API would have clamped it.
+TEST(Snapshot, ComponentsOutOfContentRangeAreClampedIntoIt) {
+  ecs::World w;
+  scene::AssetStore a;
+  const scene::MeshId quad = a.addMesh(scene::makeQuad({-0.5f, -0.5f, 0}, {1, 0, 0}, {0, 1, 0}));
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  const ecs::Entity mesh = w.create();
+  w.add(mesh, scene::WorldTransform{glm::mat4(1.0f)});
+  w.add(mesh, scene::MeshInstance{quad, true});
+  w.add(mesh, scene::Material{.baseColor = glm::vec4(2.0f, -1.0f, nan, 0.5f), .emissive = glm::vec3(inf, 1e30f, -3.0f), .metallic = nan, .roughness = 7.0f});
+  const ecs::Entity light = w.create();
+  w.add(light, scene::WorldTransform{glm::mat4(1.0f)});
+  w.add(light, scene::Light{.type = scene::LightType::Spot, .color = glm::vec3(-1.0f, nan, 1e30f), .intensity = inf, .range = -2.0f,
+                            .innerConeAngle = 1.2f, .outerConeAngle = 0.5f});
+  const render::RenderSnapshot s = render::extractSnapshot(w, a, 0);
+  ASSERT_EQ(s.draws.size(), 1u);
+  ASSERT_EQ(s.lights.size(), 1u);
+  const scene::Material& m = s.draws[0].material;
+  EXPECT_EQ(m.baseColor, glm::vec4(1.0f, 0.0f, 1.0f, 0.5f));
+  EXPECT_EQ(m.emissive, glm::vec3(scene::kMaxEmission, scene::kMaxEmission, 0.0f));
+  EXPECT_EQ(m.metallic, 0.0f);
+  EXPECT_EQ(m.roughness, 1.0f);
+  const scene::Light& l = s.lights[0].light;
+  EXPECT_EQ(l.color, glm::vec3(0.0f, 1.0f, scene::kMaxEmission));
+  EXPECT_EQ(l.intensity, scene::kMaxLightIntensity);
+  EXPECT_EQ(l.range, 0.0f);
+  EXPECT_FLOAT_EQ(l.outerConeAngle, 0.5f);
+  EXPECT_LT(l.innerConeAngle, l.outerConeAngle);
+  EXPECT_GE(l.innerConeAngle, 0.0f);
 }
