@@ -232,6 +232,55 @@ double maxRelativeDifference(const gi::VolumeLevel& a, const gi::VolumeLevel& b)
 }
 }  // namespace
 
+// The radiance update spread over 4 frames (a GI budget's radiance_update_fraction 1/4): after a light
+// moves, the first frame updates about a quarter of the voxels; two cycles later the direct radiance
+// and every atlas level equal the every-frame update's, and so does the image. Without temporal
+// blending, so that each update is a function of the light alone.
+TEST_F(RenderTest, VctRadianceSpreadOverFramesReachesTheWholeUpdate) {
+  auto settings = [](uint32_t radianceFrames) {
+    gi::GiSettings s = vctSettings();
+    s.vct.radianceFrames = radianceFrames;
+    s.vct.temporalBlend = 0.0f;
+    return s;
+  };
+  GiRun every(context(), settings(1), "cornell", kSize, kSize), spread(context(), settings(4), "cornell", kSize, kSize);
+  for (GiRun* run : {&every, &spread}) run->step(3);
+  const std::vector<glm::vec4> before = render::readbackImageLevel(context(), vctOf(every).directVolume(), 0);
+  for (GiRun* run : {&every, &spread}) {
+    run->world.write<scene::Transform>(run->named("spot")).translation.x += 0.3f;
+    run->step();
+  }
+  EXPECT_DOUBLE_EQ(vctOf(spread).stats().radianceUpdated, 0.25);
+  EXPECT_FALSE(spread.gi->voxels()->stats().rebuilt) << "a light moved: the SVO stands, the update is spread";
+  const std::vector<glm::vec4> now = render::readbackImageLevel(context(), vctOf(every).directVolume(), 0);
+  const std::vector<glm::vec4> partly = render::readbackImageLevel(context(), vctOf(spread).directVolume(), 0);
+  auto same = [](const glm::vec4& a, const glm::vec4& b) { return glm::length(glm::vec3(a - b)) <= 1e-3f * std::max(glm::length(glm::vec3(b)), 1e-3f); };
+  size_t changed = 0, updated = 0;
+  for (size_t i = 0; i < now.size(); ++i) {
+    if (same(now[i], before[i])) continue;
+    ++changed;
+    updated += same(partly[i], now[i]);
+  }
+  dyngi::test::report("light moved, radiance spread over 4 frames: %zu of %zu changed voxels updated in the first frame (%.2f)\n", updated, changed,
+                      double(updated) / double(std::max<size_t>(changed, 1)));
+  ASSERT_GT(changed, 1000u);
+  EXPECT_GT(double(updated) / double(changed), 0.10);
+  EXPECT_LT(double(updated) / double(changed), 0.45) << "a part, not the whole volume";
+  for (GiRun* run : {&every, &spread}) run->step(11);  // two cycles, then the trace's 4 frames
+  const double direct = maxRelativeDifference(readLevels(context(), vctOf(spread).directVolume()).front(),
+                                              readLevels(context(), vctOf(every).directVolume()).front());
+  const std::vector<gi::VolumeLevel> atlasSpread = readLevels(context(), vctOf(spread).anisotropicVolume()),
+                                     atlasEvery = readLevels(context(), vctOf(every).anisotropicVolume());
+  double atlas = 0.0;
+  for (size_t m = 0; m < atlasEvery.size(); ++m) atlas = std::max(atlas, maxRelativeDifference(atlasSpread[m], atlasEvery[m]));
+  const double image = render::relativeMse(spread.indirect(), every.indirect());
+  dyngi::test::report("two cycles and a trace spread later: direct radiance differs by %.2g, the atlas (%zu levels) by %.2g, the indirect image relMSE %.2g\n", direct,
+                      atlasEvery.size(), atlas, image);
+  EXPECT_LE(direct, 1e-3);
+  EXPECT_LE(atlas, 1e-3);
+  EXPECT_LE(image, 1e-6);
+}
+
 TEST_F(RenderTest, VctMipChainEqualsCpuFilters) {
   for (int mode : {0, 1, 2}) {  // isotropic mean, isotropic opaque axis, anisotropic
     const bool aniso = mode == 2;

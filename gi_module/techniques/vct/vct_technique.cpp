@@ -20,6 +20,7 @@ const OptionTable<VctOptions>& VctOptions::table() {
           .add(DYNGI_OPTION(VctOptions, bounces), "light bounces (each past the first: a cone pass over the occupied voxels)", 1, 3)
           .add(DYNGI_OPTION(VctOptions, traceScale), "trace one pixel in NxN and upsample (1: every pixel; 0: at most 192^2 traced)", 0, 8)
           .add(DYNGI_OPTION(VctOptions, traceFrames), "frames over which each traced pixel is traced once, the rest reprojected (1, 2 or 4)", 1, 4)
+          .add(DYNGI_OPTION(VctOptions, radianceFrames), "frames over which the voxels' radiance update is spread, a part of the voxels each", 1, 4)
           .add(DYNGI_OPTION(VctOptions, diffuseFilterRadius), "radius (traced pixels) of the filter over cone sets turned per pixel (0: fixed cones, no filter)", 0, VctOptions::kMaxDiffuseFilterRadius)
           .add(DYNGI_OPTION(VctOptions, anisotropic), "mip chain per direction (less light leaks through thin walls)", 0, 1)
           .add(DYNGI_OPTION(VctOptions, opaqueAxisMips), "isotropic mips take their most opaque axis' opacity, not the mean (thin walls stay opaque)", 0, 1)
@@ -103,14 +104,17 @@ class VctTechnique final : public Technique {
     return true;
   }
   std::vector<const char*> timedSections() const override { return VoxelConeTracing::timedSections(); }
-  // The fraction of its pixels the trace keeps (1, 1/4, 1/16: the trace scale times 1, 2, 4): the cone
-  // trace scales with it; the upsample fills the rest. Not the voxel updates' fraction of frames
-  // (VoxelScene::updateFractionKnob): with geometry moving, the voxels and their radiance are most of
-  // VCT's cost, and updating them one frame in N makes the frames' cost bimodal (docs/QUALITY.md,
-  // "The GI budget").
+  // First the fraction of its pixels the trace keeps (1, 1/4, 1/16: the trace scale times 1, 2, 4): the
+  // cone trace scales with it; the upsample fills the rest. Then the share of the voxels whose radiance
+  // a frame updates (1, 1/2, 1/3, 1/4: injection and mips spread over 2 to 4 frames), which costs nothing
+  // while the light holds still and makes a change take that many frames to reach every voxel. Not the
+  // voxel updates' fraction of frames (VoxelScene::updateFractionKnob): with geometry moving, updating
+  // the voxels one frame in N makes the frames' cost bimodal (docs/QUALITY.md, "The GI budget").
   std::vector<QualityKnob> qualityKnobs() override {
     return {{"trace_fraction", {1.0, 0.25, 0.0625},
-             [this](double v) { feature_.setBudgetScaleFactor(uint32_t(std::lround(1.0 / std::sqrt(std::max(v, 1e-6))))); }}};
+             [this](double v) { feature_.setBudgetScaleFactor(uint32_t(std::lround(1.0 / std::sqrt(std::max(v, 1e-6))))); }},
+            {"radiance_update_fraction", {1.0, 1.0 / 2, 1.0 / 3, 1.0 / 4},
+             [this](double v) { feature_.setBudgetRadianceParts(uint32_t(std::lround(1.0 / std::max(v, 1e-6)))); }}};
   }
   std::map<std::string, std::map<std::string, double>> statsSections() const override {
     const VctFrameStats& s = feature_.stats();
@@ -122,7 +126,9 @@ class VctTechnique final : public Technique {
               {"specular_cones", s.specularCones ? 1.0 : 0.0},
               {"trace_history_drops", double(historyDrops_)},
               {"cleared_voxels", double(s.clearedVoxels)},
-              {"voxel_update_fraction", 1.0 / double(voxels_.updateInterval())}}}};
+              {"voxel_update_fraction", 1.0 / double(voxels_.updateInterval())},
+              {"radiance_update_fraction", 1.0 / double(feature_.radianceParts())},
+              {"radiance_updated_this_frame", s.radianceUpdated}}}};
   }
 
  private:

@@ -144,7 +144,8 @@ void VoxelConeTracing::createLeafPipelines() {
 void VoxelConeTracing::createMipsPipelines() {
   const Binding mipsB[] = {{DYNGI_VCT_MIPS_BINDING_SOURCE, kStorageImage, kCS},     {DYNGI_VCT_MIPS_BINDING_DEST, kStorageImage, kCS},
                            {DYNGI_VCT_MIPS_BINDING_SEEN, kStorageImage, kCS},
-                           {DYNGI_VCT_MIPS_BINDING_NODE_CELLS, kSSBO, kCS},         {DYNGI_VCT_MIPS_BINDING_LEVELS, kSSBO, kCS}};
+                           {DYNGI_VCT_MIPS_BINDING_NODE_CELLS, kSSBO, kCS},         {DYNGI_VCT_MIPS_BINDING_LEVELS, kSSBO, kCS},
+                           {DYNGI_VCT_MIPS_BINDING_LEAF_LIST, kSSBO, kCS}};
   const std::pair<MipsVariant, std::array<uint32_t, 4>> variants[] = {
       {MipsVariant::Isotropic, {0u, 0u, 0u, 0u}},       {MipsVariant::Atlas, {1u, 0u, 0u, 0u}},
       {MipsVariant::IsotropicOpaqueAxis, {0u, 1u, 0u, 0u}}, {MipsVariant::AtlasFromLevel0, {1u, 0u, 1u, 0u}},
@@ -243,6 +244,8 @@ void VoxelConeTracing::ensureVolumes(uint32_t res) {
   });
   stats_.volumeBytes = volumeBytes(radiance_) + volumeBytes(aniso_) + volumeBytes(direct_) + volumeBytes(bounced_);
 }
+
+uint32_t VoxelConeTracing::radianceParts() const { return std::clamp(std::max(options_.radianceFrames, budgetRadianceParts_), 1u, 4u); }
 
 uint32_t VoxelConeTracing::traceScale() const {
   uint32_t base = options_.traceScale;
@@ -368,7 +371,7 @@ uint64_t VoxelConeTracing::recordClearStale(VkCommandBuffer cmd, const StaleVoxe
   return uint64_t(leafRuns) * 32;
 }
 
-void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect) {
+void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect, RadiancePart part) {
   const bool aniso = options_.anisotropic;
   auto bind = [&](const Pipeline& p, VkImageView source, VkImageView dest, const gpu::VctMipsPush& pc) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
@@ -378,6 +381,7 @@ void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect) {
         .storageImage(DYNGI_VCT_MIPS_BINDING_SEEN, direct_.view())
         .storageBuffer(DYNGI_VCT_MIPS_BINDING_NODE_CELLS, voxels_.nodeCells().handle())
         .storageBuffer(DYNGI_VCT_MIPS_BINDING_LEVELS, voxels_.levels().handle())
+        .storageBuffer(DYNGI_VCT_MIPS_BINDING_LEAF_LIST, voxels_.leafList().handle())
         .push(ctx_, cmd, p);
     vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
   };
@@ -385,7 +389,7 @@ void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect) {
     const Pipeline& p = mips(options_.opaqueAxisMips ? MipsVariant::IsotropicOpaqueAxis : MipsVariant::Isotropic);
     for (uint32_t m = 1; m < radiance_.desc().mips; ++m) {
       const uint32_t s = std::max(res_ >> m, 1u);
-      bind(p, radiance_.mipView(m - 1), radiance_.mipView(m), {s, 0, 0});
+      bind(p, radiance_.mipView(m - 1), radiance_.mipView(m), {s, 0, 0, 3 * m, part.part, part.parts});
       vkCmdDispatch(cmd, dispatchGroups(s, 4), dispatchGroups(s, 4), dispatchGroups(s, 4));
       render::computeWriteBarrier(cmd);
     }
@@ -401,7 +405,7 @@ void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect) {
     const uint32_t slab = std::max((res_ / 2) >> m, 1u), nodeLevel = depth - 1 - m;
     const VkImageView source = m > 0 ? aniso_.mipView(m - 1) : (levelZeroIsDirect ? direct_.view() : radiance_.mipView(0));
     const MipsVariant variant = m > 0 ? MipsVariant::Atlas : levelZeroIsDirect ? MipsVariant::AtlasFromDirect : MipsVariant::AtlasFromLevel0;
-    bind(mips(variant), source, aniso_.mipView(m), {slab, m == 0 ? 0u : 2 * slab, nodeLevel});
+    bind(mips(variant), source, aniso_.mipView(m), {slab, m == 0 ? 0u : 2 * slab, nodeLevel, 3 * (depth - nodeLevel), part.part, part.parts});
     vkCmdDispatchIndirect(cmd, voxels_.levels().handle(), levelDispatchOffset(nodeLevel + 1));  // its nodes' child groups
     render::computeWriteBarrier(cmd);
   }
@@ -416,13 +420,20 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   prepareFrame(frame);
   // The radiance follows the voxels: refreshed when they may update (VoxelScene::updatesThisFrame, each
   // frame unless a GI budget puts the voxel updates off) and whenever the SVO was rebuilt.
+  // Under a GI budget the update may be spread over frames, one part each; the first frame and a
+  // rebuilt SVO (new leaves, emptied ones cleared) update every voxel.
+  stats_.radianceUpdated = 0.0;
   if (frames_ == 0 || voxels_.updatesThisFrame() || voxels_.stats().rebuilt) {
-    recordInject(frame);
+    RadiancePart part;
+    const uint32_t parts = radianceParts();
+    if (parts > 1 && frames_ > 0 && !voxels_.stats().rebuilt) part = {uint32_t(partFrame_++ % parts), parts};
+    recordInject(frame, part);
     {
       render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "mips");
-      recordMips(frame.cmd, /*levelZeroIsDirect=*/true);
+      recordMips(frame.cmd, /*levelZeroIsDirect=*/true, part);
     }
     recordBounces(frame);
+    stats_.radianceUpdated = 1.0 / double(part.parts);
   }
   const TraceFrame trace = beginTrace(frame);
   recordTrace(frame, trace);
@@ -457,7 +468,7 @@ void VoxelConeTracing::prepareFrame(render::FrameContext& frame) {
 }
 
 // "inject": what emptied is cleared, then each occupied voxel's direct light and emission.
-void VoxelConeTracing::recordInject(render::FrameContext& frame) {
+void VoxelConeTracing::recordInject(render::FrameContext& frame, RadiancePart part) {
   VkCommandBuffer cmd = frame.cmd;
   const VoxelVolume& vol = voxels_.volume();
   // Voxels an object left must be empty: the passes below write occupied voxels and texels only. Where
@@ -478,6 +489,8 @@ void VoxelConeTracing::recordInject(render::FrameContext& frame) {
   pc.history = frames_ > 0 && options_.temporalBlend > 0.0f ? 1u : 0u;
   pc.temporalBlend = options_.temporalBlend;
   pc.temporalResponse = options_.temporalResponse;
+  pc.part = part.part;
+  pc.parts = part.parts;
   DescriptorWrites w;
   w.storageBuffer(DYNGI_VCT_INJECT_BINDING_LIGHTS, frame.lights.lights->handle())
       .storageBuffer(DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES, frame.lights.shadowMatrices->handle())
@@ -510,7 +523,7 @@ void VoxelConeTracing::recordBounces(render::FrameContext& frame) {
     DescriptorWrites c;
     c.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, bounced_.view()).storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, radiance_.mipView(0));
     recordLeafPass(cmd, commit_, &pc, sizeof(pc), c);
-    recordMips(cmd, /*levelZeroIsDirect=*/false);  // the same occupied set as this frame's first chain; level 0 now has the bounce
+    recordMips(cmd, /*levelZeroIsDirect=*/false, RadiancePart{});  // the same occupied set as this frame's first chain; level 0 now has the bounce
   }
 }
 

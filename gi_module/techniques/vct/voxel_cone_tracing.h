@@ -20,6 +20,7 @@ namespace dyngi::gi {
 
 struct VctFrameStats {
   bool injected = false;    // radiance injected this frame (every frame while the technique runs)
+  double radianceUpdated = 0.0;  // the share of the voxels' radiance updated this frame (1/parts when spread)
   uint64_t clearedVoxels = 0;  // of level 0, cleared first: the stale boxes' (their emptied voxels zeroed), or all of them (res^3)
   uint32_t traceWidth = 0, traceHeight = 0;  // the resolution cones were traced at
   double tracedFraction = 1.0;  // of those, the share traced this frame (the rest reprojected)
@@ -55,6 +56,12 @@ class VoxelConeTracing final : public render::RenderFeature {
   void dropTraceHistory() { traceHistory_ = false; }
   void setBudgetScaleFactor(uint32_t factor) { budgetFactor_ = std::max(factor, 1u); }
   uint32_t budgetScaleFactor() const { return budgetFactor_; }
+  // The radiance update spread over this many frames (1, 2 or 4; VctOptions::radianceFrames, or a GI
+  // budget's more): each frame injects and mips one part of the voxels (vct_parts.glsl), so a light's
+  // change reaches every voxel that many frames later. A frame whose SVO was rebuilt, or the first,
+  // updates everything.
+  void setBudgetRadianceParts(uint32_t parts) { budgetRadianceParts_ = std::clamp(parts, 1u, 4u); }
+  uint32_t radianceParts() const;
   static constexpr uint32_t kMaxTraceScale = 8;
   static constexpr uint32_t kAutoTracePixels = 192 * 192;  // traceScale 0: the most pixels traced
 
@@ -101,8 +108,12 @@ class VoxelConeTracing final : public render::RenderFeature {
   void createMipsPipelines();
   void createScreenPipelines();
   void createSampler();
+  // The part of the voxels a frame's radiance update covers (vct_parts.glsl): part of parts.
+  struct RadiancePart {
+    uint32_t part = 0, parts = 1;
+  };
   void prepareFrame(render::FrameContext& frame);
-  void recordInject(render::FrameContext& frame);
+  void recordInject(render::FrameContext& frame, RadiancePart part);
   void recordBounces(render::FrameContext& frame);
   TraceFrame beginTrace(const render::FrameContext& frame);
   void recordTrace(render::FrameContext& frame, const TraceFrame& trace);
@@ -113,7 +124,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   void ensureTraceTargets(uint32_t width, uint32_t height);
   // The mip chain, or the anisotropic atlas. levelZeroIsDirect: level 0 holds the direct radiance (no
   // bounce added yet), which the atlas' first level then reads alone (vct_mips.comp, kSeenInSource).
-  void recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect);
+  void recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect, RadiancePart part);
   // Where voxels may have been emptied this frame (VoxelScene::staleBoxes), or everywhere.
   struct StaleVoxels {
     bool everywhere = false;
@@ -133,6 +144,8 @@ class VoxelConeTracing final : public render::RenderFeature {
   VoxelScene& voxels_;
   VctOptions options_;
   uint32_t budgetFactor_ = 1;
+  uint32_t budgetRadianceParts_ = 1;
+  uint64_t partFrame_ = 0;  // radiance updates spread over parts so far: the next part
   uint32_t width_ = 0, height_ = 0;  // the render size the trace scale was chosen for
   uint32_t res_ = 0;
   uint64_t frames_ = 0;  // injected into the volumes as they stand (0: clear them first)

@@ -28,6 +28,10 @@ struct VctOptions {
   // reprojected. A still view is the every-frame image after that many frames; motion lags up to
   // traceFrames - 1 frames, and a light switched or a jump traces every pixel at once.
   uint32_t traceFrames = 4;
+  // Frames over which the voxels' radiance update (injection and mips) is spread, one part of the voxels
+  // each (1 to 4): a still light gives the same volume; a change reaches every voxel that many frames
+  // later. A GI budget raises it further.
+  uint32_t radianceFrames = 1;
   // Radius, in traced pixels, of the geometry-aware filter over the diffuse light. From 1 each traced
   // pixel turns its cone set by its own angle and the filter averages the neighbours' sets, so a few
   // cones see many directions instead of missing the same ones all over a face. 0: fixed cones, no filter.

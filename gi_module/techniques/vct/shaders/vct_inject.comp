@@ -22,6 +22,7 @@ layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_RADIANCE, rgba16f) uniform wr
 layout(push_constant) uniform Push { DYNGI_VCT_INJECT_PUSH };
 #include "shared/shadows.glsl"
 #include "vct_leaves.glsl"
+#include "vct_parts.glsl"
 #include "vct_seen.glsl"
 
 const float PI = 3.14159265358979;
@@ -69,5 +70,10 @@ void inject(uint i) {
 }
 
 void main() {
-  VCT_FOR_EACH_LEAF(i) inject(i);
+  // This frame's part of the leaves (all of them unless the update is spread over frames), in the same
+  // grid-stride rounds as VCT_FOR_EACH_LEAF: a part is at most the whole list.
+  uvec2 range = vctPartRange(part, parts);
+  uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+  uint i = range.x + gl_GlobalInvocationID.x;
+  for (uint round = 0u; round < DYNGI_SVO_ITEMS_PER_INVOCATION && i < range.y; ++round, i += stride) inject(i);
 }

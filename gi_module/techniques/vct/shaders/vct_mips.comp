@@ -31,7 +31,26 @@ layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_DEST, rgba16f) uniform writeonl
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_SEEN, rgba16f) uniform readonly image3D seen;  // kSharedSource: the direct radiance, for its alpha
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
+layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_LEAF_LIST) readonly buffer LeafList { uvec4 header; uvec2 entries[]; } leafList;
 layout(push_constant) uniform Push { DYNGI_VCT_MIPS_PUSH };
+#include "vct_parts.glsl"
+
+// The last leaf-level Morton code within cell `code` of this level.
+uint lastLeafCode(uint code) { return ((code + 1u) << leafShift) - 1u; }
+// Whether this frame's part holds the texel of cell `code` at this level (always when not spread).
+bool inThisPart(uint code) { return vctCellInPart(lastLeafCode(code), part, parts); }
+shared uint partBegin, partEnd;
+// Anisotropic: the first of the level's `groups` nodes (in Morton order, from node cell `first`) whose
+// cell ends at or after leaf code `code`: a part's nodes are a run of them, found by two searches.
+uint firstNodeEndingFrom(uint first, uint groups, uint code) {
+  uint lo = 0u, hi = groups;
+  while (lo < hi) {
+    uint mid = (lo + hi) / 2u;
+    if (lastLeafCode(nodeCells[first + 8u * mid] >> 3u) < code) lo = mid + 1u;
+    else hi = mid;
+  }
+  return lo;
+}
 
 vec4 child(uint slab, ivec3 base, ivec3 offset) {
   ivec3 c = base + offset;
@@ -103,11 +122,25 @@ void main() {
     // nodeLevel (its cell: the group's first cell's parent), dispatched with that level's indirect
     // arguments (levels[nodeLevel + 1].dispatch: DYNGI_SVO_ITEMS_PER_INVOCATION slots per invocation, so
     // 8 times the groups' rounds).
+    // A radiance update spread over frames takes this frame's part of them (vct_parts.glsl), a run.
     uint stride = gl_NumWorkGroups.x * 64u, first = levels[nodeLevel + 1u].range.x, groups = levels[nodeLevel + 1u].range.y / 8u;
-    uint i = gl_WorkGroupID.x * 64u + gl_LocalInvocationIndex;
+    // One invocation of the workgroup searches for the run (parts is uniform: so is the barrier).
+    uint begin = 0u, end = groups;
+    if (parts > 1u) {
+      if (gl_LocalInvocationIndex == 0u) {
+        uvec2 codes = vctPartCodes(part, parts);
+        partBegin = firstNodeEndingFrom(first, groups, codes.x);
+        partEnd = part + 1u == parts ? groups : firstNodeEndingFrom(first, groups, codes.y);
+      }
+      barrier();
+      begin = partBegin;
+      end = partEnd;
+    }
+    uint i = begin + gl_WorkGroupID.x * 64u + gl_LocalInvocationIndex;
     for (uint r = 0u; r < DYNGI_SVO_ITEMS_PER_INVOCATION; ++r, i += stride) {
-      if (i >= groups) break;
-      ivec3 p = svoCellOfMortonCode(nodeCells[first + 8u * i] >> 3u);
+      if (i >= end) break;
+      uint code = nodeCells[first + 8u * i] >> 3u;
+      ivec3 p = svoCellOfMortonCode(code);
       if (kSharedSource) atlasFromLevel0(p);
       else atlasFromAtlas(p);
     }
@@ -115,7 +148,7 @@ void main() {
   }
   ivec3 size = imageSize(dest);
   ivec3 p = ivec3(gl_GlobalInvocationID);
-  if (any(greaterThanEqual(p, size))) return;
+  if (any(greaterThanEqual(p, size)) || !inThisPart(svoMortonCode(uvec3(p)))) return;
   if (!kOpaqueAxis) {
     ivec3 base = 2 * p;
     vec4 sum = vec4(0.0);

@@ -38,6 +38,7 @@ DYNGI_GPU_NAMESPACE_BEGIN
 // The anisotropic atlas is built over the SVO's occupied nodes only (the rest of it is cleared):
 #define DYNGI_VCT_MIPS_BINDING_NODE_CELLS 3
 #define DYNGI_VCT_MIPS_BINDING_LEVELS 4
+#define DYNGI_VCT_MIPS_BINDING_LEAF_LIST 5  /* the parts of a radiance update spread over frames (vct_parts.glsl) */
 // vct_trace: the screen's cones; vct_upsample: to full resolution
 #define DYNGI_VCT_TRACE_BINDING_FRAME 0
 #define DYNGI_VCT_TRACE_BINDING_G_POSITION 1
@@ -109,17 +110,21 @@ DYNGI_GPU_NAMESPACE_BEGIN
   float coneStep;   /* step = this x the cone's diameter */                       \
   uint cones;        /* diffuse cones */                                           \
   float farNarrowing; /* footprints over 2^DYNGI_VCT_WHOLE_LEVELS_BELOW read 2^-this of theirs */
+// A radiance update spread over frames: this frame updates part `part` of `parts` (vct_parts.glsl; 1: all).
+#define DYNGI_VCT_PART_PUSH uint part; uint parts;
 #define DYNGI_VCT_INJECT_PUSH                                                        \
   vec4 volume;       /* xyz world origin, w voxel size */                          \
   uint lightCount;                                                                 \
   uint history;      /* 1: DIRECT holds last frame's radiance */                  \
   float temporalBlend;                                                             \
-  float temporalResponse;
+  float temporalResponse;                                                          \
+  DYNGI_VCT_PART_PUSH
 #define DYNGI_VCT_CLEAR_PUSH uint runCount; uint depth; /* the SVO's: its leaves are level-0 voxels, level depth - 1 the atlas' level-0 texels */ \
   uint atlasSlabWidth; /* texels; 0: isotropic, no atlas */
 #define DYNGI_VCT_BOUNCE_PUSH DYNGI_VCT_CONE_PARAMS uint commit; /* 0 trace, 1 copy OUT to RADIANCE */
 #define DYNGI_VCT_MIPS_PUSH uint destSlabWidth; /* texels; the isotropic chain has one slab */ uint sourceSlabWidth; /* 0: one source slab */ \
-  uint nodeLevel; /* anisotropic: the SVO level whose cells are this atlas level's texels */
+  uint nodeLevel; /* anisotropic: the SVO level whose cells are this atlas level's texels */ \
+  uint leafShift; /* 3 x the SVO levels from this level's texels down to the leaves */ DYNGI_VCT_PART_PUSH
 #define DYNGI_VCT_TRACE_PUSH DYNGI_VCT_CONE_PARAMS uint traceScale; uint specular; uint turnCones; /* 1: each traced pixel turns its cone set */ \
   float specularConeBelow; /* VctOptions::specularConeBelow: rougher pixels march no specular cone */ \
   uint traceFrames; /* 1, 2 or 4: the frames over which every traced pixel is traced once */ uint tracePhase; /* frame index mod traceFrames */ \
@@ -151,8 +156,9 @@ struct VctFilterPush { DYNGI_VCT_FILTER_PUSH };
 struct VctDebugPush { DYNGI_VCT_DEBUG_PUSH };
 struct VctProbePush { DYNGI_VCT_PROBE_PUSH };
 
-static_assert(sizeof(VctInjectPush) == 32 && offsetof(VctInjectPush, temporalResponse) == 28);
-static_assert(sizeof(VctClearPush) == 12 && sizeof(VctMipsPush) == 12 && sizeof(VctUpsamplePush) == 8 && sizeof(VctFilterPush) == 16);
+static_assert(sizeof(VctInjectPush) == 40 && offsetof(VctInjectPush, temporalResponse) == 28 && offsetof(VctInjectPush, parts) == 36);
+static_assert(sizeof(VctMipsPush) == 24 && offsetof(VctMipsPush, parts) == 20);
+static_assert(sizeof(VctClearPush) == 12 && sizeof(VctUpsamplePush) == 8 && sizeof(VctFilterPush) == 16);
 static_assert(sizeof(VctBouncePush) == 48 && offsetof(VctBouncePush, coneStep) == 32 && offsetof(VctBouncePush, commit) == 44);
 static_assert(sizeof(VctTracePush) == 72 && offsetof(VctTracePush, traceScale) == 44 && offsetof(VctTracePush, coneInterleave) == 68);
 static_assert(sizeof(VctReprojectPush) == 84 && offsetof(VctReprojectPush, traceScale) == 64 && offsetof(VctReprojectPush, maxAge) == 80);
