@@ -5,7 +5,9 @@
 # set as options, each one a budget reaches: the gather on one pixel in 2 x 2 and 4 x 4 (--gather-scale
 # 2 and 4: the budget's gather_fraction 1/4 and 1/16), the VPLs per frame at their floor (fewer --vpls:
 # the temporal technique's floor is K^2 = 16 of a set's 32, the many-lights technique's an eighth), VCT's
-# traced fraction 1/4 and 1/16. docs/QUALITY.md keeps the table. Not in CI (timing; ~4 minutes here).
+# traced fraction 1/4 and 1/16, then its radiance updated a half and a quarter of the voxels a frame
+# (--radiance-frames 2 and 4: a still scene's image is the same; the cost is lag, settle_time.sh).
+# docs/QUALITY.md keeps the table. Not in CI (timing; ~4 minutes here).
 #   scripts/budget_levels.sh        env: SIZE (256), FRAMES (60), SPP (1024)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -34,6 +36,8 @@ levels=(
   "vct|default|"
   "vct|trace_fraction 1/4|--trace-scale 4"
   "vct|trace_fraction 1/16|--trace-scale 8"
+  "vct|+ radiance_update_fraction 1/2|--trace-scale 8 --radiance-frames 2"
+  "vct|+ radiance_update_fraction 1/4|--trace-scale 8 --radiance-frames 4"
 )
 echo "| technique | level | GI ms (median) | relMSE | p99 relative error |"
 echo "| --- | --- | --- | --- | --- |"

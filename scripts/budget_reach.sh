@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
-# The GI budget's reach per technique: on the rotating-object Cornell box (SIZE 256x256), each technique
+# The GI budget's reach per technique: on the rotating-object Cornell box (ANIMATE: another scripted
+# scene, e.g. moving-spot, where only a light moves; SIZE 256x256), each technique
 # unbudgeted, then with budgets at 1/4, 1/2 and 3/4 of its unbudgeted GI median. The unbudgeted run has
 # a budget of 10 s, which lowers nothing but reads the cost as a budget does (fenced frames where the
 # timestamps miss work: VCT on lavapipe), so the fractions are of a cost the device spends. For each budget: the
 # GI's median and p95 after the warm-up (the controller's descent left out), what the budget read
 # (timestamps or fenced frames) and the knobs at the end, and a verdict: the median within 15 percent
 # of the budget. Not in CI (timing; ~6 minutes here); docs/QUALITY.md keeps its last result.
-#   scripts/budget_reach.sh [TECHNIQUE...]     env: SIZE (256x256), FRAMES (200), WARMUP (60)
+#   scripts/budget_reach.sh [TECHNIQUE...]     env: ANIMATE (rotating-object), SIZE (256x256), FRAMES (200), WARMUP (60)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+ANIMATE="${ANIMATE:-rotating-object}"
 SIZE="${SIZE:-256x256}"
 FRAMES="${FRAMES:-200}"
 WARMUP="${WARMUP:-60}"
@@ -16,7 +18,7 @@ TECHNIQUES=("$@")
 [ ${#TECHNIQUES[@]} -gt 0 ] || TECHNIQUES=(temporal many-lights vct)
 BIN=build/bin/dyngi_sample
 [ -x $BIN ] || { echo "budget_reach.sh: build dyngi_sample first" >&2; exit 2; }
-out=out/budget_reach
+out=out/budget_reach/$ANIMATE
 mkdir -p $out
 field() {  # field FILE EXPR: a value from a stats JSON
   python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(eval(sys.argv[2]))" "$1" "$2"
@@ -26,7 +28,7 @@ echo "| technique | budget | GI ms median | p95 | read from | knobs at the end |
 echo "| --- | --- | --- | --- | --- | --- | --- |"
 for gi in "${TECHNIQUES[@]}"; do
   run() {  # run BUDGET_MS NAME
-    $BIN --headless --scene cornell --animate rotating-object --gi "$gi" --size "$SIZE" --frames "$FRAMES" --warmup "$WARMUP" \
+    $BIN --headless --scene cornell --animate "$ANIMATE" --gi "$gi" --size "$SIZE" --frames "$FRAMES" --warmup "$WARMUP" \
       --gi-budget-ms "$1" --stats "$out/$gi-$2.json" >/dev/null 2>&1
   }
   run 10000 none
