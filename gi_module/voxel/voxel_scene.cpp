@@ -155,6 +155,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   rangesToEmpty_.clear();
   voxelizedThisFrame_.clear();
   staleBoxes_.clear();
+  freshBoxes_.clear();
   staleEverywhere_ = false;
   rebuildSvo_ = false;
   stats_.rebuilt = false;
@@ -232,6 +233,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     const glm::vec3 lo = glm::floor(bounds.min) - 1.0f, hi = glm::floor(bounds.max) + 1.0f;
     if (!bounds.valid() || glm::any(glm::greaterThan(lo, glm::vec3(top))) || glm::any(glm::lessThan(hi, glm::vec3(0.0f)))) continue;
     voxelBoxes_[e] = VoxelBox{glm::uvec3(glm::clamp(lo, 0.0f, top)), glm::uvec3(glm::clamp(hi, 0.0f, top))};
+    freshBoxes_.push_back(voxelBoxes_[e]);
   }
   ranges_.setHighWater(newHighWater);
   dirty_.clear();

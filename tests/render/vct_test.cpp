@@ -233,8 +233,8 @@ double maxRelativeDifference(const gi::VolumeLevel& a, const gi::VolumeLevel& b)
 }  // namespace
 
 // The radiance update spread over 4 frames (a GI budget's radiance_update_fraction 1/4): after a light
-// moves, the first frame updates about a quarter of the voxels; two cycles later the direct radiance
-// and every atlas level equal the every-frame update's, and so does the image. Without temporal
+// moves, the first frame updates a part of the voxels; three cycles later the direct radiance and every
+// atlas level equal the every-frame update's, and 4 frames more (the trace's spread) the image. Without temporal
 // blending, so that each update is a function of the light alone.
 TEST_F(RenderTest, VctRadianceSpreadOverFramesReachesTheWholeUpdate) {
   auto settings = [](uint32_t radianceFrames) {
@@ -266,7 +266,7 @@ TEST_F(RenderTest, VctRadianceSpreadOverFramesReachesTheWholeUpdate) {
   ASSERT_GT(changed, 1000u);
   EXPECT_GT(double(updated) / double(changed), 0.10);
   EXPECT_LT(double(updated) / double(changed), 0.45) << "a part, not the whole volume";
-  for (GiRun* run : {&every, &spread}) run->step(11);  // two cycles, then the trace's 4 frames
+  for (GiRun* run : {&every, &spread}) run->step(15);  // three cycles of 4 frames, then the trace's 4
   const double direct = maxRelativeDifference(readLevels(context(), vctOf(spread).directVolume()).front(),
                                               readLevels(context(), vctOf(every).directVolume()).front());
   const std::vector<gi::VolumeLevel> atlasSpread = readLevels(context(), vctOf(spread).anisotropicVolume()),
@@ -274,9 +274,50 @@ TEST_F(RenderTest, VctRadianceSpreadOverFramesReachesTheWholeUpdate) {
   double atlas = 0.0;
   for (size_t m = 0; m < atlasEvery.size(); ++m) atlas = std::max(atlas, maxRelativeDifference(atlasSpread[m], atlasEvery[m]));
   const double image = render::relativeMse(spread.indirect(), every.indirect());
-  dyngi::test::report("two cycles and a trace spread later: direct radiance differs by %.2g, the atlas (%zu levels) by %.2g, the indirect image relMSE %.2g\n", direct,
+  dyngi::test::report("three cycles and a trace spread later: direct radiance differs by %.2g, the atlas (%zu levels) by %.2g, the indirect image relMSE %.2g\n", direct,
                       atlasEvery.size(), atlas, image);
   EXPECT_LE(direct, 1e-3);
+  EXPECT_LE(atlas, 1e-3);
+  EXPECT_LE(image, 1e-6);
+}
+
+// Spread over 4 frames, a frame whose SVO build changed voxels (a box moved) still updates the boxes it
+// changed: the box's new voxels carry their light at once, as the every-frame update's do; three cycles
+// (and the trace's spread) later everything equals it.
+TEST_F(RenderTest, VctRadianceSpreadUpdatesAMovedObjectAtOnce) {
+  auto settings = [](uint32_t radianceFrames) {
+    gi::GiSettings s = vctSettings();
+    s.vct.radianceFrames = radianceFrames;
+    s.vct.temporalBlend = 0.0f;
+    return s;
+  };
+  GiRun every(context(), settings(1), "cornell", kSize, kSize), spread(context(), settings(4), "cornell", kSize, kSize);
+  for (GiRun* run : {&every, &spread}) run->step(3);
+  const std::vector<glm::vec4> before = render::readbackImageLevel(context(), vctOf(every).directVolume(), 0);
+  for (GiRun* run : {&every, &spread}) {
+    run->world.write<scene::Transform>(run->named("short_box")).translation.z += 0.25f;
+    run->step();
+  }
+  EXPECT_TRUE(spread.gi->voxels()->stats().rebuilt);
+  EXPECT_DOUBLE_EQ(vctOf(spread).stats().radianceUpdated, 0.25) << "the update stays spread on a rebuilt frame";
+  const std::vector<glm::vec4> now = render::readbackImageLevel(context(), vctOf(every).directVolume(), 0);
+  const std::vector<glm::vec4> partly = render::readbackImageLevel(context(), vctOf(spread).directVolume(), 0);
+  size_t filled = 0, lit = 0;
+  for (size_t i = 0; i < now.size(); ++i) {
+    if (!(before[i].a == 0.0f && now[i].a > 0.0f)) continue;  // a voxel the box moved into
+    ++filled;
+    lit += glm::length(glm::vec3(partly[i] - now[i])) <= 1e-3f * std::max(glm::length(glm::vec3(now[i])), 1e-3f) && partly[i].a == now[i].a;
+  }
+  dyngi::test::report("box moved, radiance spread over 4 frames: %zu of %zu voxels it moved into updated at once\n", lit, filled);
+  ASSERT_GT(filled, 100u);
+  EXPECT_EQ(lit, filled);
+  for (GiRun* run : {&every, &spread}) run->step(15);  // three cycles of 4 frames, then the trace's 4
+  const std::vector<gi::VolumeLevel> atlasSpread = readLevels(context(), vctOf(spread).anisotropicVolume()),
+                                     atlasEvery = readLevels(context(), vctOf(every).anisotropicVolume());
+  double atlas = 0.0;
+  for (size_t m = 0; m < atlasEvery.size(); ++m) atlas = std::max(atlas, maxRelativeDifference(atlasSpread[m], atlasEvery[m]));
+  const double image = render::relativeMse(spread.indirect(), every.indirect());
+  dyngi::test::report("three cycles and a trace spread later: the atlas differs by %.2g, the image relMSE %.2g\n", atlas, image);
   EXPECT_LE(atlas, 1e-3);
   EXPECT_LE(image, 1e-6);
 }

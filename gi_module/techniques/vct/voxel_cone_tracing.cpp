@@ -101,6 +101,7 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
   createMipsPipelines();
   createScreenPipelines();
   createSampler();
+  changedBoxes_ = Buffer(ctx_, 2 * kMaxChangedBoxes * sizeof(glm::uvec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "vct changed boxes");
 }
 
 // The passes over the occupied voxels: injection, clearing what emptied, the bounce and its commit.
@@ -111,7 +112,8 @@ void VoxelConeTracing::createLeafPipelines() {
                            {DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES, kSSBO, kCS},
                            {DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, kStorageImage, kCS},
                            {DYNGI_VCT_INJECT_BINDING_DIRECT, kStorageImage, kCS},
-                           {DYNGI_VCT_INJECT_BINDING_RADIANCE, kStorageImage, kCS}};
+                           {DYNGI_VCT_INJECT_BINDING_RADIANCE, kStorageImage, kCS},
+                           {DYNGI_VCT_INJECT_BINDING_CHANGED_BOXES, kSSBO, kCS}};
   inject_ = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_inject_comp), leafB, sizeof(gpu::VctInjectPush), "vct_inject");
   const Binding clearB[] = {{DYNGI_VCT_CLEAR_BINDING_RUNS, kSSBO, kCS},          {DYNGI_VCT_CLEAR_BINDING_PREVIOUS_OCCUPANCY, kSSBO, kCS},
                             {DYNGI_VCT_CLEAR_BINDING_OCCUPANCY, kSSBO, kCS},     {DYNGI_VCT_CLEAR_BINDING_RADIANCE, kStorageImage, kCS},
@@ -145,7 +147,7 @@ void VoxelConeTracing::createMipsPipelines() {
   const Binding mipsB[] = {{DYNGI_VCT_MIPS_BINDING_SOURCE, kStorageImage, kCS},     {DYNGI_VCT_MIPS_BINDING_DEST, kStorageImage, kCS},
                            {DYNGI_VCT_MIPS_BINDING_SEEN, kStorageImage, kCS},
                            {DYNGI_VCT_MIPS_BINDING_NODE_CELLS, kSSBO, kCS},         {DYNGI_VCT_MIPS_BINDING_LEVELS, kSSBO, kCS},
-                           {DYNGI_VCT_MIPS_BINDING_LEAF_LIST, kSSBO, kCS}};
+                           {DYNGI_VCT_MIPS_BINDING_LEAF_LIST, kSSBO, kCS},          {DYNGI_VCT_MIPS_BINDING_CHANGED_BOXES, kSSBO, kCS}};
   const std::pair<MipsVariant, std::array<uint32_t, 4>> variants[] = {
       {MipsVariant::Isotropic, {0u, 0u, 0u, 0u}},       {MipsVariant::Atlas, {1u, 0u, 0u, 0u}},
       {MipsVariant::IsotropicOpaqueAxis, {0u, 1u, 0u, 0u}}, {MipsVariant::AtlasFromLevel0, {1u, 0u, 1u, 0u}},
@@ -382,6 +384,7 @@ void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect, R
         .storageBuffer(DYNGI_VCT_MIPS_BINDING_NODE_CELLS, voxels_.nodeCells().handle())
         .storageBuffer(DYNGI_VCT_MIPS_BINDING_LEVELS, voxels_.levels().handle())
         .storageBuffer(DYNGI_VCT_MIPS_BINDING_LEAF_LIST, voxels_.leafList().handle())
+        .storageBuffer(DYNGI_VCT_MIPS_BINDING_CHANGED_BOXES, changedBoxes_.handle())
         .push(ctx_, cmd, p);
     vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
   };
@@ -389,7 +392,7 @@ void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect, R
     const Pipeline& p = mips(options_.opaqueAxisMips ? MipsVariant::IsotropicOpaqueAxis : MipsVariant::Isotropic);
     for (uint32_t m = 1; m < radiance_.desc().mips; ++m) {
       const uint32_t s = std::max(res_ >> m, 1u);
-      bind(p, radiance_.mipView(m - 1), radiance_.mipView(m), {s, 0, 0, 3 * m, part.part, part.parts});
+      bind(p, radiance_.mipView(m - 1), radiance_.mipView(m), {s, 0, 0, 3 * m, part.part, part.parts, part.boxCount});
       vkCmdDispatch(cmd, dispatchGroups(s, 4), dispatchGroups(s, 4), dispatchGroups(s, 4));
       render::computeWriteBarrier(cmd);
     }
@@ -405,7 +408,10 @@ void VoxelConeTracing::recordMips(VkCommandBuffer cmd, bool levelZeroIsDirect, R
     const uint32_t slab = std::max((res_ / 2) >> m, 1u), nodeLevel = depth - 1 - m;
     const VkImageView source = m > 0 ? aniso_.mipView(m - 1) : (levelZeroIsDirect ? direct_.view() : radiance_.mipView(0));
     const MipsVariant variant = m > 0 ? MipsVariant::Atlas : levelZeroIsDirect ? MipsVariant::AtlasFromDirect : MipsVariant::AtlasFromLevel0;
-    bind(mips(variant), source, aniso_.mipView(m), {slab, m == 0 ? 0u : 2 * slab, nodeLevel, 3 * (depth - nodeLevel), part.part, part.parts});
+    // With changed boxes the atlas' levels from 2 were cleared whole (recordClearStale): written whole.
+    const RadiancePart levelPart = part.boxCount > 0 && m >= 2 ? RadiancePart{} : part;
+    bind(mips(variant), source, aniso_.mipView(m),
+         {slab, m == 0 ? 0u : 2 * slab, nodeLevel, 3 * (depth - nodeLevel), levelPart.part, levelPart.parts, levelPart.boxCount});
     vkCmdDispatchIndirect(cmd, voxels_.levels().handle(), levelDispatchOffset(nodeLevel + 1));  // its nodes' child groups
     render::computeWriteBarrier(cmd);
   }
@@ -424,9 +430,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   // rebuilt SVO (new leaves, emptied ones cleared) update every voxel.
   stats_.radianceUpdated = 0.0;
   if (frames_ == 0 || voxels_.updatesThisFrame() || voxels_.stats().rebuilt) {
-    RadiancePart part;
-    const uint32_t parts = radianceParts();
-    if (parts > 1 && frames_ > 0 && !voxels_.stats().rebuilt) part = {uint32_t(partFrame_++ % parts), parts};
+    const RadiancePart part = planRadianceUpdate(clearsEverything());
     recordInject(frame, part);
     {
       render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "mips");
@@ -467,6 +471,29 @@ void VoxelConeTracing::prepareFrame(render::FrameContext& frame) {
   historyVoxelSize_ = vol.voxelSize;
 }
 
+bool VoxelConeTracing::clearsEverything() const {
+  uint64_t boxVoxels = 0;
+  for (const VoxelBox& b : voxels_.staleBoxes()) boxVoxels += b.voxels();
+  return frames_ == 0 || voxels_.staleEverywhere() || boxVoxels * 2 > uint64_t(res_) * res_ * res_;
+}
+
+VoxelConeTracing::RadiancePart VoxelConeTracing::planRadianceUpdate(bool clearAll) {
+  const uint32_t parts = radianceParts();
+  if (parts <= 1 || clearAll) return {};
+  if (!voxels_.stats().rebuilt) return {uint32_t(partFrame_++ % parts), parts, 0};
+  // A rebuilt SVO: this frame's part and the boxes where the build changed voxels, whose new voxels would
+  // otherwise have no light (and the old ones' emptied mips none) until their part's turn.
+  std::vector<glm::uvec4> boxes;
+  for (const std::vector<VoxelBox>* list : {&voxels_.staleBoxes(), &voxels_.freshBoxes()})
+    for (const VoxelBox& b : *list) {
+      boxes.push_back(glm::uvec4(b.min, 0u));
+      boxes.push_back(glm::uvec4(b.max, 0u));
+    }
+  if (boxes.size() > 2 * kMaxChangedBoxes) return {};
+  if (!boxes.empty()) changedBoxes_.upload(boxes.data(), boxes.size() * sizeof(glm::uvec4));
+  return {uint32_t(partFrame_++ % parts), parts, uint32_t(boxes.size() / 2)};
+}
+
 // "inject": what emptied is cleared, then each occupied voxel's direct light and emission.
 void VoxelConeTracing::recordInject(render::FrameContext& frame, RadiancePart part) {
   VkCommandBuffer cmd = frame.cmd;
@@ -476,9 +503,7 @@ void VoxelConeTracing::recordInject(render::FrameContext& frame, RadiancePart pa
   // occupancy, not this one's) are zeroed within the boxes where they may be (VoxelScene::staleBoxes);
   // the first frame, a new volume or boxes holding half of it clear everything. The rest holds the same
   // occupied voxels as before, every one written again below.
-  uint64_t boxVoxels = 0;
-  for (const VoxelBox& b : voxels_.staleBoxes()) boxVoxels += b.voxels();
-  const bool clearAll = frames_ == 0 || voxels_.staleEverywhere() || boxVoxels * 2 > uint64_t(res_) * res_ * res_;
+  const bool clearAll = clearsEverything();
   const StaleVoxels stale{clearAll, voxels_.stats().rebuilt ? voxels_.staleBoxes() : std::vector<VoxelBox>{}};
   render::ScopedPass scope(ctx_, frame.timer, cmd, "inject");
   stats_.clearedVoxels = recordClearStale(cmd, stale);
@@ -491,12 +516,14 @@ void VoxelConeTracing::recordInject(render::FrameContext& frame, RadiancePart pa
   pc.temporalResponse = options_.temporalResponse;
   pc.part = part.part;
   pc.parts = part.parts;
+  pc.boxCount = part.boxCount;
   DescriptorWrites w;
   w.storageBuffer(DYNGI_VCT_INJECT_BINDING_LIGHTS, frame.lights.lights->handle())
       .storageBuffer(DYNGI_VCT_INJECT_BINDING_SHADOW_MATRICES, frame.lights.shadowMatrices->handle())
       .storageImage(DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, frame.lights.shadowMaps->view())
       .storageImage(DYNGI_VCT_INJECT_BINDING_DIRECT, direct_.view())
-      .storageImage(DYNGI_VCT_INJECT_BINDING_RADIANCE, radiance_.mipView(0));
+      .storageImage(DYNGI_VCT_INJECT_BINDING_RADIANCE, radiance_.mipView(0))
+      .storageBuffer(DYNGI_VCT_INJECT_BINDING_CHANGED_BOXES, changedBoxes_.handle());
   recordLeafPass(cmd, inject_, &pc, sizeof(pc), w);
   stats_.injected = true;
 }

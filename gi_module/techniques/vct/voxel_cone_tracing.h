@@ -56,10 +56,10 @@ class VoxelConeTracing final : public render::RenderFeature {
   void dropTraceHistory() { traceHistory_ = false; }
   void setBudgetScaleFactor(uint32_t factor) { budgetFactor_ = std::max(factor, 1u); }
   uint32_t budgetScaleFactor() const { return budgetFactor_; }
-  // The radiance update spread over this many frames (1, 2 or 4; VctOptions::radianceFrames, or a GI
+  // The radiance update spread over this many frames (1 to 4; VctOptions::radianceFrames, or a GI
   // budget's more): each frame injects and mips one part of the voxels (vct_parts.glsl), so a light's
-  // change reaches every voxel that many frames later. A frame whose SVO was rebuilt, or the first,
-  // updates everything.
+  // change reaches every voxel that many frames later; a frame whose SVO build changed voxels updates
+  // the changed boxes too, and the first frame everything.
   void setBudgetRadianceParts(uint32_t parts) { budgetRadianceParts_ = std::clamp(parts, 1u, 4u); }
   uint32_t radianceParts() const;
   static constexpr uint32_t kMaxTraceScale = 8;
@@ -108,10 +108,16 @@ class VoxelConeTracing final : public render::RenderFeature {
   void createMipsPipelines();
   void createScreenPipelines();
   void createSampler();
-  // The part of the voxels a frame's radiance update covers (vct_parts.glsl): part of parts.
+  // The part of the voxels a frame's radiance update covers (vct_parts.glsl): part of parts, and the
+  // first boxCount changed boxes (changedBoxes_) of a frame whose SVO build changed voxels.
   struct RadiancePart {
-    uint32_t part = 0, parts = 1;
+    uint32_t part = 0, parts = 1, boxCount = 0;
   };
+  static constexpr uint32_t kMaxChangedBoxes = 32;  // more: the frame updates everything
+  // This frame's part (everything unless spread), the changed boxes uploaded. `clearAll`: inject clears
+  // the whole volume first, so everything must be written.
+  RadiancePart planRadianceUpdate(bool clearAll);
+  bool clearsEverything() const;
   void prepareFrame(render::FrameContext& frame);
   void recordInject(render::FrameContext& frame, RadiancePart part);
   void recordBounces(render::FrameContext& frame);
@@ -157,6 +163,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   render::Image direct_;       // res^3: the injected radiance, blended in place with last frame's (temporal blending); alpha: which cones see the voxel (vct_seen.glsl)
   render::Image bounced_;      // res^3: a bounce's output before it is committed to radiance_ level 0
   render::Buffer staleRuns_;   // this frame's runs of cells vct_clear_stale.comp visits (recordClearStale)
+  render::Buffer changedBoxes_;  // kMaxChangedBoxes (min, max) uvec4 pairs: planRadianceUpdate
   TracedPixels traced_[2];
   render::Image filterAlongX_;     // the diffuse filter's first pass (along x)
   render::Image filteredDiffuse_;  // its second: what the upsample reads

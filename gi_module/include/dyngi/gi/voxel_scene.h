@@ -129,6 +129,9 @@ class VoxelScene final : public render::RenderFeature {
   // state (VCT's radiance volumes) clears these instead of the whole volume.
   const std::vector<VoxelBox>& staleBoxes() const { return staleBoxes_; }
   bool staleEverywhere() const { return staleEverywhere_; }
+  // The boxes the entities voxelized this frame cover now (bounds and a voxel of margin): with the stale
+  // boxes, everywhere a voxel may have been filled, emptied or given new attributes by this frame's build.
+  const std::vector<VoxelBox>& freshBoxes() const { return freshBoxes_; }
   // Some stored fragment emits (an entity voxelized with an emissive material): the passes over the
   // leaf attributes leave emission out otherwise.
   bool fragmentsEmit() const { return !emittingEntities_.empty(); }
@@ -161,7 +164,7 @@ class VoxelScene final : public render::RenderFeature {
   bool storageMoved_ = false;  // fragments were moved or the derived buffers reallocated: rebuild the SVO
   std::vector<ecs::Entity> voxelizedThisFrame_;
   std::unordered_map<ecs::Entity, VoxelBox> voxelBoxes_;  // each entity's box at its last voxelization
-  std::vector<VoxelBox> staleBoxes_;
+  std::vector<VoxelBox> staleBoxes_, freshBoxes_;
   std::unordered_set<ecs::Entity> emittingEntities_;  // voxelized with an emissive material
   bool staleEverywhere_ = false;
 

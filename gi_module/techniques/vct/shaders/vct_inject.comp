@@ -22,6 +22,7 @@ layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_RADIANCE, rgba16f) uniform wr
 layout(push_constant) uniform Push { DYNGI_VCT_INJECT_PUSH };
 #include "shared/shadows.glsl"
 #include "vct_leaves.glsl"
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_CHANGED_BOXES) readonly buffer ChangedBoxes { uvec4 changedBoxes[]; };
 #include "vct_parts.glsl"
 #include "vct_seen.glsl"
 
@@ -70,10 +71,18 @@ void inject(uint i) {
 }
 
 void main() {
-  // This frame's part of the leaves (all of them unless the update is spread over frames), in the same
-  // grid-stride rounds as VCT_FOR_EACH_LEAF: a part is at most the whole list.
-  uvec2 range = vctPartRange(part, parts);
+  // This frame's run of the leaves (all of them unless the update is spread over frames), in the same
+  // grid-stride rounds as VCT_FOR_EACH_LEAF: a run is at most the whole list. With changed boxes every
+  // leaf is visited, those outside the run and the boxes skipped.
+  uvec2 own = vctPartRange(part, parts);
+  uvec2 range = boxCount > 0u ? uvec2(0u, leafList.header.w) : own;
   uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
   uint i = range.x + gl_GlobalInvocationID.x;
-  for (uint round = 0u; round < DYNGI_SVO_ITEMS_PER_INVOCATION && i < range.y; ++round, i += stride) inject(i);
+  for (uint round = 0u; round < DYNGI_SVO_ITEMS_PER_INVOCATION && i < range.y; ++round, i += stride) {
+    if (i < own.x || i >= own.y) {
+      uvec3 v = uvec3(svoCellOfMortonCode(leafList.entries[i].y));
+      if (!vctInChangedBox(v, v, boxCount)) continue;
+    }
+    inject(i);
+  }
 }

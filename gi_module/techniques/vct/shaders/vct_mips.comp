@@ -32,16 +32,23 @@ layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_SEEN, rgba16f) uniform readonly
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_NODE_CELLS) readonly buffer NodeCells { uint nodeCells[]; };
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_LEVELS) readonly buffer Levels { SvoLevel levels[]; };
 layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_LEAF_LIST) readonly buffer LeafList { uvec4 header; uvec2 entries[]; } leafList;
+layout(set = 0, binding = DYNGI_VCT_MIPS_BINDING_CHANGED_BOXES) readonly buffer ChangedBoxes { uvec4 changedBoxes[]; };
 layout(push_constant) uniform Push { DYNGI_VCT_MIPS_PUSH };
 #include "vct_parts.glsl"
 
 // The last leaf-level Morton code within cell `code` of this level.
 uint lastLeafCode(uint code) { return ((code + 1u) << leafShift) - 1u; }
-// Whether this frame's part holds the texel of cell `code` at this level (always when not spread).
-bool inThisPart(uint code) { return vctCellInPart(lastLeafCode(code), part, parts); }
+// Whether this frame's update writes the texel of cell `code` at this level: always when not spread;
+// else when this frame's part holds it or its voxels meet a changed box.
+bool inThisPart(uint code) {
+  if (vctCellInPart(lastLeafCode(code), part, parts)) return true;
+  uint span = 1u << (leafShift / 3u);  // voxels a side
+  uvec3 lo = uvec3(svoCellOfMortonCode(code)) * span;
+  return vctInChangedBox(lo, lo + span - 1u, boxCount);
+}
 shared uint partBegin, partEnd;
-// Anisotropic: the first of the level's `groups` nodes (in Morton order, from node cell `first`) whose
-// cell ends at or after leaf code `code`: a part's nodes are a run of them, found by two searches.
+// Anisotropic: a binary search over the level's `groups` nodes (from node cell `first`) for the first
+// whose cell ends at or after leaf code `code`: a part's run lies between two such searches.
 uint firstNodeEndingFrom(uint first, uint groups, uint code) {
   uint lo = 0u, hi = groups;
   while (lo < hi) {
@@ -122,11 +129,12 @@ void main() {
     // nodeLevel (its cell: the group's first cell's parent), dispatched with that level's indirect
     // arguments (levels[nodeLevel + 1].dispatch: DYNGI_SVO_ITEMS_PER_INVOCATION slots per invocation, so
     // 8 times the groups' rounds).
-    // A radiance update spread over frames takes this frame's part of them (vct_parts.glsl), a run.
+    // A radiance update spread over frames takes this frame's part of them (vct_parts.glsl): a run, or
+    // with changed boxes every node, those outside the part and the boxes skipped.
     uint stride = gl_NumWorkGroups.x * 64u, first = levels[nodeLevel + 1u].range.x, groups = levels[nodeLevel + 1u].range.y / 8u;
     // One invocation of the workgroup searches for the run (parts is uniform: so is the barrier).
     uint begin = 0u, end = groups;
-    if (parts > 1u) {
+    if (parts > 1u && boxCount == 0u) {
       if (gl_LocalInvocationIndex == 0u) {
         uvec2 codes = vctPartCodes(part, parts);
         partBegin = firstNodeEndingFrom(first, groups, codes.x);
@@ -140,6 +148,7 @@ void main() {
     for (uint r = 0u; r < DYNGI_SVO_ITEMS_PER_INVOCATION; ++r, i += stride) {
       if (i >= end) break;
       uint code = nodeCells[first + 8u * i] >> 3u;
+      if (boxCount > 0u && !inThisPart(code)) continue;
       ivec3 p = svoCellOfMortonCode(code);
       if (kSharedSource) atlasFromLevel0(p);
       else atlasFromAtlas(p);

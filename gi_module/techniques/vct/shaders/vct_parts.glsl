@@ -1,10 +1,15 @@
-// A radiance update spread over frames (a GI budget's radiance_update_fraction): part p of N is the
-// p-th of N equal runs of the SVO's leaf list, which is in Morton order, so each part is a region of
-// space and every coarser cell lies within one part or spans consecutive ones. A cell belongs to the
-// part of its last leaf-level code: the mips update it in the frame that updates its last children, so
-// N frames after a change every leaf is new and 2N after it every texel (a cycle may start mid-way).
+// A radiance update spread over frames (--radiance-frames, a GI budget's radiance_update_fraction): part p
+// of N is the p-th of N equal runs of the SVO's leaf list, about a N-th of the leaves. The list is close
+// to Morton order (each subgroup's leaves in order, the subgroups in the order their appends land), so
+// a part is mostly one region of space. A mip texel belongs to the part whose code range holds its cell's
+// last leaf-level code; each level's texels of a part are found as a run of its nodes by a binary search
+// on that code, and the runs of the N parts tile the level whatever its order. Every leaf and every
+// texel is written once in N frames; a texel may be written before its last children are, so the volume
+// is exact a cycle or two after a change (tested at three).
+// A frame whose SVO build changed voxels (a moved object) also updates whatever lies in the changed
+// boxes, so an object is never seen without its light.
 // The includer declares `leafList` ({ uvec4 header; uvec2 entries[]; }: .w the leaf count, entries' .y
-// their Morton codes).
+// their Morton codes) and `changedBoxes` (uvec4 pairs: min, max voxel, inclusive).
 #ifndef DYNGI_VCT_PARTS_GLSL
 #define DYNGI_VCT_PARTS_GLSL
 
@@ -27,6 +32,13 @@ uvec2 vctPartCodes(uint part, uint parts) {
 bool vctCellInPart(uint lastCode, uint part, uint parts) {
   uvec2 codes = vctPartCodes(part, parts);
   return lastCode >= codes.x && (part + 1u >= parts || lastCode < codes.y);
+}
+
+// Whether the voxels [lo, hi] (inclusive) meet one of the first `count` changed boxes.
+bool vctInChangedBox(uvec3 lo, uvec3 hi, uint count) {
+  for (uint b = 0u; b < count; ++b)
+    if (all(lessThanEqual(lo, changedBoxes[2u * b + 1u].xyz)) && all(greaterThanEqual(hi, changedBoxes[2u * b].xyz))) return true;
+  return false;
 }
 
 #endif

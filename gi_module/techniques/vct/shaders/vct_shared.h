@@ -16,6 +16,7 @@ DYNGI_GPU_NAMESPACE_BEGIN
 #define DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS 4
 #define DYNGI_VCT_INJECT_BINDING_DIRECT 5  /* read (last frame's, the temporal blend's history) and written in place */
 #define DYNGI_VCT_INJECT_BINDING_RADIANCE 6
+#define DYNGI_VCT_INJECT_BINDING_CHANGED_BOXES 7  /* vct_parts.glsl */
 // vct_clear_stale: the per-voxel state of the cells that emptied since the last SVO build, zeroed
 #define DYNGI_VCT_CLEAR_BINDING_RUNS 0              /* uvec2 (SVO level, first Morton code) per run of 32 cells */
 #define DYNGI_VCT_CLEAR_BINDING_PREVIOUS_OCCUPANCY 1  /* the build before's pyramid */
@@ -39,6 +40,7 @@ DYNGI_GPU_NAMESPACE_BEGIN
 #define DYNGI_VCT_MIPS_BINDING_NODE_CELLS 3
 #define DYNGI_VCT_MIPS_BINDING_LEVELS 4
 #define DYNGI_VCT_MIPS_BINDING_LEAF_LIST 5  /* the parts of a radiance update spread over frames (vct_parts.glsl) */
+#define DYNGI_VCT_MIPS_BINDING_CHANGED_BOXES 6
 // vct_trace: the screen's cones; vct_upsample: to full resolution
 #define DYNGI_VCT_TRACE_BINDING_FRAME 0
 #define DYNGI_VCT_TRACE_BINDING_G_POSITION 1
@@ -110,8 +112,9 @@ DYNGI_GPU_NAMESPACE_BEGIN
   float coneStep;   /* step = this x the cone's diameter */                       \
   uint cones;        /* diffuse cones */                                           \
   float farNarrowing; /* footprints over 2^DYNGI_VCT_WHOLE_LEVELS_BELOW read 2^-this of theirs */
-// A radiance update spread over frames: this frame updates part `part` of `parts` (vct_parts.glsl; 1: all).
-#define DYNGI_VCT_PART_PUSH uint part; uint parts;
+// A radiance update spread over frames: this frame updates part `part` of `parts` (vct_parts.glsl; 1: all)
+// and whatever lies in the first `boxCount` changed boxes (where this frame's SVO build changed voxels).
+#define DYNGI_VCT_PART_PUSH uint part; uint parts; uint boxCount;
 #define DYNGI_VCT_INJECT_PUSH                                                        \
   vec4 volume;       /* xyz world origin, w voxel size */                          \
   uint lightCount;                                                                 \
@@ -156,8 +159,8 @@ struct VctFilterPush { DYNGI_VCT_FILTER_PUSH };
 struct VctDebugPush { DYNGI_VCT_DEBUG_PUSH };
 struct VctProbePush { DYNGI_VCT_PROBE_PUSH };
 
-static_assert(sizeof(VctInjectPush) == 40 && offsetof(VctInjectPush, temporalResponse) == 28 && offsetof(VctInjectPush, parts) == 36);
-static_assert(sizeof(VctMipsPush) == 24 && offsetof(VctMipsPush, parts) == 20);
+static_assert(sizeof(VctInjectPush) == 44 && offsetof(VctInjectPush, temporalResponse) == 28 && offsetof(VctInjectPush, boxCount) == 40);
+static_assert(sizeof(VctMipsPush) == 28 && offsetof(VctMipsPush, boxCount) == 24);
 static_assert(sizeof(VctClearPush) == 12 && sizeof(VctUpsamplePush) == 8 && sizeof(VctFilterPush) == 16);
 static_assert(sizeof(VctBouncePush) == 48 && offsetof(VctBouncePush, coneStep) == 32 && offsetof(VctBouncePush, commit) == 44);
 static_assert(sizeof(VctTracePush) == 72 && offsetof(VctTracePush, traceScale) == 44 && offsetof(VctTracePush, coneInterleave) == 68);
