@@ -60,7 +60,12 @@ void GiSystem::build(const GiSettings& s) {
   indirectView_ = std::make_unique<GiIndirectView>(ctx_);
   if (view_ != "final" && !setDebugView(view_)) view_ = "final";  // the same view after a rebuild, when it still exists
   if (s.budget.budgetMs > 0.0f) budget_ = std::make_unique<BudgetController>(s.budget.budgetMs, technique_->qualityKnobs());
-  technique_->spreadOneOffWork(budget_ != nullptr);
+  spreadOneOffWork(budget_ != nullptr);
+}
+
+void GiSystem::spreadOneOffWork(bool spread) {
+  technique_->spreadOneOffWork(spread);
+  if (voxels_) voxels_->setSpreadVoxelization(spread);
 }
 
 void GiSystem::setBudgetMs(double budgetMs) {
@@ -70,12 +75,12 @@ void GiSystem::setBudgetMs(double budgetMs) {
       for (const QualityKnob& k : budget_->knobs())
         if (k.apply && !k.levels.empty()) k.apply(k.levels.front());
     budget_.reset();
-    technique_->spreadOneOffWork(false);
+    spreadOneOffWork(false);
     return;
   }
   if (budget_) budget_->setBudgetMs(settings_.budget.budgetMs);
   else budget_ = std::make_unique<BudgetController>(settings_.budget.budgetMs, technique_->qualityKnobs());
-  technique_->spreadOneOffWork(true);
+  spreadOneOffWork(true);
 }
 
 void GiSystem::attach(render::Renderer& renderer) {

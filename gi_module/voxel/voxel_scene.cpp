@@ -150,6 +150,30 @@ void VoxelScene::compactFragments() {
   reallocateFragments(std::max<uint64_t>(next + next / 4, FragmentRanges::kMinCompactSlots), keep);
 }
 
+std::unordered_set<ecs::Entity> VoxelScene::deferredByCap(const render::RenderSnapshot& snapshot, const glm::mat4& toVoxel) const {
+  const uint64_t cap = voxelizeCap_ > 0 ? voxelizeCap_
+                       : spreadVoxelization_ ? std::max<uint64_t>(kMinSpreadFragments, ranges_.storedFragments() / 4)
+                                             : 0;
+  if (cap == 0) return {};
+  std::unordered_map<ecs::Entity, uint64_t> estimates;  // of the dirty entities drawn this frame
+  for (const auto& d : snapshot.draws)
+    if (dirty_.count(d.entity)) estimates[d.entity] += FragmentRanges::estimateFragments(snapshot.assets->mesh(d.mesh), toVoxel * d.model);
+  std::vector<std::pair<uint64_t, ecs::Entity>> waiting;  // (changed since, entity): the longest waiting first
+  for (const auto& [e, estimate] : estimates) {
+    const auto since = dirtySince_.find(e);
+    waiting.push_back({since != dirtySince_.end() ? since->second : frameIndex_, e});
+  }
+  std::sort(waiting.begin(), waiting.end());
+  std::unordered_set<ecs::Entity> deferred;
+  uint64_t taken = 0;
+  for (const auto& [since, e] : waiting) {
+    const uint64_t estimate = estimates[e];
+    if (taken > 0 && taken + estimate > cap) deferred.insert(e);
+    else taken += estimate;
+  }
+  return deferred;
+}
+
 void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& snapshot) {
   drawsToVoxelize_.clear();
   rangesToEmpty_.clear();
@@ -160,6 +184,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   rebuildSvo_ = false;
   stats_.rebuilt = false;
   stats_.entitiesVoxelized = 0;
+  stats_.entitiesDeferred = 0;
   if (!snapshot.assets) return;
   ++frameIndex_;
   if (!haveVolume_) {
@@ -180,6 +205,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   // Compact when the ranges hold more than twice what they need (counts from the last frame): after
   // the first frame, and again as moved entities leave holes.
   if (!allDirty_ && ranges_.wantsCompaction()) compactFragments();
+  const bool wholeVolume = allDirty_;
   if (allDirty_) {
     svo_->invalidateStaticOccupancy();
     ranges_.clear();
@@ -206,12 +232,13 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   }
   removed_.clear();
   drawsToVoxelize_.clear();
+  const std::unordered_set<ecs::Entity> deferred = wholeVolume ? std::unordered_set<ecs::Entity>{} : deferredByCap(snapshot, toVoxel);
   uint64_t newHighWater = ranges_.highWater();
   std::vector<std::pair<ecs::Entity, Range>> planned;
   std::unordered_map<ecs::Entity, scene::Aabb> newBounds;  // voxel units, of the draws voxelized now
   for (size_t i = 0; i < snapshot.draws.size(); ++i) {
     const auto& d = snapshot.draws[i];
-    if (!dirty_.count(d.entity)) continue;
+    if (!dirty_.count(d.entity) || deferred.count(d.entity)) continue;
     if (!newBounds.count(d.entity)) emittingEntities_.erase(d.entity);
     if (glm::any(glm::greaterThan(d.material.emissive, glm::vec3(0.0f)))) emittingEntities_.insert(d.entity);
     newBounds[d.entity].extend(snapshot.assets->mesh(d.mesh).bounds.transformed(toVoxel * d.model));
@@ -236,7 +263,9 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     freshBoxes_.push_back(voxelBoxes_[e]);
   }
   ranges_.setHighWater(newHighWater);
-  dirty_.clear();
+  dirty_ = deferred;
+  stats_.entitiesDeferred = uint32_t(deferred.size());
+  for (auto it = dirtySince_.begin(); it != dirtySince_.end();) it = deferred.count(it->first) ? std::next(it) : dirtySince_.erase(it);
   if (!drawsToVoxelize_.empty() || storageMoved_) rebuildSvo_ = true;
   storageMoved_ = false;
   uint64_t countersBytes = uint64_t(std::max(ranges_.counterCount(), 1u)) * 4;

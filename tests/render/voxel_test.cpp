@@ -434,6 +434,53 @@ TEST_F(VoxelTest, DebugViewIsWhatTheDisplayImageShows) {
   EXPECT_GT(differing, shown.size() / 10) << "the debug view looks unlike the lit frame";
 }
 
+// A cap on the voxelization per frame (what a GI budget sets) spreads a big change over frames: with a
+// cap of one entity, every mesh of the room moved at once is re-voxelized one a frame, the longest
+// waiting first (a box that keeps moving does not hold the others back), and once all have had their
+// turn the SVO equals a build from scratch.
+TEST_F(VoxelTest, AVoxelizationCapSpreadsABigMoveOverFrames) {
+  sample::buildBuiltinScene("cornell", world, assets);
+  attachVoxels(128, 64);
+  step();
+  step();
+  std::vector<ecs::Entity> meshes;
+  world.each<scene::MeshInstance>([&](ecs::Entity e, const scene::MeshInstance&) { meshes.push_back(e); });
+  ASSERT_GE(meshes.size(), 5u);
+  voxels->setVoxelizeCap(1);  // fragments: always below one entity's estimate, so one entity a frame
+  for (ecs::Entity e : meshes) world.write<scene::Transform>(e).translation.y += 0.02f;
+  ecs::Entity shortBox{};
+  world.each<scene::Name>([&](ecs::Entity e, const scene::Name& n) {
+    if (n.value == "short_box") shortBox = e;
+  });
+  std::vector<uint32_t> voxelized, deferred;
+  for (size_t f = 0; f < meshes.size() + 2; ++f) {
+    if (f > 0) world.write<scene::Transform>(shortBox).translation.x += 0.01f;  // moves every frame
+    step();
+    voxelized.push_back(voxels->stats().entitiesVoxelized);
+    deferred.push_back(voxels->stats().entitiesDeferred);
+  }
+  std::string trace;
+  for (size_t f = 0; f < deferred.size(); ++f) {
+    char step[32];
+    std::snprintf(step, sizeof step, " %u/%u", voxelized[f], deferred[f]);
+    trace += step;
+  }
+  dyngi::test::report("%zu meshes moved at once, a cap of one a frame (voxelized/deferred per frame):%s\n", meshes.size(), trace.c_str());
+  EXPECT_EQ(deferred.front(), meshes.size() - 1);
+  for (size_t f = 0; f < deferred.size(); ++f) {
+    EXPECT_EQ(voxelized[f], 1u) << "frame " << f;
+    if (f > 0 && deferred[f - 1] > 1) {
+      EXPECT_EQ(deferred[f], deferred[f - 1] - 1) << "frame " << f << ": the moving box waits its turn";
+    }
+  }
+  EXPECT_LE(deferred.back(), 1u) << "only the moving box's latest move may still wait";
+  voxels->setVoxelizeCap(0);
+  step();
+  EXPECT_EQ(voxels->stats().entitiesDeferred, 0u);
+  const GridDiff d = diff(leaves(), scratchLeaves());
+  EXPECT_EQ(d.missing + d.extra, 0u) << "every spread re-voxelization landed";
+}
+
 // A volume with every voxel occupied needs the full tree: the pool, bounded by the full tree's groups
 // rather than the setting's limit, holds it without overflow (one group fewer would overflow).
 TEST_F(VoxelTest, AFullVolumeFitsTheNodePoolAFullTreeNeeds) {

@@ -97,6 +97,8 @@ class GiSystem final : public ecs::System {
 
   // Makes the BVH, voxel scene, technique and budget for `settings` (the constructor and reset()).
   void build(const GiSettings& settings);
+  // While a budget holds: the technique's one-off work and a big re-voxelization spread over frames.
+  void spreadOneOffWork(bool spread);
   void addFeaturesTo(render::Renderer& renderer);
   void removeFeaturesFrom(render::Renderer& renderer);
 

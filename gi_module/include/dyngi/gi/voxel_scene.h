@@ -52,6 +52,7 @@ struct VoxelStats {
   uint64_t svoBytes = 0;             // node pool bytes in use
   uint64_t totalBytes = 0;           // fragments + nodes + attributes, allocated
   uint32_t overflowedEntities = 0;   // re-voxelized next frame with a larger range
+  uint32_t entitiesDeferred = 0;     // changed entities the voxelization cap left for a later frame
   bool poolOverflow = false;         // SVO pool too small (occupancy then conservative)
   // Geometry outside the volume is clipped (not voxelized): no error, and no count either.
   bool rebuilt = false;              // the SVO was rebuilt this frame
@@ -75,7 +76,10 @@ class VoxelScene final : public render::RenderFeature {
   void recordAfterLighting(render::FrameContext& frame) override;
 
   // Change tracking (called by VoxelSyncSystem, or by hand).
-  void markDirty(ecs::Entity e) { dirty_.insert(e); }
+  void markDirty(ecs::Entity e) {
+    dirty_.insert(e);
+    dirtySince_.emplace(e, frameIndex_);
+  }
   void markRemoved(ecs::Entity e) { removed_.insert(e); }
   void markAllDirty() { allDirty_ = true; }
   // Fixes the volume (otherwise the first snapshot's bounds decide it). Re-voxelizes everything.
@@ -95,6 +99,14 @@ class VoxelScene final : public render::RenderFeature {
   bool updatesThisFrame() const { return updatesThisFrame_; }
   // The budget's knob over it: the fraction of frames that update (1, 1/2, 1/4).
   QualityKnob updateFractionKnob();
+  // A cap on the fragments (as estimated) re-voxelized in one frame, so that a big change (many objects
+  // moved at once) is spread over frames: the entities that have waited longest go first, at least one
+  // a frame, and the rest keep their old voxels until their turn. `fragments` 0: no cap; `spread`: a GI
+  // budget's cap, a quarter of the stored fragments (at least kMinSpreadFragments). The first frame and
+  // a new volume are never capped.
+  void setVoxelizeCap(uint64_t fragments) { voxelizeCap_ = fragments; }
+  void setSpreadVoxelization(bool spread) { spreadVoxelization_ = spread; }
+  static constexpr uint64_t kMinSpreadFragments = 1u << 16;
 
   const VoxelVolume& volume() const { return volume_; }
   bool hasVolume() const { return haveVolume_; }
@@ -139,6 +151,8 @@ class VoxelScene final : public render::RenderFeature {
  private:
   friend class VoxelProbe;  // tests' and tools' read-backs (gi_module/testing)
   using Range = FragmentRange;
+  // The dirty entities this frame's voxelization cap leaves for later (empty without a cap).
+  std::unordered_set<ecs::Entity> deferredByCap(const render::RenderSnapshot& snapshot, const glm::mat4& toVoxel) const;
   // Fragment storage of `slots` slots at least; kept fragments are copied, nothing is re-voxelized.
   void ensureCapacity(uint64_t slots);
   // Moves every range's fragments into a buffer sized by what they hold (FragmentRanges::compact).
@@ -152,6 +166,9 @@ class VoxelScene final : public render::RenderFeature {
   bool haveVolume_ = false;
   bool allDirty_ = true;
   uint32_t updateInterval_ = 1;
+  uint64_t voxelizeCap_ = 0;
+  bool spreadVoxelization_ = false;
+  std::unordered_map<ecs::Entity, uint64_t> dirtySince_;  // the frame each dirty entity changed first
   bool updatesThisFrame_ = true;
   std::unordered_set<ecs::Entity> dirty_, removed_;
   FragmentRanges ranges_;  // where each entity's fragments live in fragments_
