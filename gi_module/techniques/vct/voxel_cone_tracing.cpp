@@ -426,8 +426,8 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   prepareFrame(frame);
   // The radiance follows the voxels: refreshed when they may update (VoxelScene::updatesThisFrame, each
   // frame unless a GI budget puts the voxel updates off) and whenever the SVO was rebuilt.
-  // Under a GI budget the update may be spread over frames, one part each; the first frame and a
-  // rebuilt SVO (new leaves, emptied ones cleared) update every voxel.
+  // It may be spread over frames, one part each (planRadianceUpdate): a rebuilt SVO adds the boxes its
+  // build changed; the first frame, or one that clears everything, updates every voxel.
   stats_.radianceUpdated = 0.0;
   if (frames_ == 0 || voxels_.updatesThisFrame() || voxels_.stats().rebuilt) {
     const RadiancePart part = planRadianceUpdate(clearsEverything());
