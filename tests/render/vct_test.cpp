@@ -208,6 +208,45 @@ TEST_F(RenderTest, VctTraceSpreadOverFramesMatchesTheEveryFrameTrace) {
   EXPECT_LT(rel, 0.1 * relStale);
 }
 
+// Under a GI budget (Technique::spreadOneOffWork) a frame without trace history, here after the spot
+// jumped, traces its quarter of the pixels as any other frame and the upsample fills the rest from them,
+// instead of tracing every pixel at 4 times the cost (its rows, all of one parity, pair up over the cone
+// set). Against the unbudgeted run's full trace of that frame (the same voxels): close, no holes, and far
+// closer than last frame's light; 4 frames later, every pixel traced with its own cones since in both
+// runs, the same image bit for bit.
+TEST_F(RenderTest, VctBudgetSpreadsTheTraceOfAFrameWithoutHistory) {
+  const gi::GiSettings s = vctSettings();
+  ASSERT_EQ(s.vct.traceFrames, 4u);
+  GiRun full(context(), s, "cornell", kSize, kSize), spread(context(), s, "cornell", kSize, kSize);
+  spread.gi->technique().spreadOneOffWork(true);
+  for (GiRun* run : {&full, &spread}) run->step(8);
+  const render::ImageRgba before = full.indirect();
+  EXPECT_EQ(render::relativeMse(spread.indirect(), before), 0.0) << "a still view: the same image once every pixel had its turn";
+  for (GiRun* run : {&full, &spread}) {
+    run->world.write<scene::Transform>(run->named("spot")).translation.x += 0.3f;
+    run->step();
+  }
+  EXPECT_DOUBLE_EQ(vctOf(full).stats().tracedFraction, 1.0) << "unbudgeted, a jump traces every pixel";
+  EXPECT_TRUE(full.gi->technique().lastFrameWasOneOff());
+  EXPECT_DOUBLE_EQ(vctOf(spread).stats().tracedFraction, 0.25);
+  EXPECT_FALSE(spread.gi->technique().lastFrameWasOneOff());
+  const render::ImageRgba truth = full.indirect(), spreadImage = spread.indirect();
+  dump("vct_no_history_full", truth, kSize, kSize);
+  dump("vct_no_history_spread", spreadImage, kSize, kSize);
+  const double rel = render::relativeMse(spreadImage, truth), relBefore = render::relativeMse(before, truth);
+  const double p99 = render::relativeLuminanceErrorQuantile(spreadImage, truth, 0.99);
+  const double mean = luminance(render::meanOver(truth));
+  size_t holes = 0;  // lit pixels the spread frame left dark
+  for (size_t i = 0; i < truth.size(); ++i)
+    holes += luminance(glm::dvec3(truth[i])) > 0.1 * mean && luminance(glm::dvec3(spreadImage[i])) < 0.01 * mean;
+  dyngi::test::report("spot jumped, a quarter traced: relMSE %.5f p99 %.3f against the full trace (last frame's light: relMSE %.4f), %zu holes\n", rel,
+                      p99, relBefore, holes);
+  EXPECT_EQ(holes, 0u);
+  EXPECT_LT(rel, 0.1 * relBefore);
+  for (GiRun* run : {&full, &spread}) run->step(4);
+  EXPECT_EQ(render::relativeMse(spread.indirect(), full.indirect()), 0.0) << "every pixel traced with its own cones since the jump in both";
+}
+
 namespace {
 std::vector<gi::VolumeLevel> readLevels(render::VulkanContext& ctx, render::Image& img) {
   std::vector<gi::VolumeLevel> levels;

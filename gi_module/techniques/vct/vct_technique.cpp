@@ -88,10 +88,12 @@ class VctTechnique final : public Technique {
     lights_ = std::move(lights);
   }
   // A frame that traced every pixel although the trace is spread (the first, or after a drop) costs
-  // traceFrames times the trace: a GI budget leaves it out.
+  // traceFrames times the trace: a GI budget leaves it out. Under a budget there is none: such a frame
+  // traces its share too (spreadOneOffWork).
   bool lastFrameWasOneOff() const override {
     return feature_.stats().tracedFraction == 1.0 && feature_.settings().traceFrames > 1;
   }
+  void spreadOneOffWork(bool spread) override { feature_.setSpreadTraceWithoutHistory(spread); }
   std::vector<OptionRef> options() override { return bindOptions(feature_.settings()); }
   bool setDebugView(std::string_view name) override {
     VctView& v = feature_.settings().view;

@@ -557,9 +557,11 @@ void VoxelConeTracing::recordBounces(render::FrameContext& frame) {
 VoxelConeTracing::TraceFrame VoxelConeTracing::beginTrace(const render::FrameContext& frame) {
   TraceFrame trace;
   trace.scale = traceScale();
-  // Nothing to carry over (first frame, new trace targets, a light switched): every pixel is traced.
-  trace.frames = traceHistory_ ? options_.traceFrames : 1u;
+  // Nothing to carry over (first frame, new trace targets, a light switched): every pixel is traced,
+  // unless a budget spreads that frame too (the missing pixels upsampled from this frame's).
+  trace.frames = traceHistory_ || spreadWithoutHistory_ ? options_.traceFrames : 1u;
   trace.phase = uint32_t(traceFrame_ % trace.frames);
+  trace.quarterWithoutHistory = !traceHistory_ && trace.frames == 4;
   ++traceFrame_;
   trace.lastFrame = &traced_[tracedCurrent_];
   tracedCurrent_ ^= 1u;
@@ -606,6 +608,7 @@ void VoxelConeTracing::recordTrace(render::FrameContext& frame, const TraceFrame
   pc.traceFrames = trace.frames;
   pc.tracePhase = trace.phase;
   pc.coneInterleave = options_.coneInterleave;
+  pc.coneRowShift = trace.quarterWithoutHistory ? 1u : 0u;
   vkCmdPushConstants(cmd, p.layout(), kCS, 0, sizeof(pc), &pc);
   // With traceFrames > 1: the 2 x 2 lattice's cells, once per offset traced this frame (vct_trace_phase.glsl).
   const uint32_t step = trace.frames > 1 ? 2 : 1;
@@ -664,7 +667,8 @@ const Image& VoxelConeTracing::recordFilter(render::FrameContext& frame, const T
         .storageImage(DYNGI_VCT_FILTER_BINDING_IN, passes[axis][0]->view())
         .storageImage(DYNGI_VCT_FILTER_BINDING_OUT, passes[axis][1]->view())
         .push(ctx_, cmd, filter_);
-    const gpu::VctFilterPush pc{trace.scale, int(options_.diffuseFilterRadius), axis == 0 ? 1 : 0, axis == 1 ? 1 : 0};
+    const int radius = int(options_.diffuseFilterRadius) * (trace.quarterWithoutHistory ? 2 : 1);
+    const gpu::VctFilterPush pc{trace.scale, radius, axis == 0 ? 1 : 0, axis == 1 ? 1 : 0};
     vkCmdPushConstants(cmd, filter_.layout(), kCS, 0, sizeof(pc), &pc);
     vkCmdDispatch(cmd, dispatchGroups(stats_.traceWidth, 8), dispatchGroups(stats_.traceHeight, 8), 1);
     render::computeWriteBarrier(cmd);

@@ -54,6 +54,10 @@ class VoxelConeTracing final : public render::RenderFeature {
   // what it traces, every pixel. For changes that make them wrong at once: a light switched, an emission
   // changed, a jump (VctTechnique::update decides).
   void dropTraceHistory() { traceHistory_ = false; }
+  // While a GI budget holds: a frame without trace history (the first, after a drop, new trace targets)
+  // traces its share of the pixels as any other, and the upsample fills the rest from the pixels traced
+  // (every 2 x 2 window holds one); the others get theirs over the next traceFrames - 1 frames.
+  void setSpreadTraceWithoutHistory(bool spread) { spreadWithoutHistory_ = spread; }
   void setBudgetScaleFactor(uint32_t factor) { budgetFactor_ = std::max(factor, 1u); }
   uint32_t budgetScaleFactor() const { return budgetFactor_; }
   // The radiance update spread over this many frames (1 to 4; VctOptions::radianceFrames, or a GI
@@ -99,6 +103,9 @@ class VoxelConeTracing final : public render::RenderFeature {
   // images it writes and last frame's, whether some pixel marches a specular cone.
   struct TraceFrame {
     uint32_t scale = 1, frames = 1, phase = 0;
+    // A quarter of the lattice traced with nothing carried over (a budget's spread, setSpreadTraceWithoutHistory):
+    // its rows pair up over the cone set and the filter doubles its reach, to see as many cones as usual.
+    bool quarterWithoutHistory = false;
     const TracedPixels* current = nullptr;
     const TracedPixels* lastFrame = nullptr;
     bool glossy = false;
@@ -171,6 +178,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   uint32_t tracedCurrent_ = 0;     // traced_[tracedCurrent_] is this frame's
   uint64_t traceFrame_ = 0;        // frames traced: the phase of the trace spread over frames
   bool traceHistory_ = false;      // traced_[last] holds last frame's pixels, valid to reproject
+  bool spreadWithoutHistory_ = false;  // setSpreadTraceWithoutHistory
   glm::mat4 previousViewProj_{1.0f};
   VkSampler sampler_ = VK_NULL_HANDLE;
   render::Pipeline inject_, clearStale_, commit_, reproject_, filter_;

@@ -65,7 +65,8 @@ class Technique {
   // few heavy frames do not throw the knobs to their floor for the seconds it takes to climb back.
   virtual bool lastFrameWasOneOff() const { return false; }
   // While a GI budget holds the cost: one-off work is spread over frames instead (the temporal
-  // technique catches up one set a frame), so no frame costs several of the budget's.
+  // technique catches up one set a frame; VCT traces its share of the pixels after a history drop), so
+  // no frame costs several of the budget's.
   virtual void spreadOneOffWork(bool /*spread*/) {}
 };
 

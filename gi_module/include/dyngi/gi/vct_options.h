@@ -26,7 +26,8 @@ struct VctOptions {
   uint32_t traceScale = 0;
   // Frames over which every traced pixel gets new cones (1, 2 or 4): the others are last frame's,
   // reprojected. A still view is the every-frame image after that many frames; motion lags up to
-  // traceFrames - 1 frames, and a light switched or a jump traces every pixel at once.
+  // traceFrames - 1 frames, and a light switched or a jump traces every pixel at once (under a GI budget
+  // only this frame's share, the rest upsampled from it until their turn).
   uint32_t traceFrames = 4;
   // Frames over which the voxels' radiance update (injection and mips) is spread, one part of the voxels
   // each (1 to 4): a still light gives the same volume; a change reaches every voxel that many frames

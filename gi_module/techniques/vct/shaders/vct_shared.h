@@ -131,7 +131,8 @@ DYNGI_GPU_NAMESPACE_BEGIN
 #define DYNGI_VCT_TRACE_PUSH DYNGI_VCT_CONE_PARAMS uint traceScale; uint specular; uint turnCones; /* 1: each traced pixel turns its cone set */ \
   float specularConeBelow; /* VctOptions::specularConeBelow: rougher pixels march no specular cone */ \
   uint traceFrames; /* 1, 2 or 4: the frames over which every traced pixel is traced once */ uint tracePhase; /* frame index mod traceFrames */ \
-  uint coneInterleave; /* rows of traced pixels take turns over the cone set: each traces every this-many-th cone */
+  uint coneInterleave; /* rows of traced pixels take turns over the cone set: each traces every this-many-th cone */ \
+  uint coneRowShift; /* 1: pairs of rows take the turns (a frame tracing a quarter without history: its rows all even or all odd) */
 #define DYNGI_VCT_REPROJECT_PUSH                                                     \
   mat4 previousViewProj;                                                           \
   uint traceScale;                                                                 \
@@ -163,7 +164,7 @@ static_assert(sizeof(VctInjectPush) == 44 && offsetof(VctInjectPush, temporalRes
 static_assert(sizeof(VctMipsPush) == 28 && offsetof(VctMipsPush, boxCount) == 24);
 static_assert(sizeof(VctClearPush) == 12 && sizeof(VctUpsamplePush) == 8 && sizeof(VctFilterPush) == 16);
 static_assert(sizeof(VctBouncePush) == 48 && offsetof(VctBouncePush, coneStep) == 32 && offsetof(VctBouncePush, commit) == 44);
-static_assert(sizeof(VctTracePush) == 72 && offsetof(VctTracePush, traceScale) == 44 && offsetof(VctTracePush, coneInterleave) == 68);
+static_assert(sizeof(VctTracePush) == 76 && offsetof(VctTracePush, traceScale) == 44 && offsetof(VctTracePush, coneInterleave) == 68);
 static_assert(sizeof(VctReprojectPush) == 84 && offsetof(VctReprojectPush, traceScale) == 64 && offsetof(VctReprojectPush, maxAge) == 80);
 static_assert(sizeof(VctDebugPush) == 52 && offsetof(VctDebugPush, mip) == 48);
 static_assert(sizeof(VctProbePush) == 52 && offsetof(VctProbePush, tanHalf) == 48);

@@ -50,9 +50,11 @@ void main() {
   // lanes, holds traced pixels of one row whether the trace is spread over frames or not, so every lane
   // marches the same cones, with the same footprints and steps, and a pixel's cones do not depend on
   // traceFrames (a still view converges to the every-frame image).
+  // A frame that traces a quarter of the lattice with nothing carried over (coneRowShift) traces rows
+  // of one parity only: pairs of rows take the turns then, so its pixels hold every cone between them.
   uint stride = max(coneInterleave, 1u);
   float turn = turnCones != 0u ? fract(0.7548776662 * float(q.x) + 0.5698402910 * float(q.y)) : 0.0;
-  vec3 diffuse = vctDiffuse(p, n, turn, uint(q.y) % stride, stride, ao);
+  vec3 diffuse = vctDiffuse(p, n, turn, (uint(q.y) >> coneRowShift) % stride, stride, ao);
   imageStore(outDiffuse, q, vec4(diffuse, ao));
   // A pixel at least specularConeBelow rough takes the diffuse light as its specular (VctOptions::
   // specularConeBelow; the upsample blends the filtered diffuse in): it marches no cone, and a row of
