@@ -3,7 +3,9 @@
 # added at frame 20 (an input script: the cursor on the floor, key L), each technique and setting
 # rendered headless to 20 + n frames for several n and compared with the image 64 frames after (the
 # settled one; the fixed 1/60 s step makes every run the same up to then). Prints relMSE per n and the
-# settle time: the first n from which the relMSE stays under 0.002 (about 4.5 percent RMS).
+# settle time: the first n from which the relMSE stays under 0.002 (about 4.5 percent RMS). The rows
+# "one-off work spread" set a GI budget that lowers nothing (10 s): the work a budget spreads over frames
+# (Technique::spreadOneOffWork) is spread, every knob stays at full quality.
 # docs/QUALITY.md keeps the table. Not in CI (about 3 minutes here).
 #   scripts/settle_time.sh        env: SIZE (128x128)
 set -euo pipefail
@@ -25,6 +27,8 @@ configs=(
   "vct|default|"
   "vct|radiance over 2 frames|--radiance-frames 2"
   "vct|radiance over 4 frames|--radiance-frames 4"
+  "temporal|one-off work spread|--gi-budget-ms 10000"
+  "vct|one-off work spread|--gi-budget-ms 10000"
 )
 echo "| technique | setting | relMSE at n = ${AFTER[*]} frames after | settles after (frames) |"
 echo "| --- | --- | --- | --- |"
