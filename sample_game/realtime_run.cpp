@@ -100,6 +100,7 @@ void reportGi(const gi::GiSettings& settings, const GiSetup& g, RunStats& stats)
   if (const gi::VoxelScene* voxels = g.voxels) {
     const gi::VoxelStats& v = voxels->stats();
     stats.scalars["voxel_resolution"] = settings.voxels.resolution;
+    stats.scalars["voxel_size_m"] = double(voxels->volume().voxelSize);  // the volume spans the scene: a room's 1.6 cm, a street's metres
     gi::VoxelSettings used = settings.voxels;
     addSettings(stats, gi::bindOptions(used));
     stats.scalars["voxel_fragments"] = double(v.fragments);

@@ -43,6 +43,25 @@ struct TwoRoomsLayout {
   static constexpr float kWallThickness = 0.05f;  // m; a voxel is 4.4 m / 128 = 0.034 m at 128^3
 };
 
+// "street" (sample_game/scenes/street.cpp): a straight street 400 m long, x in [-200, 200], between two
+// rows of building blocks, under a sun; the camera at eye height near the west end looking east. A
+// world far larger than a room: a voxel volume over all of it has 3 m voxels at 128^3. "street-near" is
+// the same view with only the blocks and ground that end within kNearReach of the camera along the
+// street. --animate street-flight flies the camera down the street at kFlightSpeed.
+struct StreetLayout {
+  static constexpr float kHalfLength = 200.0f;  // m, along x
+  static constexpr float kHalfWidth = 6.0f;     // m: the facades at z = +-6
+  static constexpr float kBlockDepth = 10.0f;   // m, across the street
+  static constexpr float kBlockLength = 20.0f;  // m, along it, with an alley of kAlley after each
+  static constexpr float kAlley = 4.0f;
+  static constexpr glm::vec3 kCamera{-180.0f, 1.7f, 0.0f};
+  static constexpr float kCameraYawDeg = 15.0f; // turned from east towards north
+  static constexpr float kNearReach = 40.0f;    // m east of the camera that street-near keeps
+  static constexpr glm::vec3 kSunDirection{0.35f, -0.75f, 0.55f};  // where the light goes: from over the north row
+  static constexpr float kSunIntensity = 1.5f;  // lux as glTF has it, used as W/m^2
+  static constexpr float kFlightSpeed = 10.0f;  // m/s
+};
+
 bool isBuiltinScene(const std::string& name);
 const std::vector<std::string>& builtinSceneNames();   // what --scene NAME takes besides a file
 const std::vector<std::string>& animatedSceneNames();  // what --animate takes (buildAnimatedScene)
@@ -54,6 +73,7 @@ scene::Entity addSceneMesh(ecs::World& world, scene::AssetStore& assets, scene::
 void buildBuiltinScene(const std::string& name, ecs::World& world, scene::AssetStore& assets);
 
 void buildTwoRooms(bool doorway, ecs::World& world, scene::AssetStore& assets);
+void buildStreet(bool nearOnly, ecs::World& world, scene::AssetStore& assets);
 
 // Scripted benchmark scenes (--animate): the Cornell box with
 //  static           nothing moving;

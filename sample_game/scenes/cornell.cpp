@@ -37,7 +37,7 @@ void addCornellCamera(ecs::World& w) {
 
 const std::vector<std::string>& builtinSceneNames() {
   static const std::vector<std::string> names = {"cornell", "cornell-dynamic", "cornell-emissive", "showcase", "two-rooms",
-                                                 "two-rooms-door"};
+                                                 "two-rooms-door",  "street",          "street-near"};
   return names;
 }
 
@@ -70,6 +70,7 @@ Entity addSceneMesh(ecs::World& w, AssetStore& assets, MeshData mesh, const glm:
 
 void buildBuiltinScene(const std::string& name, ecs::World& w, AssetStore& assets) {
   if (name == "two-rooms" || name == "two-rooms-door") return buildTwoRooms(name == "two-rooms-door", w, assets);
+  if (name == "street" || name == "street-near") return buildStreet(name == "street-near", w, assets);
   const bool dynamic = name == "cornell-dynamic" || name == "showcase";
   const glm::vec3 white(CornellLayout::kWhite), red(0.63f, 0.065f, 0.05f), green(0.14f, 0.45f, 0.091f);
   // Walls: quads whose normal (U x V) faces into the room.

@@ -59,3 +59,42 @@ TEST(ScriptedScenes, ALightSwitchFollowsScriptedTime) {
   EXPECT_TRUE(at(1.9));
   EXPECT_FALSE(at(2.0));
 }
+
+// The large-world scene: "street" spans 400 m with the camera inside its bounds (so the directional
+// focus applies); "street-near" is the same view holding only the ground and blocks that end within
+// StreetLayout::kNearReach of the camera along the street.
+TEST(ScriptedScenes, TheStreetAndItsNearCopyShareTheirView) {
+  using L = sample::StreetLayout;
+  struct Built {
+    scene::Aabb bounds;
+    int blocks = 0;
+    float blocksEndAt = -1e30f;
+    glm::vec3 camera{0.0f};
+  };
+  auto build = [](const char* name) {
+    ecs::World w;
+    scene::AssetStore assets;
+    sample::buildBuiltinScene(name, w, assets);
+    Built b;
+    w.each<scene::MeshInstance, scene::Transform, scene::Name>([&](ecs::Entity, const scene::MeshInstance& m, const scene::Transform& t, const scene::Name& n) {
+      const scene::Aabb local = assets.mesh(m.mesh).bounds;
+      const glm::vec3 lo = local.min + t.translation, hi = local.max + t.translation;  // unrotated, unscaled
+      b.bounds.extend(lo);
+      b.bounds.extend(hi);
+      if (n.value.rfind("block_", 0) == 0) ++b.blocks, b.blocksEndAt = std::max(b.blocksEndAt, hi.x);
+    });
+    w.each<scene::ActiveCamera, scene::Transform>([&](ecs::Entity, const scene::ActiveCamera&, const scene::Transform& t) { b.camera = t.translation; });
+    return b;
+  };
+  const Built street = build("street"), near = build("street-near");
+  EXPECT_NEAR(street.bounds.extent().x, 2.0f * L::kHalfLength, 1e-3f);
+  EXPECT_GE(street.blocks, 30);
+  EXPECT_EQ(street.camera, L::kCamera);
+  EXPECT_EQ(near.camera, L::kCamera);
+  for (const Built* b : {&street, &near})
+    EXPECT_TRUE(glm::all(glm::greaterThan(b->camera, b->bounds.min)) && glm::all(glm::lessThan(b->camera, b->bounds.max))) << "the camera in the scene";
+  EXPECT_LE(near.blocksEndAt, L::kCamera.x + L::kNearReach + 1e-3f);
+  EXPECT_LE(near.bounds.max.x, L::kCamera.x + L::kNearReach + 1e-3f);
+  EXPECT_GE(near.blocks, 2);
+  EXPECT_LT(near.blocks, street.blocks / 4);
+}
