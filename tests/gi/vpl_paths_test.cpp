@@ -195,6 +195,97 @@ TEST(VplPaths, AProbesSurfaceMovingInvalidatesItsVpl) {
     }
 }
 
+// A sun over ground 400 m wide: with a reach of 64 m it shoots every VPL over the sphere of that radius
+// around a focus near the camera, and their flux over a 20 m disc around the camera's feet is what the
+// sun leaves there (albedo x E x cos, the disc's area), as without a focus but with 20 times the VPLs
+// there. The focus holds while the camera moves within its cell; a step beyond reshoots the sun's paths
+// around the new one.
+TEST(VplPaths, ASunOverAWideWorldShootsItsVplsAroundTheCamera) {
+  constexpr float kE = 2.0f, kAlbedo = 0.5f, kReach = 64.0f, kDisc = 20.0f;
+  const glm::vec3 sunDir = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+  ecs::World world;
+  AssetStore assets;
+  gi::EmbreeScene bvh;
+  ecs::Scheduler scheduler;
+  scheduler.add(ecs::Phase::PostUpdate, std::make_unique<TransformSystem>());
+  sample::addSceneMesh(world, assets, makeQuad({-200, 0, 200}, {400, 0, 0}, {0, 0, -400}), glm::vec3(kAlbedo), {}, false, "ground");
+  Transform tower;  // far from the camera: it gives the scene its height, so the camera stands inside it
+  tower.translation = {-150.0f, 10.0f, -150.0f};
+  sample::addSceneMesh(world, assets, makeBox({5.0f, 10.0f, 5.0f}), glm::vec3(kAlbedo), tower, false, "tower");
+  Entity sun = world.create();
+  Transform st;
+  st.rotation = glm::quatLookAtRH(sunDir, glm::vec3(0, 1, 0));
+  world.add(sun, st);
+  world.add(sun, Light{.type = LightType::Directional, .intensity = kE});
+  Entity cam = world.create();
+  Transform ct;
+  ct.translation = {100.0f, 2.0f, 50.0f};
+  world.add(cam, ct);
+  world.add(cam, Camera{});
+  world.add(cam, ActiveCamera{});
+  auto snap = stepFrame(world, assets, scheduler, bvh, nullptr);
+  ASSERT_EQ(snap.lights.size(), 1u);
+
+  struct Shot {
+    double fluxNearCamera = 0;  // luminance over the disc around the camera's feet
+    uint32_t nearCamera = 0, outsideFocus = 0;
+  };
+  auto measure = [&](const gi::VplPaths& paths, const glm::vec3& camera) {
+    Shot s;
+    const gi::DirectionalFocus& f = paths.focus();
+    for (const gi::PathVpl& v : paths.vpls()) {
+      if (!v.valid || !v.placed) continue;
+      const glm::vec3 d = v.position - f.centre;
+      s.outsideFocus += glm::length(d - glm::dot(d, sunDir) * sunDir) > f.radius * 1.0001f;  // off the disc's cylinder
+      if (glm::length(glm::vec2(v.position.x - camera.x, v.position.z - camera.z)) < kDisc) {
+        ++s.nearCamera;
+        s.fluxNearCamera += double(v.flux.g);
+      }
+    }
+    return s;
+  };
+  const double truth = kAlbedo * kE * -sunDir.y * 3.14159265 * kDisc * kDisc;
+  gi::VplPaths wide(gi::TemporalOptions{.vpl = {.vpls = 4096, .bounces = 1, .directionalReach = 0.0f}, .reshootBudget = 100000});
+  gi::VplPaths focused(gi::TemporalOptions{.vpl = {.vpls = 4096, .bounces = 1, .directionalReach = kReach}, .reshootBudget = 100000});
+  wide.update(snap, bvh, assets, {});
+  focused.update(snap, bvh, assets, {});
+  ASSERT_TRUE(wide.focus().wholeScene);
+  ASSERT_FALSE(focused.focus().wholeScene);
+  EXPECT_LE(glm::distance(focused.focus().centre, ct.translation), 0.5f * std::sqrt(3.0f) * 0.5f * kReach + 1e-3f) << "the camera within the focus' cell";
+  const Shot w = measure(wide, ct.translation), f = measure(focused, ct.translation);
+  dyngi::test::report("sun over 400 m: %u VPLs within %.0f m of the camera over the whole scene (flux %.4f of the truth), %u with a %.0f m reach "
+                      "(%.4f), %u outside its focus\n",
+                      w.nearCamera, kDisc, w.fluxNearCamera / truth, f.nearCamera, kReach, f.fluxNearCamera / truth, f.outsideFocus);
+  EXPECT_EQ(f.outsideFocus, 0u);
+  EXPECT_GT(f.nearCamera, 15 * std::max(w.nearCamera, 1u));
+  EXPECT_NEAR(f.fluxNearCamera / truth, 1.0, 0.03);
+
+  // 10 m on, within the focus' cell of 32 m (the camera starts 4 m into it along x): nothing to reshoot.
+  auto moveCamera = [&](float dx) {
+    world.write<Transform>(cam).translation.x += dx;
+    snap = stepFrame(world, assets, scheduler, bvh, nullptr);
+    focused.invalidate(snap, bvh, {});
+  };
+  const glm::vec3 before = focused.focus().centre;
+  moveCamera(10.0f);
+  EXPECT_EQ(focused.focus().centre, before);
+  EXPECT_EQ(focused.stats().invalidatedThisFrame, 0u);
+  // 60 m on: the focus moves, every path of the sun is reshot around it.
+  moveCamera(60.0f);
+  EXPECT_NE(focused.focus().centre, before);
+  EXPECT_EQ(focused.stats().invalidatedThisFrame, 4096u);
+  focused.replace(snap, bvh, assets);
+  const Shot moved = measure(focused, world.get<Transform>(cam).translation);
+  EXPECT_EQ(focused.stats().valid, 4096u);
+  EXPECT_EQ(moved.outsideFocus, 0u);
+  EXPECT_NEAR(moved.fluxNearCamera / truth, 1.0, 0.03);
+  // A camera above everything (outside the scene's bounds) sees the whole scene: no focus.
+  world.write<Transform>(cam).translation.y = 500.0f;
+  snap = stepFrame(world, assets, scheduler, bvh, nullptr);
+  focused.invalidate(snap, bvh, {});
+  EXPECT_TRUE(focused.focus().wholeScene);
+}
+
 TEST(VplPaths, BudgetIsRespectedRestoreIsTimelyAndCursorIsFair) {
   Fixture f;
   auto snap = f.frame();

@@ -21,6 +21,7 @@
 #include "gpu_aliases.h"
 #include "sampling.h"
 #include "indirect/emitters.h"
+#include "indirect/vpl_focus.h"
 
 namespace dyngi::gi {
 
@@ -76,7 +77,8 @@ void ManyLights::prepareEmitters(const render::RenderSnapshot& snapshot, const s
   const EmitterSet emitters(snapshot, assets);
   if (emitters.empty()) return;
   float lightsPower = 0.0f;
-  for (const render::LightItem& l : snapshot.lights) lightsPower += lightPower(l, snapshot.sceneBounds);
+  const scene::Aabb sunBounds = directionalFocus(snapshot, settings_.vpl.directionalReach).bounds;
+  for (const render::LightItem& l : snapshot.lights) lightsPower += lightPower(l, sunBounds);
   const uint32_t bounces = std::clamp(settings_.vpl.bounces, 1u, 3u), perBounce = vplCount() / bounces;
   // The emitters' share of the first bounce, at least one VPL while they emit, and one left to the RSMs
   // while a light does.
@@ -147,10 +149,13 @@ void ManyLights::prepare(render::VulkanContext& ctx, const render::RenderSnapsho
   perBounce_ = vplCount() / settings_.vpl.bounces;  // the one rounding rule (VplOptions::effectiveVplCount)
   std::vector<::dyngi::gpu::GpuLight> lights;
   std::vector<gpu::RsmLayer> layers;
+  // A directional light's RSM covers the focus (indirect/vpl_focus.h): its orthographic view then spans
+  // twice the reach along the light, what stands further towards the sun casts nothing into it.
+  const scene::Aabb sunBounds = directionalFocus(snapshot, settings_.vpl.directionalReach).bounds;
   for (const render::LightItem& item : snapshot.lights) {
     if (lights.size() >= DYNGI_MAX_LIGHTS) break;
     if (!item.light.enabled || item.light.intensity <= 0.0f) continue;
-    auto views = render::lightViews(item, snapshot.sceneBounds);
+    auto views = render::lightViews(item, item.light.type == scene::LightType::Directional ? sunBounds : snapshot.sceneBounds);
     if (layers.size() + views.size() > DYNGI_MAX_RSM_LAYERS) break;
     for (const auto& v : views) {
       gpu::RsmLayer l{};

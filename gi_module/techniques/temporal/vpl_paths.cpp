@@ -147,11 +147,12 @@ void VplPaths::invalidateIndex(uint32_t index, bool hard) {
 void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const std::unordered_set<ecs::Entity>& moved) {
   auto t0 = Clock::now();
   stats_.invalidatedThisFrame = 0;
+  focus_ = directionalFocus(snapshot, settings_.vpl.directionalReach);
   FrameChecks checks{snapshot, bvh, moved};
   checks.scale = snapshot.sceneBounds.valid() ? std::max(glm::length(snapshot.sceneBounds.extent()), 1e-3f) : 1.0f;
   checks.eps = 1e-4f * checks.scale;
   checks.totalPower = emitterTotal_;
-  for (const auto& l : snapshot.lights) checks.totalPower += lightPower(l, snapshot.sceneBounds);
+  for (const auto& l : snapshot.lights) checks.totalPower += lightPower(l, focus_.bounds);
   for (uint32_t i = 0; i < vpls_.size(); ++i) {
     if (!vpls_[i].valid) continue;
     if (pathLight_[i / settings_.vpl.bounces].type == kEmitterSource) checkEmitterPathVpl(i, checks);
@@ -257,13 +258,17 @@ bool VplPaths::lightStillHolds(const LightState& ls, const render::LightItem& li
                  light.light.innerConeAngle, light.light.outerConeAngle, uint32_t(light.light.type), ls.probability};
   // Another light switched on or off, or changed its power: this light's share, which the path's flux
   // was divided by, is not what it was. Every path of every light is redrawn (hard: the mix changed).
-  const float share = c.totalPower > 0.0f ? lightPower(light, c.snapshot.sceneBounds) / c.totalPower : 0.0f;
+  const float share = c.totalPower > 0.0f ? lightPower(light, focus_.bounds) / c.totalPower : 0.0f;
   const bool mixChanged = std::abs(share - ls.probability) > kShareTolerance * ls.probability;
-  const bool lightMoved = settings_.lightMoveTolerance > 0.0f ? glm::distance(light.position, ls.position) > settings_.lightMoveTolerance * c.scale
-                                                              : light.position != ls.position;
+  // A directional light's paths were shot over the focus of their frame: another focus, however near,
+  // is another disc.
+  const glm::vec3 position = shotFrom(light);
+  const bool focusMoved = position != light.position && position != ls.position;  // shotFrom() gave the focus centre
+  const bool lightMoved = focusMoved || (settings_.lightMoveTolerance > 0.0f ? glm::distance(position, ls.position) > settings_.lightMoveTolerance * c.scale
+                                                                             : position != ls.position);
   const bool turned = settings_.lightTurnTolerance > 0.0f ? glm::dot(light.direction, ls.direction) < std::cos(settings_.lightTurnTolerance)
                                                           : light.direction != ls.direction;
-  hard = !(now == ls) || mixChanged || lightJumped(ls, light.position, light.direction, c.scale);
+  hard = !(now == ls) || mixChanged || lightJumped(ls, position, light.direction, c.scale);
   return now == ls && !lightMoved && !turned && !mixChanged;
 }
 
@@ -314,7 +319,7 @@ bool VplPaths::shoot(uint32_t index, const render::RenderSnapshot& snapshot, con
     const uint32_t T = settings_.temporalSets, runLength = (paths_ + T - 1) / T;
     const glm::vec3 seq = r3Point(uint64_t(path % T) * runLength + path / T, sequenceOffset_);
     float lightsTotal = 0.0f;
-    for (const auto& l : snapshot.lights) lightsTotal += lightPower(l, snapshot.sceneBounds);
+    for (const auto& l : snapshot.lights) lightsTotal += lightPower(l, focus_.bounds);
     const float total = lightsTotal + emitters.totalPower();
     if (total <= 0.0f) return false;
     const float u = seq.x * total;
@@ -378,23 +383,26 @@ VplPaths::PathRay VplPaths::rayFromLight(uint32_t path, glm::vec3 seq, float u, 
   const render::LightItem* light = nullptr;
   float acc = 0.0f;
   for (const auto& l : snapshot.lights) {
-    float p = lightPower(l, snapshot.sceneBounds);
+    float p = lightPower(l, focus_.bounds);
     if (p <= 0.0f) continue;
     light = &l;
     acc += p;
     if (u < acc) break;
   }
-  const float pLight = lightPower(*light, snapshot.sceneBounds) / total;
+  const float pLight = lightPower(*light, focus_.bounds) / total;
   const scene::Light& L = light->light;
   const glm::vec3 radiant = L.color * L.intensity;
   const float u1 = seq.y, u2 = seq.z;
   PathRay ray;
   if (L.type == scene::LightType::Directional) {
-    float r = 0.5f * glm::length(snapshot.sceneBounds.extent()) + 1e-3f;
+    // A disc across the light over the focus (indirect/vpl_focus.h), its rays starting outside the scene.
+    float r = 0.5f * glm::length(focus_.bounds.extent()) + 1e-3f;
+    const scene::Aabb& scene = snapshot.sceneBounds;
+    const float back = focus_.wholeScene ? 2.0f * r : 2.0f * (0.5f * glm::length(scene.extent()) + glm::distance(focus_.centre, scene.center()));
     glm::vec3 b1, b2;
     orthonormalBasis(light->direction, b1, b2);
     float rr = r * std::sqrt(u1), phi = 2.0f * kPi * u2;
-    ray.origin = snapshot.sceneBounds.center() - light->direction * (2.0f * r) + rr * (std::cos(phi) * b1 + std::sin(phi) * b2);
+    ray.origin = focus_.bounds.center() - light->direction * back + rr * (std::cos(phi) * b1 + std::sin(phi) * b2);
     ray.dir = light->direction;
     ray.throughput = radiant * (kPi * r * r) / pLight;  // E x disc area / p(light)
   } else if (L.type == scene::LightType::Spot) {
@@ -413,7 +421,7 @@ VplPaths::PathRay VplPaths::rayFromLight(uint32_t path, glm::vec3 seq, float u, 
     const float pdf = 1.0f / (4.0f * kPi);
     ray.throughput = radiant / (pdf * pLight);
   }
-  pathLight_[path] = LightState{light->entity, light->position, light->direction, radiant, L.range, L.innerConeAngle, L.outerConeAngle,
+  pathLight_[path] = LightState{light->entity, shotFrom(*light), light->direction, radiant, L.range, L.innerConeAngle, L.outerConeAngle,
                                 uint32_t(L.type), pLight};
   ray.throughput /= float(paths_);
   return ray;
@@ -456,6 +464,7 @@ void VplPaths::replace(const render::RenderSnapshot& snapshot, const EmbreeScene
 void VplPaths::replaceWith(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
                            const EmitterSet& emitters) {
   auto t0 = Clock::now();
+  focus_ = directionalFocus(snapshot, settings_.vpl.directionalReach);
   stats_.replacedThisFrame = 0;
   const uint32_t n = uint32_t(vpls_.size());
   uint32_t budget = reshootBudget_;
