@@ -123,7 +123,7 @@ const std::vector<SampleFlag>& sampleFlags() {
        [](Options& o, const std::string& v) { return count("--frames", v, 1, o.frames); }},
       {"gi", "MODE", "global illumination: off, a technique (its options below) or path (the reference path tracer)",
        [](Options& o, const std::string& v) { return oneOf("--gi mode", giModes(), v, o.gi); }, text(&Options::gi)},
-      {"animate", "NAME", "a scripted scene: the Cornell box with a moving spot, object or camera, or the glTF fox (benchmark and soak scenes)",
+      {"animate", "NAME", "a scripted scene: the Cornell box with a moving spot, object or camera, the glTF fox, or a flight down the street (benchmark and soak scenes)",
        [](Options& o, const std::string& v) { return oneOf("--animate", animatedSceneNames(), v, o.animate); }},
       {"view", "NAME", "final, indirect (the GI's diffuse light before albedo), voxels, svo-steps, or a technique's view (below)",
        into(&Options::view), text(&Options::view)},

@@ -59,7 +59,8 @@ struct StreetLayout {
   static constexpr float kNearReach = 40.0f;    // m east of the camera that street-near keeps
   static constexpr glm::vec3 kSunDirection{0.35f, -0.75f, 0.55f};  // where the light goes: from over the north row
   static constexpr float kSunIntensity = 1.5f;  // lux as glTF has it, used as W/m^2
-  static constexpr float kFlightSpeed = 10.0f;  // m/s
+  static constexpr float kFlightSpeed = 10.0f;   // m/s
+  static constexpr float kFlightLength = 360.0f;  // m east of the camera, then back
 };
 
 bool isBuiltinScene(const std::string& name);
@@ -74,6 +75,7 @@ void buildBuiltinScene(const std::string& name, ecs::World& world, scene::AssetS
 
 void buildTwoRooms(bool doorway, ecs::World& world, scene::AssetStore& assets);
 void buildStreet(bool nearOnly, ecs::World& world, scene::AssetStore& assets);
+void addStreetFlight(ecs::World& world);  // --animate street-flight: the camera's scripted flight
 
 // Scripted benchmark scenes (--animate): the Cornell box with
 //  static           nothing moving;
@@ -82,7 +84,8 @@ void buildStreet(bool nearOnly, ecs::World& world, scene::AssetStore& assets);
 //  walking-fox      the glTF fox walking on the floor (needs `sharedScenesDir`/Fox.glb);
 //  fox-and-spot     the walking fox under the moving spot (the soak scene, scripts/soak.sh);
 //  fox-spot-light-on  fox-and-spot, and a second spot switched on at kSecondLightOnAt seconds (the GI
-//                   budget's load change, scripts/budget_run.sh).
+//                   budget's load change, scripts/budget_run.sh);
+// or, not a Cornell box, street-flight: the street with its camera flying down it and back.
 // Returns an empty string on success, else the problem.
 constexpr double kSecondLightOnAt = 4.0;  // seconds of scripted time (frame 240 of a headless run)
 std::string buildAnimatedScene(const std::string& name, ecs::World& world, scene::AssetStore& assets,

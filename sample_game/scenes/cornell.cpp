@@ -43,7 +43,7 @@ const std::vector<std::string>& builtinSceneNames() {
 
 const std::vector<std::string>& animatedSceneNames() {
   static const std::vector<std::string> names = {"static",      "moving-spot",  "rotating-object",  "moving-camera",
-                                                 "walking-fox", "fox-and-spot", "fox-spot-light-on"};
+                                                 "walking-fox", "fox-and-spot", "fox-spot-light-on", "street-flight"};
   return names;
 }
 
@@ -260,6 +260,11 @@ std::string addAnimation(const std::string& name, ecs::World& w, AssetStore& ass
 }  // namespace
 
 std::string buildAnimatedScene(const std::string& name, ecs::World& w, AssetStore& assets, const std::string& sharedScenesDir) {
+  if (name == "street-flight") {
+    buildStreet(false, w, assets);
+    addStreetFlight(w);
+    return {};
+  }
   buildBuiltinScene("cornell", w, assets);
   return addAnimation(name, w, assets, sharedScenesDir);
 }

@@ -5,6 +5,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "dyngi/engine/scene/components.h"
+#include "dyngi/engine/scene/scripted_motion.h"
 #include "scenes/builtin_scenes.h"
 
 namespace dyngi::sample {
@@ -52,6 +53,19 @@ void buildStreet(bool nearOnly, ecs::World& w, AssetStore& assets) {
   w.add(cam, Camera{.yfov = glm::radians(60.0f), .znear = 0.1f, .zfar = 2.0f * L::kHalfLength + 50.0f});
   w.add(cam, ActiveCamera{});
   w.add(cam, Name{"camera"});
+}
+
+void addStreetFlight(ecs::World& w) {
+  using L = StreetLayout;
+  w.each<ActiveCamera, Transform>([&](Entity e, const ActiveCamera&, const Transform& t) {
+    ScriptedMotion flight;
+    flight.origin = t.translation;
+    flight.baseRotation = t.rotation;
+    flight.path = {glm::vec3(0.0f), glm::vec3(L::kFlightLength, 0.0f, 0.0f)};  // there and back, facing east
+    flight.pathSpeed = L::kFlightSpeed;
+    w.commands().add(e, flight);
+  });
+  w.flushCommands();
 }
 
 }  // namespace dyngi::sample

@@ -97,4 +97,20 @@ TEST(ScriptedScenes, TheStreetAndItsNearCopyShareTheirView) {
   EXPECT_LE(near.bounds.max.x, L::kCamera.x + L::kNearReach + 1e-3f);
   EXPECT_GE(near.blocks, 2);
   EXPECT_LT(near.blocks, street.blocks / 4);
+
+  // --animate street-flight: the street, its camera flying east at kFlightSpeed, facing east.
+  ecs::World w;
+  scene::AssetStore assets;
+  ASSERT_EQ(sample::buildAnimatedScene("street-flight", w, assets, DYNGI_SHARED_SCENES), "");
+  int flights = 0;
+  w.each<scene::ActiveCamera, scene::ScriptedMotion, scene::Transform>(
+      [&](ecs::Entity, const scene::ActiveCamera&, const scene::ScriptedMotion& m, const scene::Transform& t) {
+        ++flights;
+        glm::vec3 at;
+        glm::quat facing;
+        scene::evaluateMotion(m, 2.0, at, facing);
+        EXPECT_NEAR(glm::distance(at, L::kCamera + glm::vec3(2.0f * L::kFlightSpeed, 0.0f, 0.0f)), 0.0f, 1e-3f);
+        EXPECT_NEAR(glm::abs(glm::dot(facing, t.rotation)), 1.0f, 1e-5f);
+      });
+  EXPECT_EQ(flights, 1);
 }
