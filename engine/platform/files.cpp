@@ -143,25 +143,38 @@ std::string OutputStream::close() {
   return error_;
 }
 
+namespace {
+// A control character as its escape (\n, \xNN), anything else as itself.
+void appendEscaped(std::string& out, unsigned char c) {
+  if (c == '\n') {
+    out += "\\n";
+  } else if (c < 0x20 || c == 0x7f) {
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "\\x%02x", unsigned(c));
+    out += hex;
+  } else {
+    out += char(c);
+  }
+}
+}  // namespace
+
 std::string oneLine(std::string_view text, size_t maxChars) {
   std::string out;
   out.reserve(std::min(text.size(), maxChars) + 16);
   for (unsigned char c : text) {
-    if (c == '\n') {
-      out += "\\n";
-    } else if (c < 0x20 || c == 0x7f) {
-      char hex[8];
-      std::snprintf(hex, sizeof hex, "\\x%02x", unsigned(c));
-      out += hex;
-    } else {
-      out += char(c);
-    }
-    if (out.size() > 2 * maxChars + 16) break;  // enough for both ends' share below
+    appendEscaped(out, c);
+    if (out.size() > 2 * maxChars + 16) break;  // enough for the head's share below
   }
   if (out.size() <= maxChars) return out;
-  // Keep the start and the end (a path's file name, a message's reason), cut the middle.
-  const std::string tail = std::string(text.substr(text.size() - std::min(text.size(), maxChars / 3)));
-  std::string end = oneLine(tail, maxChars);
+  // Keep the start and the end (a path's file name, a message's reason), cut the middle. The end: the
+  // last characters whose escapes fit a third of the length, whatever they are.
+  std::string end;
+  for (size_t i = text.size(); i > 0; --i) {
+    std::string e;
+    appendEscaped(e, static_cast<unsigned char>(text[i - 1]));
+    if (end.size() + e.size() > maxChars / 3) break;
+    end.insert(0, e);
+  }
   const size_t headChars = maxChars > end.size() + 3 ? maxChars - end.size() - 3 : 0;
   return out.substr(0, headChars) + "..." + end;
 }

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "dyngi/engine/platform/files.h"
 #include "dyngi/engine/scene/gltf_import.h"
 #include "support/gltf_writer.h"
 #include "support/hostile_content.h"
@@ -252,3 +253,23 @@ TEST(HostileContent, ErrorLinesEscapeControlCharactersAndCutLongTokens) {
   EXPECT_NE(l->error.find("\\x1b[2J"), std::string::npos) << l->error.substr(0, 200);
   EXPECT_LT(l->error.size(), 1100u);
 }
+
+// A long text whose end is control bytes (an error line quoting a mangled token): each escapes to four
+// characters, so the end kept is the last bytes whose escapes fit a third of the line, and the line
+// holds its length. (Cutting the end by bytes first and escaping it again never shrank it: the fuzzer's
+// input in tests/fuzz/regressions/error_message_ends_in_control_bytes.gltf overflowed the stack.)
+TEST(HostileContent, OneLineKeepsItsLengthWhenTheEndIsControlBytes) {
+  const std::string text = "token " + std::string(40, 'a') + std::string(3000, '\x7f');
+  const std::string line = platform::oneLine(text, 300);
+  EXPECT_LE(line.size(), 300u);
+  EXPECT_EQ(line.substr(0, 10), "token aaaa");
+  EXPECT_NE(line.find("..."), std::string::npos);
+  EXPECT_EQ(line.substr(line.size() - 8), "\\x7f\\x7f");
+  EXPECT_EQ(line.find('\x7f'), std::string::npos) << "no raw control byte";
+  // Plain text: its start and its last third.
+  const std::string plain = std::string(500, 'h') + std::string(500, 't');
+  const std::string cut = platform::oneLine(plain, 300);
+  EXPECT_EQ(cut.size(), 300u);
+  EXPECT_EQ(cut.substr(cut.size() - 100), std::string(100, 't'));
+}
+
