@@ -18,7 +18,7 @@ glm::vec3 anyUp(const glm::vec3& dir) { return std::abs(dir.y) < 0.99f ? glm::ve
 float outerAngle(const scene::Light& l) { return std::clamp(l.outerConeAngle, 1e-3f, 1.5707f); }
 }  // namespace
 
-std::vector<LightView> lightViews(const LightItem& item, const scene::Aabb& bounds) {
+std::vector<LightView> lightViews(const LightItem& item, const scene::Aabb& bounds, const scene::Aabb* window) {
   const scene::Light& l = item.light;
   std::vector<LightView> views;
   float farZ = l.range > 0.0f ? l.range : (bounds.valid() ? farthestCorner(bounds, item.position) * 1.01f + 0.01f : 100.0f);
@@ -40,11 +40,16 @@ std::vector<LightView> lightViews(const LightItem& item, const scene::Aabb& boun
       views.push_back(v);
     }
   } else {
-    glm::vec3 c = bounds.valid() ? bounds.center() : glm::vec3(0.0f);
-    float r = bounds.valid() ? 0.5f * glm::length(bounds.extent()) + 1e-3f : 1.0f;
+    const bool windowed = window && window->valid() && bounds.valid();
+    const scene::Aabb& area = windowed ? *window : bounds;
+    glm::vec3 c = area.valid() ? area.center() : glm::vec3(0.0f);
+    float r = area.valid() ? 0.5f * glm::length(area.extent()) + 1e-3f : 1.0f;
+    // Every point of the scene lies within `reach` of c: the eye stands twice that back along the light,
+    // the far plane as far past c.
+    const float reach = windowed ? 0.5f * glm::length(bounds.extent()) + glm::distance(c, bounds.center()) + 1e-3f : r;
     LightView v;
-    glm::mat4 view = glm::lookAtRH(c - item.direction * (2.0f * r), c, anyUp(item.direction));
-    v.viewProj = glm::orthoRH_ZO(-r, r, -r, r, 0.0f, 4.0f * r) * view;
+    glm::mat4 view = glm::lookAtRH(c - item.direction * (2.0f * reach), c, anyUp(item.direction));
+    v.viewProj = glm::orthoRH_ZO(-r, r, -r, r, 0.0f, 4.0f * reach) * view;
     v.axis = item.direction;
     v.extent = 2.0f * r;
     v.orthographic = true;

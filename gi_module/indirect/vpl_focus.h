@@ -4,7 +4,7 @@
 // block, and the camera's surroundings get a handful. When the scene is wider than
 // VplOptions::directionalReach (a radius, in metres), the disc covers only the sphere of that radius
 // around a focus near the camera instead: the camera's position snapped to a grid of half the reach, so
-// the focus moves in steps (for the temporal paths, a jump of the light: its paths are reshot) and holds
+// the focus moves in steps (for the temporal paths, as if the light had moved: its paths are reshot) and holds
 // still while the camera moves within a cell. Past the focus, surfaces get no light from the sun's VPLs.
 // A camera outside the scene's bounds (an object framed from afar) keeps the whole scene.
 #include <glm/glm.hpp>

@@ -1,8 +1,10 @@
-// The CPU light formulas against hand-derived values (glTF KHR_lights_punctual recommendations).
+// The CPU light formulas against hand-derived values (glTF KHR_lights_punctual recommendations), and
+// the lights' views.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "dyngi/engine/render/light_views.h"
 #include "dyngi/engine/scene/light_units.h"
 
 using namespace dyngi::scene;
@@ -55,4 +57,36 @@ TEST(LightUnits, DirectionalAndRangeWindow) {
   Light off;
   off.enabled = false;
   EXPECT_EQ(directIrradiance(off, {0, 1, 0}, {0, -1, 0}, {}, {0, 1, 0}).r, 0.0f);
+}
+
+// A directional light's view over a window of a wide scene (a reflective shadow map near the camera):
+// the window spans the view across the light, and every point of the scene, however far towards the
+// light, lies within its depth range (it casts into the map).
+TEST(LightViews, ADirectionalWindowSeesTheWholeSceneAlongTheLight) {
+  dyngi::render::LightItem sun;
+  sun.light.type = LightType::Directional;
+  sun.direction = glm::normalize(glm::vec3(0.35f, -0.75f, 0.55f));
+  Aabb scene;
+  scene.min = {-200, 0, -20};
+  scene.max = {200, 20, 20};
+  const glm::vec3 c(112, 16, 48), half(64.0f / std::sqrt(3.0f));
+  Aabb window;
+  window.min = c - half;
+  window.max = c + half;
+  const auto views = dyngi::render::lightViews(sun, scene, &window);
+  ASSERT_EQ(views.size(), 1u);
+  const dyngi::render::LightView& v = views[0];
+  EXPECT_TRUE(v.orthographic);
+  EXPECT_NEAR(v.extent, 2.0f * 64.0f, 0.01f) << "the window's sphere across the light";
+  const glm::vec4 centre = v.viewProj * glm::vec4(c, 1.0f);
+  EXPECT_NEAR(centre.x, 0.0f, 1e-4f);
+  EXPECT_NEAR(centre.y, 0.0f, 1e-4f);
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec3 corner((i & 1) ? scene.max.x : scene.min.x, (i & 2) ? scene.max.y : scene.min.y, (i & 4) ? scene.max.z : scene.min.z);
+    const glm::vec4 p = v.viewProj * glm::vec4(corner, 1.0f);
+    EXPECT_GT(p.z, 0.0f) << "corner " << i;
+    EXPECT_LT(p.z, 1.0f) << "corner " << i;
+  }
+  // Without a window: the whole scene across the light.
+  EXPECT_NEAR(dyngi::render::lightViews(sun, scene)[0].extent, glm::length(scene.extent()), 0.01f);
 }

@@ -149,13 +149,12 @@ void ManyLights::prepare(render::VulkanContext& ctx, const render::RenderSnapsho
   perBounce_ = vplCount() / settings_.vpl.bounces;  // the one rounding rule (VplOptions::effectiveVplCount)
   std::vector<::dyngi::gpu::GpuLight> lights;
   std::vector<gpu::RsmLayer> layers;
-  // A directional light's RSM covers the focus (indirect/vpl_focus.h): its orthographic view then spans
-  // twice the reach along the light, what stands further towards the sun casts nothing into it.
-  const scene::Aabb sunBounds = directionalFocus(snapshot, settings_.vpl.directionalReach).bounds;
+  // A directional light's RSM covers its focus (indirect/vpl_focus.h), seen from outside the scene.
+  const DirectionalFocus focus = directionalFocus(snapshot, settings_.vpl.directionalReach);
   for (const render::LightItem& item : snapshot.lights) {
     if (lights.size() >= DYNGI_MAX_LIGHTS) break;
     if (!item.light.enabled || item.light.intensity <= 0.0f) continue;
-    auto views = render::lightViews(item, item.light.type == scene::LightType::Directional ? sunBounds : snapshot.sceneBounds);
+    auto views = render::lightViews(item, snapshot.sceneBounds, focus.wholeScene ? nullptr : &focus.bounds);
     if (layers.size() + views.size() > DYNGI_MAX_RSM_LAYERS) break;
     for (const auto& v : views) {
       gpu::RsmLayer l{};

@@ -19,8 +19,10 @@ struct LightView {
   bool orthographic = false;
 };
 
-// One view for a spot or directional light, six (+X,-X,+Y,-Y,+Z,-Z) for a point light.
-std::vector<LightView> lightViews(const LightItem& light, const scene::Aabb& sceneBounds);
+// One view for a spot or directional light, six (+X,-X,+Y,-Y,+Z,-Z) for a point light. A directional
+// light's view covers the scene, or with `window` only that box across the light (a reflective shadow map
+// kept near the camera), still seen from outside the scene: whatever stands towards the light is in it.
+std::vector<LightView> lightViews(const LightItem& light, const scene::Aabb& sceneBounds, const scene::Aabb* window = nullptr);
 gpu::GpuLight toGpuLight(const LightItem& light);
 
 }  // namespace dyngi::render
