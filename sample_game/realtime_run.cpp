@@ -100,7 +100,9 @@ void reportGi(const gi::GiSettings& settings, const GiSetup& g, RunStats& stats)
   if (const gi::VoxelScene* voxels = g.voxels) {
     const gi::VoxelStats& v = voxels->stats();
     stats.scalars["voxel_resolution"] = settings.voxels.resolution;
-    stats.scalars["voxel_size_m"] = double(voxels->volume().voxelSize);  // the volume spans the scene: a room's 1.6 cm, a street's metres
+    stats.scalars["voxel_size_m"] = double(voxels->volume().voxelSize);  // a room's 1.6 cm; a wide world's volume follows the camera
+    stats.scalars["voxel_windowed"] = v.windowed ? 1.0 : 0.0;
+    stats.scalars["voxel_volume_moves"] = double(v.volumeMoves);
     gi::VoxelSettings used = settings.voxels;
     addSettings(stats, gi::bindOptions(used));
     stats.scalars["voxel_fragments"] = double(v.fragments);

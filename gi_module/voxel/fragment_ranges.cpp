@@ -4,7 +4,7 @@
 
 namespace dyngi::gi {
 
-uint64_t FragmentRanges::estimateFragments(const scene::MeshData& mesh, const glm::mat4& m) {
+uint64_t FragmentRanges::estimateFragments(const scene::MeshData& mesh, const glm::mat4& m, uint32_t resolution) {
   // Per triangle: its area projected on the dominant plane plus its perimeter (the columns it can touch),
   // times two for the depth spread inside a column, plus slack; overshoots are caught after the frame.
   // A triangle gives a voxel one fragment at most, so the voxels of its bounding box (touching ones
@@ -20,7 +20,12 @@ uint64_t FragmentRanges::estimateFragments(const scene::MeshData& mesh, const gl
     double area = 0.5 * std::max({n.x, n.y, n.z});
     double perimeter = glm::length(b - a) + glm::length(c - b) + glm::length(a - c);
     const double estimate = 2.0 * (area + perimeter + 2.0);
-    const glm::vec3 lo = glm::floor(glm::min(a, glm::min(b, c)) - kTouch), hi = glm::floor(glm::max(a, glm::max(b, c)) + kTouch);
+    glm::vec3 lo = glm::floor(glm::min(a, glm::min(b, c)) - kTouch), hi = glm::floor(glm::max(a, glm::max(b, c)) + kTouch);
+    if (resolution > 0) {  // the voxelizer clips to the volume
+      lo = glm::max(lo, glm::vec3(0.0f));
+      hi = glm::min(hi, glm::vec3(float(resolution - 1)));
+      if (glm::any(glm::lessThan(hi, lo))) continue;
+    }
     const glm::dvec3 span = glm::dvec3(hi - lo) + 1.0;
     const double boxVoxels = span.x * span.y * span.z;
     if (boxVoxels <= estimate) bounded += uint64_t(boxVoxels);

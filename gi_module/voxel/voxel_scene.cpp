@@ -10,6 +10,7 @@
 #include "dyngi/engine/render/draw_pass.h"
 #include "dyngi/engine/render/gpu_timer.h"
 #include "dyngi/engine/scene/animation.h"
+#include "camera_focus.h"
 #include "voxel/shaders/voxel_shared.h"
 #include "voxel/svo_builder.h"
 #include "voxel/voxel_debug_pass.h"
@@ -24,7 +25,8 @@ namespace dyngi::gi {
 
 const OptionTable<VoxelSettings>& VoxelSettings::table() {
   static const OptionTable<VoxelSettings> t = OptionTable<VoxelSettings>("voxel").add(
-      DYNGI_OPTION(VoxelSettings, resolution), "voxel volume resolution (the SVO's finest level)", 64, 512, /*powerOfTwo=*/true);
+      DYNGI_OPTION(VoxelSettings, resolution), "voxel volume resolution (the SVO's finest level)", 64, 512, /*powerOfTwo=*/true)
+      .add(DYNGI_OPTION(VoxelSettings, reach), "metres around the camera the voxel volume covers when the scene is wider (0: the whole scene)", 0, 100000);
   return t;
 }
 
@@ -88,6 +90,26 @@ void VoxelScene::enableLeafAttributes() {
 void VoxelScene::setVolume(const VoxelVolume& v) {
   volume_ = v;
   volume_.resolution = settings_.resolution;
+  haveVolume_ = true;
+  volumeFixed_ = true;
+  stats_.windowed = false;
+  allDirty_ = true;
+}
+
+void VoxelScene::placeVolume(const render::RenderSnapshot& snapshot) {
+  if (volumeFixed_) return;
+  const CameraFocus focus = cameraFocus(snapshot, settings_.reach);
+  if (focus.wholeScene) {
+    // The scene's bounds, decided once: an object that moves past them does not re-voxelize everything.
+    if (haveVolume_ && !stats_.windowed) return;
+    volume_ = VoxelVolume::around(snapshot.sceneBounds, settings_.resolution, settings_.padding);
+  } else {
+    const VoxelVolume window = VoxelVolume::around(focus.bounds, settings_.resolution, settings_.padding);
+    if (haveVolume_ && stats_.windowed && window.origin == volume_.origin && window.voxelSize == volume_.voxelSize) return;
+    if (haveVolume_) ++stats_.volumeMoves;
+    volume_ = window;
+  }
+  stats_.windowed = !focus.wholeScene;
   haveVolume_ = true;
   allDirty_ = true;
 }
@@ -157,7 +179,7 @@ std::unordered_set<ecs::Entity> VoxelScene::deferredByCap(const render::RenderSn
   if (cap == 0) return {};
   std::unordered_map<ecs::Entity, uint64_t> estimates;  // of the dirty entities drawn this frame
   for (const auto& d : snapshot.draws)
-    if (dirty_.count(d.entity)) estimates[d.entity] += FragmentRanges::estimateFragments(snapshot.assets->mesh(d.mesh), toVoxel * d.model);
+    if (dirty_.count(d.entity)) estimates[d.entity] += FragmentRanges::estimateFragments(snapshot.assets->mesh(d.mesh), toVoxel * d.model, volume_.resolution);
   std::vector<std::pair<uint64_t, ecs::Entity>> waiting;  // (changed since, entity): the longest waiting first
   for (const auto& [e, estimate] : estimates) {
     const auto since = dirtySince_.find(e);
@@ -187,11 +209,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   stats_.entitiesDeferred = 0;
   if (!snapshot.assets) return;
   ++frameIndex_;
-  if (!haveVolume_) {
-    volume_ = VoxelVolume::around(snapshot.sceneBounds, settings_.resolution, settings_.padding);
-    haveVolume_ = true;
-    allDirty_ = true;
-  }
+  placeVolume(snapshot);
   updatesThisFrame_ = allDirty_ || updateInterval_ <= 1 || frameIndex_ % updateInterval_ == 0;
   if (!updatesThisFrame_) return;  // dirty_ and removed_ keep what changed for the next update
   const glm::mat4 toVoxel = volume_.worldToVoxelMatrix();
@@ -242,7 +260,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     if (!newBounds.count(d.entity)) emittingEntities_.erase(d.entity);
     if (glm::any(glm::greaterThan(d.material.emissive, glm::vec3(0.0f)))) emittingEntities_.insert(d.entity);
     newBounds[d.entity].extend(snapshot.assets->mesh(d.mesh).bounds.transformed(toVoxel * d.model));
-    const uint64_t estimate = FragmentRanges::estimateFragments(snapshot.assets->mesh(d.mesh), toVoxel * d.model);
+    const uint64_t estimate = FragmentRanges::estimateFragments(snapshot.assets->mesh(d.mesh), toVoxel * d.model, volume_.resolution);
     planned.push_back({d.entity, ranges_.plan(d.entity, estimate, newHighWater, rangesToEmpty_)});
     drawsToVoxelize_.push_back(i);
   }

@@ -232,7 +232,7 @@ TEST(VplPaths, ASunOverAWideWorldShootsItsVplsAroundTheCamera) {
   };
   auto measure = [&](const gi::VplPaths& paths, const glm::vec3& camera) {
     Shot s;
-    const gi::DirectionalFocus& f = paths.focus();
+    const gi::CameraFocus& f = paths.focus();
     for (const gi::PathVpl& v : paths.vpls()) {
       if (!v.valid || !v.placed) continue;
       const glm::vec3 d = v.position - f.centre;

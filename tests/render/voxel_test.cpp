@@ -673,3 +673,49 @@ TEST_F(VoxelTest, SkinnedBarReVoxelizesAsItBendsAndMatchesExactOverlap) {
     EXPECT_EQ(l.missing + l.extra, 0u) << "frame " << f << ": the SVO equals a rebuild";
   }
 }
+
+// In a scene wider than the reach (the 400 m street) the volume covers the camera's surroundings: voxels
+// of a street's detail instead of 3.4 m ones, nothing reserved for the geometry outside, and a camera
+// that crosses into the next cell of half the reach moves the volume, voxelized afresh there as a new
+// voxel scene at that place would be; back in the first cell, the first voxels again.
+TEST_F(VoxelTest, TheVolumeFollowsTheCameraInAWideWorld) {
+  run("street", 128, 1);
+  const gi::VoxelStats& st = voxels->stats();
+  ASSERT_TRUE(st.windowed);
+  const gi::VoxelVolume first = voxels->volume();
+  const float reach = gi::VoxelSettings{}.reach, side = first.voxelSize * float(first.resolution);
+  auto holdsCamera = [&](const gi::VoxelVolume& v) {
+    const glm::vec3 p = v.toVoxel(snapshot.camera.position);
+    return glm::all(glm::greaterThan(p, glm::vec3(0.0f))) && glm::all(glm::lessThan(p, glm::vec3(float(v.resolution))));
+  };
+  EXPECT_TRUE(holdsCamera(first));
+  EXPECT_LT(side, 2.0f * reach) << "the cube around the focus sphere of the reach";
+  EXPECT_LT(first.voxelSize, 1.0f);
+  const gi::DenseVoxelGrid firstLeaves = leaves();
+  GridDiff d = diff(firstLeaves, scratchLeaves());
+  dyngi::test::report("street, volume around the camera: %.1f m a side, %.2f m voxels, %zu leaves, %llu fragments in %llu slots\n", side,
+                      first.voxelSize, d.reference, (unsigned long long)st.fragments, (unsigned long long)st.fragmentCapacity);
+  EXPECT_GT(d.reference, 1000u);
+  EXPECT_EQ(d.missing + d.extra, 0u) << "as a voxel scene over that volume builds it";
+  EXPECT_LT(st.fragmentCapacity, 4 * st.fragments) << "the geometry outside the volume reserves nothing";
+
+  ecs::Entity camera{};
+  world.each<scene::ActiveCamera>([&](ecs::Entity e, const scene::ActiveCamera&) { camera = e; });
+  world.write<scene::Transform>(camera).translation.x += 40.0f;  // into the next cell of half the reach (32 m)
+  step();
+  const gi::VoxelVolume moved = voxels->volume();
+  EXPECT_EQ(st.volumeMoves, 1u);
+  EXPECT_NEAR(moved.origin.x - first.origin.x, 0.5f * reach, 1e-3f);
+  EXPECT_EQ(moved.origin.y, first.origin.y);
+  EXPECT_TRUE(holdsCamera(moved));
+  d = diff(leaves(), scratchLeaves());
+  EXPECT_EQ(d.missing + d.extra, 0u) << "the moved volume, voxelized afresh";
+  EXPECT_EQ(st.overflowedEntities, 0u);
+
+  world.write<scene::Transform>(camera).translation.x -= 40.0f;
+  step();
+  EXPECT_EQ(st.volumeMoves, 2u);
+  EXPECT_EQ(voxels->volume().origin, first.origin);
+  d = diff(leaves(), firstLeaves);
+  EXPECT_EQ(d.missing + d.extra, 0u) << "back in the first cell: the first voxels";
+}

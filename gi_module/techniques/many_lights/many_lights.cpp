@@ -21,7 +21,7 @@
 #include "gpu_aliases.h"
 #include "sampling.h"
 #include "indirect/emitters.h"
-#include "indirect/vpl_focus.h"
+#include "camera_focus.h"
 
 namespace dyngi::gi {
 
@@ -77,7 +77,7 @@ void ManyLights::prepareEmitters(const render::RenderSnapshot& snapshot, const s
   const EmitterSet emitters(snapshot, assets);
   if (emitters.empty()) return;
   float lightsPower = 0.0f;
-  const scene::Aabb sunBounds = directionalFocus(snapshot, settings_.vpl.directionalReach).bounds;
+  const scene::Aabb sunBounds = cameraFocus(snapshot, settings_.vpl.directionalReach).bounds;
   for (const render::LightItem& l : snapshot.lights) lightsPower += lightPower(l, sunBounds);
   const uint32_t bounces = std::clamp(settings_.vpl.bounces, 1u, 3u), perBounce = vplCount() / bounces;
   // The emitters' share of the first bounce, at least one VPL while they emit, and one left to the RSMs
@@ -149,8 +149,8 @@ void ManyLights::prepare(render::VulkanContext& ctx, const render::RenderSnapsho
   perBounce_ = vplCount() / settings_.vpl.bounces;  // the one rounding rule (VplOptions::effectiveVplCount)
   std::vector<::dyngi::gpu::GpuLight> lights;
   std::vector<gpu::RsmLayer> layers;
-  // A directional light's RSM covers its focus (indirect/vpl_focus.h), seen from outside the scene.
-  const DirectionalFocus focus = directionalFocus(snapshot, settings_.vpl.directionalReach);
+  // A directional light's RSM covers its focus (camera_focus.h), seen from outside the scene.
+  const CameraFocus focus = cameraFocus(snapshot, settings_.vpl.directionalReach);
   for (const render::LightItem& item : snapshot.lights) {
     if (lights.size() >= DYNGI_MAX_LIGHTS) break;
     if (!item.light.enabled || item.light.intensity <= 0.0f) continue;

@@ -147,7 +147,7 @@ void VplPaths::invalidateIndex(uint32_t index, bool hard) {
 void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const std::unordered_set<ecs::Entity>& moved) {
   auto t0 = Clock::now();
   stats_.invalidatedThisFrame = 0;
-  focus_ = directionalFocus(snapshot, settings_.vpl.directionalReach);
+  focus_ = cameraFocus(snapshot, settings_.vpl.directionalReach);
   FrameChecks checks{snapshot, bvh, moved};
   checks.scale = snapshot.sceneBounds.valid() ? std::max(glm::length(snapshot.sceneBounds.extent()), 1e-3f) : 1.0f;
   checks.eps = 1e-4f * checks.scale;
@@ -395,7 +395,7 @@ VplPaths::PathRay VplPaths::rayFromLight(uint32_t path, glm::vec3 seq, float u, 
   const float u1 = seq.y, u2 = seq.z;
   PathRay ray;
   if (L.type == scene::LightType::Directional) {
-    // A disc across the light over the focus (indirect/vpl_focus.h), its rays starting outside the scene.
+    // A disc across the light over the focus (camera_focus.h), its rays starting outside the scene.
     float r = 0.5f * glm::length(focus_.bounds.extent()) + 1e-3f;
     const scene::Aabb& scene = snapshot.sceneBounds;
     const float back = focus_.wholeScene ? 2.0f * r : 2.0f * (0.5f * glm::length(scene.extent()) + glm::distance(focus_.centre, scene.center()));
@@ -464,7 +464,7 @@ void VplPaths::replace(const render::RenderSnapshot& snapshot, const EmbreeScene
 void VplPaths::replaceWith(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
                            const EmitterSet& emitters) {
   auto t0 = Clock::now();
-  focus_ = directionalFocus(snapshot, settings_.vpl.directionalReach);
+  focus_ = cameraFocus(snapshot, settings_.vpl.directionalReach);
   stats_.replacedThisFrame = 0;
   const uint32_t n = uint32_t(vpls_.size());
   uint32_t budget = reshootBudget_;

@@ -26,7 +26,7 @@
 #include "dyngi/engine/render/snapshot.h"
 #include "dyngi/gi/bvh.h"
 #include "dyngi/gi/temporal_options.h"
-#include "indirect/vpl_focus.h"
+#include "camera_focus.h"
 
 namespace dyngi::gi {
 
@@ -101,7 +101,7 @@ class VplPaths {
   glm::vec3 bounceTailScale() const;
   const TemporalOptions& settings() const { return settings_; }
   const VplPathStats& stats() const { return stats_; }
-  const DirectionalFocus& focus() const { return focus_; }  // this frame's, for directional lights
+  const CameraFocus& focus() const { return focus_; }  // this frame's, for directional lights
   uint32_t paths() const { return paths_; }
   uint32_t bounces() const { return settings_.vpl.bounces; }
   uint32_t setOf(uint32_t index) const { return index % settings_.temporalSets; }
@@ -170,7 +170,7 @@ class VplPaths {
   uint32_t paths_ = 0;
   // Where this frame's directional light paths are shot over (invalidate, replace); a path records the
   // focus centre as its light's position (shotFrom), so a focus that moved a step reshoots them.
-  DirectionalFocus focus_;
+  CameraFocus focus_;
   glm::vec3 shotFrom(const render::LightItem& light) const {
     return light.light.type == scene::LightType::Directional && !focus_.wholeScene ? focus_.centre : light.position;
   }

@@ -42,8 +42,9 @@ class FragmentRanges {
   // What a moving entity keeps: its count changes as it turns.
   static uint64_t movingCapacity(const FragmentRange& r) { return 2 * uint64_t(r.lastCount) + 64; }
   // An upper estimate of the fragments `mesh` writes under `modelToVoxel` (overshoots are caught after
-  // the frame, from the counts).
-  static uint64_t estimateFragments(const scene::MeshData& mesh, const glm::mat4& modelToVoxel);
+  // the frame, from the counts), within a volume of `resolution`^3 voxels (0: unbounded): what lies
+  // outside a window around the camera reserves nothing.
+  static uint64_t estimateFragments(const scene::MeshData& mesh, const glm::mat4& modelToVoxel, uint32_t resolution = 0);
 
   // Forgets every range (a new volume: everything is voxelized again).
   void clear();

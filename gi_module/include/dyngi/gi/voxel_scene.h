@@ -34,13 +34,16 @@ struct VoxelBox {
 struct VoxelSettings {
   uint32_t resolution = 128;       // power of two, 64..512
   float padding = 0.05f;           // volume = scene bounds grown by this fraction per side
+  // Metres around the camera the volume covers in a scene wider than that (camera_focus.h): a cube
+  // around a focus near the camera, moved in steps of half of it, instead of the scene's bounds. 0: the scene.
+  float reach = 64.0f;
   uint32_t maxNodeGroups = 1u << 20;  // SVO pool limit: 8 nodes (32 bytes) per group; the pool follows use
   VoxelDebugView debugView = VoxelDebugView::None;  // replaces the final image when set
   // Per-voxel averaged albedo, normal and emission (the voxel debug view, radiance injection). Off, the
   // build makes only what visibility needs: no attribute pass, no attribute memory.
   bool leafAttributes = true;
 
-  static const OptionTable<VoxelSettings>& table();  // resolution only: the rest is the host's business
+  static const OptionTable<VoxelSettings>& table();  // resolution and reach: the rest is the host's business
 };
 
 struct VoxelStats {
@@ -54,6 +57,8 @@ struct VoxelStats {
   uint32_t overflowedEntities = 0;   // re-voxelized next frame with a larger range
   uint32_t entitiesDeferred = 0;     // changed entities the voxelization cap left for a later frame
   bool poolOverflow = false;         // SVO pool too small (occupancy then conservative)
+  bool windowed = false;             // the volume covers the camera's surroundings (VoxelSettings::reach), not the scene
+  uint32_t volumeMoves = 0;          // times the window moved with the camera (each a voxelization afresh)
   // Geometry outside the volume is clipped (not voxelized): no error, and no count either.
   bool rebuilt = false;              // the SVO was rebuilt this frame
   // Of this frame's build: slots the mark pass read (the moving entities', plus the static ones' when
@@ -82,7 +87,8 @@ class VoxelScene final : public render::RenderFeature {
   }
   void markRemoved(ecs::Entity e) { removed_.insert(e); }
   void markAllDirty() { allDirty_ = true; }
-  // Fixes the volume (otherwise the first snapshot's bounds decide it). Re-voxelizes everything.
+  // Fixes the volume (otherwise the first snapshot's bounds decide it, or in a scene wider than the
+  // reach the camera's surroundings, frame by frame). Re-voxelizes everything.
   void setVolume(const VoxelVolume& v);
   void setDebugView(VoxelDebugView v);
   // Builds the leaf attributes from now on (a technique that reads them: radiance injection).
@@ -164,6 +170,9 @@ class VoxelScene final : public render::RenderFeature {
   VoxelSettings settings_;
   VoxelVolume volume_;
   bool haveVolume_ = false;
+  bool volumeFixed_ = false;  // by setVolume: no window follows the camera
+  // The volume for this snapshot: the scene's bounds (decided once) or the window around the camera.
+  void placeVolume(const render::RenderSnapshot& snapshot);
   bool allDirty_ = true;
   uint32_t updateInterval_ = 1;
   uint64_t voxelizeCap_ = 0;

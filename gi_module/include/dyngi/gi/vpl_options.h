@@ -40,7 +40,7 @@ struct VplOptions {
   float luminanceThreshold = 0.01f;    // skip VPLs dimmer than this fraction of a first-bounce VPL
   // Directional lights shoot their VPLs over the part of the scene within this many metres of the camera
   // (its centre snapped to a grid of half of it) when the scene is wider: a sun over a 400 m street puts
-  // its VPLs where the camera sees their light. 0: over the whole scene (indirect/vpl_focus.h).
+  // its VPLs where the camera sees their light. 0: over the whole scene (camera_focus.h).
   float directionalReach = 64.0f;
   float liftVoxels = 1.5f;             // SVO visibility: segment ends leave their surface by this many voxels
   float filterPlaneTolerance = 0.02f;  // filter: taps on the pixel's plane within this fraction of the view distance

@@ -1,11 +1,11 @@
-#include "indirect/vpl_focus.h"
+#include "camera_focus.h"
 
 #include <cmath>
 
 namespace dyngi::gi {
 
-DirectionalFocus directionalFocus(const render::RenderSnapshot& snapshot, float reach) {
-  DirectionalFocus f;
+CameraFocus cameraFocus(const render::RenderSnapshot& snapshot, float reach) {
+  CameraFocus f;
   const scene::Aabb& scene = snapshot.sceneBounds;
   f.bounds = scene;
   if (!scene.valid()) return f;
