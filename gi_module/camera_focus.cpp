@@ -4,7 +4,7 @@
 
 namespace dyngi::gi {
 
-CameraFocus cameraFocus(const render::RenderSnapshot& snapshot, float reach) {
+CameraFocus cameraFocus(const render::RenderSnapshot& snapshot, float reach, float step) {
   CameraFocus f;
   const scene::Aabb& scene = snapshot.sceneBounds;
   f.bounds = scene;
@@ -15,7 +15,7 @@ CameraFocus cameraFocus(const render::RenderSnapshot& snapshot, float reach) {
   const glm::vec3 camera = snapshot.camera.position;
   const bool inside = glm::all(glm::greaterThanEqual(camera, scene.min)) && glm::all(glm::lessThanEqual(camera, scene.max));
   if (!(reach > 0.0f) || f.radius <= reach || !inside) return f;
-  const float cell = 0.5f * reach;
+  const float cell = step > 0.0f ? std::min(step, reach) : 0.5f * reach;
   f.centre = (glm::floor(camera / cell) + 0.5f) * cell;
   const glm::vec3 half(reach / std::sqrt(3.0f));
   f.bounds.min = f.centre - half;

@@ -1,25 +1,34 @@
 #!/usr/bin/env bash
-# Soak test: a dynamic scene (the walking fox under the moving spot, --animate fox-and-spot) rendered
-# headless for many frames with each VPL technique, sampling resident memory and the live Vulkan
-# allocations every 100 frames (the sample's --memory-log). Fails when either grows by more than 1%
+# Soak test: a dynamic scene (by default the walking fox under the moving spot, --animate fox-and-spot)
+# rendered headless for many frames with each technique in GIS, sampling resident memory and the live
+# Vulkan allocations every 100 frames (the sample's --memory-log). Fails when either grows by more than 1%
 # between the end of the warm-up (the first tenth of the run) and any later sample. Not in CI (about
 # 10 minutes per technique on lavapipe); its last result lives in docs/BENCHMARKS.md.
 #   scripts/soak.sh [FRAMES] [SIZE]     defaults: 10000 frames at 64x64
+#   env: GIS (temporal temporal-bvh; also many-lights, vct), ANIMATE (fox-and-spot), SCENE (the animation's)
+#   the camera flying down the 400 m street: ANIMATE=street-flight SCENE=street GIS="temporal vct" scripts/soak.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 FRAMES="${1:-10000}"
 SIZE="${2:-64x64}"
-GIS="${GIS:-svo bvh}"
+GIS="${GIS:-temporal temporal-bvh}"
+ANIMATE="${ANIMATE:-fox-and-spot}"
+SCENE_ARGS=()
+[ -n "${SCENE:-}" ] && SCENE_ARGS=(--scene "$SCENE")
 bash scripts/setup.sh >/dev/null
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDYNGI_BUILD_TESTS=ON >/dev/null
 cmake --build build -j"$(nproc)" --target dyngi_sample >/dev/null
 mkdir -p out/soak
 status=0
 for gi in $GIS; do
-  log=out/soak/memory_$gi.tsv
+  case "$gi" in
+    temporal-bvh) gi_args=(--gi temporal --visibility bvh) ;;
+    *) gi_args=(--gi "$gi") ;;
+  esac
+  log=out/soak/memory_$ANIMATE-$gi.tsv
   start=$(date +%s)
-  build/bin/dyngi_sample --headless --animate fox-and-spot --gi "$gi" --frames "$FRAMES" --size "$SIZE" \
-    --memory-log "$log" --stats out/soak/stats_$gi.json >/dev/null
+  build/bin/dyngi_sample --headless "${SCENE_ARGS[@]}" --animate "$ANIMATE" "${gi_args[@]}" --frames "$FRAMES" --size "$SIZE" \
+    --memory-log "$log" --stats out/soak/stats_$ANIMATE-$gi.json >/dev/null
   secs=$(( $(date +%s) - start ))
   # Columns: frame, rss_kib, vk_allocations, vk_device_bytes. Baseline: the last sample of the warm-up.
   result=$(awk -v frames="$FRAMES" -v gi="$gi" -v secs="$secs" 'NR == 1 { next }

@@ -98,13 +98,18 @@ void VoxelScene::setVolume(const VoxelVolume& v) {
 
 void VoxelScene::placeVolume(const render::RenderSnapshot& snapshot) {
   if (volumeFixed_) return;
-  const CameraFocus focus = cameraFocus(snapshot, settings_.reach);
+  const CameraFocus focus = cameraFocus(snapshot, settings_.reach, kWindowStep * settings_.reach);
   if (focus.wholeScene) {
     // The scene's bounds, decided once: an object that moves past them does not re-voxelize everything.
     if (haveVolume_ && !stats_.windowed) return;
     volume_ = VoxelVolume::around(snapshot.sceneBounds, settings_.resolution, settings_.padding);
   } else {
-    const VoxelVolume window = VoxelVolume::around(focus.bounds, settings_.resolution, settings_.padding);
+    VoxelVolume window = VoxelVolume::around(focus.bounds, settings_.resolution, settings_.padding);
+    // On one grid of that voxel size (every window has the same): where two windows overlap they hold the
+    // same voxels, so a move changes nothing the camera sees near it but what the window uncovers. The grid
+    // is half a voxel off the world's origin: a ground at height 0 on a side between two layers of voxels
+    // would touch both (contact counts) and block segments over it as a ground twice as thick.
+    window.origin = (glm::floor(window.origin / window.voxelSize) + 0.5f) * window.voxelSize;
     if (haveVolume_ && stats_.windowed && window.origin == volume_.origin && window.voxelSize == volume_.voxelSize) return;
     if (haveVolume_) ++stats_.volumeMoves;
     volume_ = window;

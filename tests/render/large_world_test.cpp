@@ -1,8 +1,10 @@
 // The GI in a world far larger than a room: the built-in 400 m "street" and its near copy ("street-near",
 // only what lies within 40 m of the camera along the street). The voxel volume covers the camera's
 // surroundings (VoxelSettings::reach), so near the camera the voxel techniques see what they see in the
-// near copy, and SVO visibility comes to Embree's.
+// near copy, and SVO visibility comes within its voxels' conservativeness of Embree's.
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "support/report.h"
 #include "dyngi/engine/render/image_metrics.h"
@@ -35,8 +37,14 @@ struct StreetRun {
   Frame frame;
   render::ImageRgba indirect;
 };
-StreetRun runStreet(render::VulkanContext& ctx, const gi::GiSettings& s, const char* scene = "street") {
+// `cameraX`: where along the street the camera stands (NaN: the scene's own place).
+StreetRun runStreet(render::VulkanContext& ctx, const gi::GiSettings& s, const char* scene = "street", float cameraX = NAN) {
   GiRun run(ctx, s, scene, kWidth, kHeight);
+  if (!std::isnan(cameraX)) {
+    ecs::Entity camera{};
+    run.world.each<scene::ActiveCamera>([&](ecs::Entity e, const scene::ActiveCamera&) { camera = e; });
+    run.world.write<scene::Transform>(camera).translation.x = cameraX;
+  }
   run.step(kFrames);
   StreetRun r;
   r.frame = run.readFrame();
@@ -52,8 +60,8 @@ StreetRun runStreet(render::VulkanContext& ctx, const gi::GiSettings& s, const c
 }  // namespace
 
 // SVO visibility over voxels of the scene's size (3.4 m over 400 m) blocked most segments that end near
-// a surface, the facade's light among them; over the camera's surroundings it is Embree's exact
-// visibility within its own noise. The run over the whole scene (reach 0) shows the test can fail.
+// a surface, the facade's light among them; over the camera's surroundings it comes within 15 percent of
+// Embree's exact visibility. The run over the whole scene (reach 0) shows the test can fail.
 TEST_F(RenderTest, SvoVisibilityInAWideWorldComesToEmbreesNearTheCamera) {
   gi::GiSettings svo;
   svo.technique = "temporal";
@@ -70,23 +78,38 @@ TEST_F(RenderTest, SvoVisibilityInAWideWorldComesToEmbreesNearTheCamera) {
   EXPECT_LT(a.voxelSize, 1.0f) << "a voxel the size of a street's detail";
   EXPECT_GT(c.voxelSize, 3.0f);
   ASSERT_GT(b.facade, 0.0);
-  EXPECT_NEAR(a.facade / b.facade, 1.0, 0.12);
+  // Where the voxel grid falls on the facade and the ground moves the facade's light by about 10 percent
+  // (0.86-0.99 of Embree's as the grid was placed): SVO visibility is conservative within a voxel.
+  EXPECT_NEAR(a.facade / b.facade, 1.0, 0.15);
   EXPECT_LT(c.facade / b.facade, 0.7) << "voxels of the scene's size block the facade's light";
+  // At -160.1 m the sun's focus (cells of 32 m) lies 16 m behind the camera and the volume (cells of
+  // 8 m) 4 m ahead: the focus' back 8 m are outside the volume, where nothing blocks its VPLs' light.
+  const StreetRun d = runStreet(context(), svo, "street", -160.1f), e = runStreet(context(), bvh, "street", -160.1f);
+  const double dMean = lum(render::meanOver(d.indirect)), eMean = lum(render::meanOver(e.indirect));
+  report("at -160.1 m: facade %.2f of Embree's, whole image's indirect light %.3f of Embree's\n", d.facade / e.facade, dMean / eMean);
+  EXPECT_NEAR(d.facade / e.facade, 1.0, 0.15);
+  EXPECT_NEAR(dMean / eMean, 1.0, 0.08);
 }
 
 // Near the camera, each technique sees the same in the street as in its near copy: the pixels that show
 // the same surface in both (the near copy's blocks and ground, short of its cut) have the same indirect
-// light. The temporal technique's VPLs differ between the two (the sun's over the focus in the street,
-// over the whole near copy) and the street's blocks past the cut bounce some light back: 3.5 percent
-// brighter in the street at the commit that added this test.
+// light. The voxel grids of the two fall differently on the surfaces (0.64 and 0.52 m voxels), which moves
+// the voxel techniques' light by a few percent (SVO visibility by up to 10: the test above); the temporal
+// technique with Embree visibility shows what the size of the world alone changes (its sun's VPLs over
+// the focus in one, over the whole near copy in the other; the street's blocks past the cut).
 TEST_F(RenderTest, NearTheCameraTheStreetLooksAsItsNearCopy) {
   struct Case {
+    const char* label;
     const char* technique;
+    gi::VisibilityBackend visibility;
     double maxRelMse, maxMeanError;
   };
-  for (const Case& k : {Case{"vct", 0.02, 0.03}, Case{"temporal", 0.02, 0.05}}) {
+  for (const Case& k : {Case{"vct", "vct", gi::VisibilityBackend::Svo, 0.02, 0.06},
+                        Case{"temporal (Embree)", "temporal", gi::VisibilityBackend::Bvh, 0.02, 0.05},
+                        Case{"temporal (SVO)", "temporal", gi::VisibilityBackend::Svo, 0.02, 0.12}}) {
     gi::GiSettings s;
     s.technique = k.technique;
+    s.temporal.visibility = k.visibility;
     const StreetRun full = runStreet(context(), s, "street"), near = runStreet(context(), s, "street-near");
     std::vector<uint8_t> same(full.frame.position.size(), 0);
     size_t count = 0;
@@ -100,10 +123,81 @@ TEST_F(RenderTest, NearTheCameraTheStreetLooksAsItsNearCopy) {
     const double rel = render::relativeMse(full.indirect, near.indirect, &same);
     report("%s near the camera, street against street-near (%zu pixels; voxels %.2f and %.2f m): mean ratio %.3f, relMSE %.4f; "
            "facade %.4f and %.4f\n",
-           k.technique, count, full.voxelSize, near.voxelSize, ratio, rel, full.facade, near.facade);
-    EXPECT_GT(count, size_t(kWidth * kHeight / 3)) << k.technique;
-    EXPECT_TRUE(full.windowed) << k.technique;
-    EXPECT_NEAR(ratio, 1.0, k.maxMeanError) << k.technique;
-    EXPECT_LE(rel, k.maxRelMse) << k.technique;
+           k.label, count, full.voxelSize, near.voxelSize, ratio, rel, full.facade, near.facade);
+    EXPECT_GT(count, size_t(kWidth * kHeight / 3)) << k.label;
+    if (k.visibility == gi::VisibilityBackend::Svo) {
+      EXPECT_TRUE(full.windowed) << k.label;
+    }
+    EXPECT_NEAR(ratio, 1.0, k.maxMeanError) << k.label;
+    EXPECT_LE(rel, k.maxRelMse) << k.label;
+  }
+}
+
+// What a camera's step of 10 cm from `from` (x, m) changes in the indirect light of the next frame, on
+// the surfaces inside the voxel volume before and after: the mean's ratio and the worst change of a
+// 16x16 tile that the GI lights.
+struct StepChange {
+  double mean = 0, worstTile = 0;
+  size_t tiles = 0;
+  uint32_t volumeMoves = 0;  // during the step
+};
+StepChange stepChange(render::VulkanContext& ctx, const char* technique, float from) {
+  gi::GiSettings s;
+  s.technique = technique;
+  GiRun run(ctx, s, "street", kWidth, kHeight);
+  ecs::Entity camera{};
+  run.world.each<scene::ActiveCamera>([&](ecs::Entity e, const scene::ActiveCamera&) { camera = e; });
+  run.world.write<scene::Transform>(camera).translation.x = from;
+  run.step(kFrames);
+  const render::ImageRgba before = run.indirect();
+  const gi::VoxelVolume volumeBefore = run.gi->voxels()->volume();
+  const uint32_t moves = run.gi->voxels()->stats().volumeMoves;
+  run.world.write<scene::Transform>(camera).translation.x = from + 0.1f;
+  run.step();
+  const render::ImageRgba after = run.indirect();
+  const gi::VoxelVolume volumeAfter = run.gi->voxels()->volume();
+  const Frame f = run.readFrame();
+  StepChange c;
+  c.volumeMoves = run.gi->voxels()->stats().volumeMoves - moves;
+  auto inside = [](const gi::VoxelVolume& v, const glm::vec3& p) {
+    const glm::vec3 q = v.toVoxel(p);
+    return glm::all(glm::greaterThanEqual(q, glm::vec3(0.0f))) && glm::all(glm::lessThan(q, glm::vec3(float(v.resolution))));
+  };
+  std::vector<uint8_t> both(f.position.size(), 0);
+  for (size_t i = 0; i < both.size(); ++i)
+    both[i] = f.position[i].w != 0.0f && inside(volumeBefore, glm::vec3(f.position[i])) && inside(volumeAfter, glm::vec3(f.position[i]));
+  const double lit = lum(render::meanOver(before, &both));
+  c.mean = lum(render::meanOver(after, &both)) / lit;
+  for (uint32_t ty = 0; ty < kHeight / 16; ++ty)
+    for (uint32_t tx = 0; tx < kWidth / 16; ++tx) {
+      std::vector<uint8_t> tile(before.size(), 0);
+      size_t n = 0;
+      for (uint32_t y = ty * 16; y < ty * 16 + 16; ++y)
+        for (uint32_t x = tx * 16; x < tx * 16 + 16; ++x) n += tile[y * kWidth + x] = both[y * kWidth + x];
+      if (n < 64) continue;
+      const double b = lum(render::meanOver(before, &tile)), a = lum(render::meanOver(after, &tile));
+      if (b > 0.25 * lit) c.worstTile = std::max(c.worstTile, std::abs(a / b - 1.0)), ++c.tiles;
+    }
+  return c;
+}
+
+// A camera that steps 10 cm across a side of the voxel volume's cells moves the volume by a cell (8 m).
+// On the surfaces inside both volumes that frame changes no more than the same step within a cell
+// changes its frame: no flash. Past the old volume's far side the new one lights what was dark (the edge
+// of the reach: docs/QUALITY.md). The boundary is not one of the sun's focus (32 m cells).
+TEST_F(RenderTest, AVolumeMoveLeavesNoFlash) {
+  const float cell = gi::VoxelScene::kWindowStep * gi::VoxelSettings{}.reach;  // 8 m
+  const float boundary = -21.0f * cell;                                        // -168 m
+  for (const char* technique : {"vct", "temporal"}) {
+    const StepChange across = stepChange(context(), technique, boundary - 0.05f), within = stepChange(context(), technique, boundary - 0.5f * cell);
+    report("%s, a 10 cm step inside both volumes: across a cell's side (the volume moved %u time) mean x%.4f, worst of %zu lit tiles "
+           "%.1f percent; within a cell (moved %u times) x%.4f, %.1f percent\n",
+           technique, across.volumeMoves, across.mean, across.tiles, 100.0 * across.worstTile, within.volumeMoves, within.mean,
+           100.0 * within.worstTile);
+    EXPECT_EQ(across.volumeMoves, 1u) << technique;
+    EXPECT_EQ(within.volumeMoves, 0u) << technique;
+    EXPECT_GT(across.tiles, 10u) << technique;
+    EXPECT_NEAR(across.mean, within.mean, 0.01) << technique;
+    EXPECT_LT(across.worstTile, within.worstTile + 0.03) << technique;
   }
 }

@@ -676,8 +676,9 @@ TEST_F(VoxelTest, SkinnedBarReVoxelizesAsItBendsAndMatchesExactOverlap) {
 
 // In a scene wider than the reach (the 400 m street) the volume covers the camera's surroundings: voxels
 // of a street's detail instead of 3.4 m ones, nothing reserved for the geometry outside, and a camera
-// that crosses into the next cell of half the reach moves the volume, voxelized afresh there as a new
-// voxel scene at that place would be; back in the first cell, the first voxels again.
+// that moves into another cell of the volume's grid moves the volume, voxelized afresh there as a new
+// voxel scene at that place would be, the same voxels where the two overlap; back in the first cell, the
+// first voxels again.
 TEST_F(VoxelTest, TheVolumeFollowsTheCameraInAWideWorld) {
   run("street", 128, 1);
   const gi::VoxelStats& st = voxels->stats();
@@ -701,18 +702,34 @@ TEST_F(VoxelTest, TheVolumeFollowsTheCameraInAWideWorld) {
 
   ecs::Entity camera{};
   world.each<scene::ActiveCamera>([&](ecs::Entity e, const scene::ActiveCamera&) { camera = e; });
-  world.write<scene::Transform>(camera).translation.x += 40.0f;  // into the next cell of half the reach (32 m)
+  const float cell = gi::VoxelScene::kWindowStep * reach;  // the cells the volume moves by (8 m)
+  world.write<scene::Transform>(camera).translation.x += 5.0f * cell;
   step();
   const gi::VoxelVolume moved = voxels->volume();
   EXPECT_EQ(st.volumeMoves, 1u);
-  EXPECT_NEAR(moved.origin.x - first.origin.x, 0.5f * reach, 1e-3f);
+  const float shift = (moved.origin.x - first.origin.x) / first.voxelSize;
+  EXPECT_NEAR(shift * first.voxelSize, 5.0f * cell, first.voxelSize);
+  EXPECT_NEAR(shift, std::round(shift), 1e-3f) << "both volumes on one grid of voxels";
   EXPECT_EQ(moved.origin.y, first.origin.y);
   EXPECT_TRUE(holdsCamera(moved));
-  d = diff(leaves(), scratchLeaves());
+  const gi::DenseVoxelGrid movedLeaves = leaves();
+  d = diff(movedLeaves, scratchLeaves());
   EXPECT_EQ(d.missing + d.extra, 0u) << "the moved volume, voxelized afresh";
+  // Where the two volumes overlap (a voxel of their sides left out: clipping), the same voxels.
+  const int k = int(std::lround(shift)), res = int(first.resolution);
+  size_t overlap = 0, differ = 0;
+  for (int z = 1; z < res - 1; ++z)
+    for (int y = 1; y < res - 1; ++y)
+      for (int x = 1; x + k < res - 1; ++x) {
+        overlap += movedLeaves.get(x, y, z);
+        differ += movedLeaves.get(x, y, z) != firstLeaves.get(x + k, y, z);
+      }
+  dyngi::test::report("moved %d voxels along the street: %zu leaves where the volumes overlap, %zu differ\n", k, overlap, differ);
+  EXPECT_GT(overlap, 1000u);
+  EXPECT_EQ(differ, 0u) << "a move changes nothing where the volumes overlap";
   EXPECT_EQ(st.overflowedEntities, 0u);
 
-  world.write<scene::Transform>(camera).translation.x -= 40.0f;
+  world.write<scene::Transform>(camera).translation.x -= 5.0f * cell;
   step();
   EXPECT_EQ(st.volumeMoves, 2u);
   EXPECT_EQ(voxels->volume().origin, first.origin);

@@ -35,7 +35,7 @@ struct VoxelSettings {
   uint32_t resolution = 128;       // power of two, 64..512
   float padding = 0.05f;           // volume = scene bounds grown by this fraction per side
   // Metres around the camera the volume covers in a scene wider than that (camera_focus.h): a cube
-  // around a focus near the camera, moved in steps of half of it, instead of the scene's bounds. 0: the scene.
+  // around a focus near the camera, moved in steps of kWindowStep of it, instead of the scene's bounds. 0: the scene.
   float reach = 64.0f;
   uint32_t maxNodeGroups = 1u << 20;  // SVO pool limit: 8 nodes (32 bytes) per group; the pool follows use
   VoxelDebugView debugView = VoxelDebugView::None;  // replaces the final image when set
@@ -113,6 +113,10 @@ class VoxelScene final : public render::RenderFeature {
   void setVoxelizeCap(uint64_t fragments) { voxelizeCap_ = fragments; }
   void setSpreadVoxelization(bool spread) { spreadVoxelization_ = spread; }
   static constexpr uint64_t kMinSpreadFragments = 1u << 16;
+  // The window around the camera (VoxelSettings::reach) moves in steps of this fraction of the reach:
+  // each move voxelizes it afresh, and what the camera sees near a side changes at each, so small steps
+  // keep the camera near the centre and each step's change small.
+  static constexpr float kWindowStep = 0.125f;
 
   const VoxelVolume& volume() const { return volume_; }
   bool hasVolume() const { return haveVolume_; }
