@@ -40,6 +40,7 @@ template <typename T>
 class ComponentPool final : public ComponentPoolBase {
  public:
   static constexpr uint32_t kAbsent = 0xFFFFFFFFu;
+  static constexpr size_t kMinDroppedLog = 4096;  // shorter logs are kept: a small pool's scan is no cheaper
 
   bool contains(Entity e) const override {
     return e.index < sparse_.size() && sparse_[e.index] != kAbsent && entities_[sparse_[e.index]] == e;
@@ -142,6 +143,14 @@ class ComponentPool final : public ComponentPoolBase {
     if (changedTick_[d] == tick) return;  // already logged during this tick
     changedTick_[d] = tick;
     lastSeq_[d] = ++seq_;
+    // A log holding records for a quarter of the pool walks about as fast as a scan of it (which reads
+    // the ticks in order; forEachChangedSince scans for readers older than logFloor_): it is dropped
+    // with its memory, so a bulk load of N entities logs N / 4 records at most.
+    if (changeLog_.size() >= kMinDroppedLog && 4 * changeLog_.size() >= dense_.size()) {
+      changeLog_ = {};
+      logFloor_ = std::max(logFloor_, tick);
+      return;
+    }
     changeLog_.push_back({entities_[d], tick, seq_});
   }
   uint32_t denseIndexOrThrow(Entity e) const {
