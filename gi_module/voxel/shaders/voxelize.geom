@@ -1,6 +1,6 @@
 #version 460
-// Dominant-axis projection with expansion: each triangle becomes a quad covering its projected
-// bounding box grown by one pixel, so every pixel column the triangle touches gets a fragment (lavapipe
+// Dominant-axis projection with expansion: each triangle becomes a quad covering the pixel columns its
+// projected bounding box touches, so every pixel column the triangle touches gets a fragment (lavapipe
 // has no conservative rasterization). The fragment shader then tests voxels exactly.
 #extension GL_GOOGLE_include_directive : require
 #include "voxel_shared.h"
@@ -40,7 +40,10 @@ void main() {
   if (n.x + n.y + n.z == 0.0) return;  // degenerate
   uint ax = (n.x >= n.y && n.x >= n.z) ? 0u : (n.y >= n.z ? 1u : 2u);
   vec2 pa = project(a, ax), pb = project(b, ax), pc2 = project(c, ax);
-  vec2 lo = min(pa, min(pb, pc2)) - 1.0, hi = max(pa, max(pb, pc2)) + 1.0;
+  // The pixel columns the projected bounding box touches (contact included, as the fragment shader's
+  // test counts it), snapped outward to pixel edges: every centre inside is a column to test.
+  const float kTouch = 1e-3;
+  vec2 lo = floor(min(pa, min(pb, pc2)) - kTouch), hi = floor(max(pa, max(pb, pc2)) + kTouch) + 1.0;
   float res = float(pc.resolution);
   vec2 corners[4] = vec2[](lo, vec2(hi.x, lo.y), vec2(lo.x, hi.y), hi);
   for (int i = 0; i < 4; ++i) {
