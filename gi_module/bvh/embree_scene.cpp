@@ -62,7 +62,6 @@ struct EmbreeScene::Impl {
     unsigned geomId = RTC_INVALID_GEOMETRY_ID;
     ecs::Entity entity;
     scene::MeshId mesh = 0;
-    glm::mat4 transform{1.0f};
   };
 
   RTCDevice device = nullptr;
@@ -153,8 +152,14 @@ struct EmbreeScene::Impl {
     return blas.emplace(id, b).first->second;
   }
 
+  // The instance's matrix as Embree holds it (exactly the floats set: a copy here would cost 64 bytes
+  // an instance, a quarter of Embree's own).
+  static glm::mat4 transformOf(const Instance& inst) {
+    glm::mat4 m(1.0f);
+    rtcGetGeometryTransform(inst.geometry, 0.0f, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &m[0][0]);
+    return m;
+  }
   void setTransform(Instance& inst, const glm::mat4& m) {
-    inst.transform = m;
     rtcSetGeometryTransform(inst.geometry, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &m[0][0]);
     rtcCommitGeometry(inst.geometry);
   }
@@ -334,7 +339,7 @@ void EmbreeScene::Impl::upsert(SyncPass& pass, ecs::Entity e) {
     rtcCommitGeometry(inst.geometry);
     pass.topDirty = true;
   }
-  if (inst.transform != wt->matrix) {
+  if (transformOf(inst) != wt->matrix) {
     setTransform(inst, wt->matrix);
     ++pass.stats.instancesUpdated;
     pass.topDirty = true;
@@ -498,7 +503,7 @@ void EmbreeScene::occluded(const Segment* segs, size_t count, uint8_t* out, floa
 
 glm::mat4 EmbreeScene::instanceTransform(ecs::Entity e) const {
   auto it = impl_->instances.find(e);
-  return it == impl_->instances.end() ? glm::mat4(1.0f) : it->second.transform;
+  return it == impl_->instances.end() ? glm::mat4(1.0f) : Impl::transformOf(it->second);
 }
 
 }  // namespace dyngi::gi
