@@ -59,11 +59,13 @@ class ShadowPass {
   uint32_t lightCount_ = 0;
   std::vector<glm::mat4> layerMatrices_;
   // What the shadow map holds: each layer's view, and the casters drawn into it.
+  // 24 bytes a caster, its matrix as a 64-bit hash of its bits (a scene of 200,000 instances keeps
+  // several lists of them; two matrices with one hash are a 2^-64 chance).
   struct Caster {
     scene::Entity entity;
     scene::MeshId mesh;
     uint32_t version;
-    glm::mat4 model;
+    uint64_t modelHash;
     bool operator==(const Caster&) const = default;
   };
   std::vector<glm::mat4> renderedMatrices_;

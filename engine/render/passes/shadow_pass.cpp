@@ -14,6 +14,18 @@
 #include "spirv/shadow_masked.vert.spv.h"
 
 namespace dyngi::render {
+namespace {
+// A 64-bit hash of a matrix's bits (FNV-1a over its floats, then a final mix): equal matrices hash equal.
+uint64_t hashOfMatrix(const glm::mat4& m) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) h = (h ^ std::bit_cast<uint32_t>(m[c][r])) * 0x100000001b3ull;
+  h ^= h >> 33;
+  h *= 0xff51afd7ed558ccdull;
+  return h ^ (h >> 33);
+}
+}  // namespace
+
 ShadowPass::ShadowPass(VulkanContext& ctx, const Settings& settings) : ctx_(ctx), settings_(settings) {
   Pipeline::GraphicsDesc d;
   d.vertex = DYNGI_SHADER(spv_shadow_vert);
@@ -190,7 +202,7 @@ ShadowPass::CasterSets ShadowPass::gatherCasters(const FrameContext& frame) {
     const DrawItem& d = frame.snapshot.draws[i];
     const GpuMesh* mesh = frame.meshes[i];
     if (!d.castShadows || !mesh || mesh->indexCount == 0) continue;
-    Caster c{d.entity, d.mesh, mesh->version, d.model};
+    Caster c{d.entity, d.mesh, mesh->version, hashOfMatrix(d.model)};
     const Caster* was = previous(sets.casters.size(), d.entity);
     uint64_t changedAt = 0;
     if (rendered_ && (!was || !(*was == c))) changedAt = casterChangedAt_[d.entity] = frameCounter_;
