@@ -107,6 +107,7 @@ void reportGi(const gi::GiSettings& settings, const GiSetup& g, RunStats& stats)
     addSettings(stats, gi::bindOptions(used));
     stats.scalars["voxel_fragments"] = double(v.fragments);
     stats.scalars["voxel_entities_deferred"] = double(v.entitiesDeferred);  // by a GI budget's voxelization cap, last frame
+    stats.scalars["voxel_draws_by_compute"] = double(v.drawsComputeVoxelized);  // of small triangles, at the last voxelization
     stats.scalars["svo_nodes"] = double(v.nodes);
     stats.scalars["svo_leaves"] = double(v.leaves);
     stats.scalars["svo_bytes"] = double(v.svoBytes);

@@ -112,8 +112,7 @@ void buildFrameInstances(VulkanContext& ctx, const RenderSnapshot& snapshot, con
   out.records = &records;
 }
 
-void drawBatched(const FrameContext& frame, std::optional<std::span<const size_t>> indices, const DrawPipelineFor& pipelineFor,
-                 const BatchSetup& setup) {
+void forEachBatch(const FrameContext& frame, std::optional<std::span<const size_t>> indices, const BatchVisitor& visit) {
   const FrameInstances& inst = *frame.instances;
   std::vector<uint32_t> slots;
   if (indices) {
@@ -124,7 +123,6 @@ void drawBatched(const FrameContext& frame, std::optional<std::span<const size_t
     slots.resize(frame.snapshot.draws.size());
     std::iota(slots.begin(), slots.end(), 0u);
   }
-  const Pipeline* bound = nullptr;
   for (size_t k = 0; k < slots.size();) {
     const uint32_t first = slots[k];
     size_t end = k + 1;
@@ -134,16 +132,23 @@ void drawBatched(const FrameContext& frame, std::optional<std::span<const size_t
     const size_t drawIndex = inst.drawOfSlot[first];
     const GpuMesh* mesh = frame.meshes[drawIndex];
     if (!mesh || mesh->indexCount == 0) continue;
-    const DrawItem& d = frame.snapshot.draws[drawIndex];
+    visit(frame.snapshot.draws[drawIndex], *mesh, first, count);
+  }
+}
+
+void drawBatched(const FrameContext& frame, std::optional<std::span<const size_t>> indices, const DrawPipelineFor& pipelineFor,
+                 const BatchSetup& setup) {
+  const Pipeline* bound = nullptr;
+  forEachBatch(frame, indices, [&](const DrawItem& d, const GpuMesh& mesh, uint32_t first, uint32_t count) {
     const Pipeline& pipeline = pipelineFor(d);
     if (&pipeline != bound) {
       vkCmdBindPipeline(frame.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.handle());
       bound = &pipeline;
     }
     setup(frame.cmd, d, pipeline);
-    bindMesh(frame.cmd, *mesh);
-    vkCmdDrawIndexed(frame.cmd, mesh->indexCount, count, 0, 0, first);
-  }
+    bindMesh(frame.cmd, mesh);
+    vkCmdDrawIndexed(frame.cmd, mesh.indexCount, count, 0, 0, first);
+  });
 }
 
 }  // namespace dyngi::render

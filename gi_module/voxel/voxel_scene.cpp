@@ -18,6 +18,7 @@
 #include "spirv/voxelize.geom.spv.h"
 #include "spirv/voxelize.vert.spv.h"
 #include "spirv/voxelize_tangent.vert.spv.h"
+#include "spirv/voxelize_small.comp.spv.h"
 
 #include "gpu_aliases.h"
 
@@ -203,6 +204,8 @@ std::unordered_set<ecs::Entity> VoxelScene::deferredByCap(const render::RenderSn
 
 void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& snapshot) {
   drawsToVoxelize_.clear();
+  rasterDraws_.clear();
+  computeDraws_.clear();
   rangesToEmpty_.clear();
   voxelizedThisFrame_.clear();
   staleBoxes_.clear();
@@ -268,6 +271,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     const uint64_t estimate = FragmentRanges::estimateFragments(snapshot.assets->mesh(d.mesh), toVoxel * d.model, volume_.resolution);
     planned.push_back({d.entity, ranges_.plan(d.entity, estimate, newHighWater, rangesToEmpty_)});
     drawsToVoxelize_.push_back(i);
+    (voxelizesByCompute(snapshot, d, toVoxel) ? computeDraws_ : rasterDraws_).push_back(i);
   }
   ensureCapacity(newHighWater);  // grows by copying: nothing already voxelized is lost
   for (auto& [e, r] : planned) {
@@ -299,6 +303,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     counters_ = std::move(grown);
   }
   stats_.entitiesVoxelized = uint32_t(drawsToVoxelize_.size());
+  if (!drawsToVoxelize_.empty()) stats_.drawsComputeVoxelized = uint32_t(computeDraws_.size());
   if (rebuildSvo_) svo_->plan(ranges_, frameIndex_, voxelizedThisFrame_, removedNow, stats_);
 }
 
@@ -335,6 +340,44 @@ render::Pipeline& VoxelScene::voxelizePipelineFor(uint32_t textureBits) {
   return pipeline;
 }
 
+render::Pipeline& VoxelScene::voxelizeSmallPipelineFor(uint32_t textureBits) {
+  const bool alphaMask = textureBits & DYNGI_MATERIAL_ALPHA_MASK;
+  textureBits &= DYNGI_MATERIAL_BASE_COLOR_TEX | DYNGI_MATERIAL_EMISSIVE_TEX | DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX;
+  Pipeline& pipeline = voxelizeSmall_[textureBits | (alphaMask ? 8u : 0u)];
+  if (pipeline.handle()) return pipeline;
+  const render::Binding bindings[] = {{DYNGI_VOXELIZE_BINDING_FRAGMENTS, kSSBO, VK_SHADER_STAGE_COMPUTE_BIT},
+                                        {DYNGI_VOXELIZE_BINDING_COUNTERS, kSSBO, VK_SHADER_STAGE_COMPUTE_BIT},
+                                        {DYNGI_VOXELIZE_BINDING_INSTANCES, kSSBO, VK_SHADER_STAGE_COMPUTE_BIT},
+                                        {DYNGI_VOXELIZE_BINDING_RANGES, kSSBO, VK_SHADER_STAGE_COMPUTE_BIT},
+                                        {DYNGI_VOXELIZE_BINDING_VERTICES, kSSBO, VK_SHADER_STAGE_COMPUTE_BIT},
+                                        {DYNGI_VOXELIZE_BINDING_INDICES, kSSBO, VK_SHADER_STAGE_COMPUTE_BIT},
+                                        {DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+                                        {DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+                                        {DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+                                        {DYNGI_VOXELIZE_BINDING_NORMAL_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT}};
+  auto bit = [&](uint32_t b) { return (textureBits & b) ? 1u : 0u; };
+  const uint32_t specialization[] = {bit(DYNGI_MATERIAL_BASE_COLOR_TEX), bit(DYNGI_MATERIAL_EMISSIVE_TEX), bit(DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX),
+                                     alphaMask ? 1u : 0u};
+  pipeline = Pipeline::compute(ctx_, DYNGI_SHADER(spv_voxelize_small_comp), bindings, sizeof(gpu::VoxelizePush), "voxelize small", specialization);
+  return pipeline;
+}
+
+// Whether every triangle of the draw spans at most kComputeVoxelizeSpan voxels a side (a normal texture
+// needs the raster path's vertex frame).
+bool VoxelScene::voxelizesByCompute(const render::RenderSnapshot& snapshot, const render::DrawItem& d, const glm::mat4& toVoxel) const {
+  if (!computeVoxelization_ || d.material.normalTexture != scene::kNoTexture) return false;
+  const scene::MeshData& mesh = snapshot.assets->mesh(d.mesh);
+  if (mesh.indices.size() < 3) return false;
+  const glm::mat4 m = toVoxel * d.model;
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const glm::vec3 a(m * glm::vec4(mesh.positions[mesh.indices[t]], 1)), b(m * glm::vec4(mesh.positions[mesh.indices[t + 1]], 1)),
+        c(m * glm::vec4(mesh.positions[mesh.indices[t + 2]], 1));
+    const glm::vec3 span = glm::max(a, glm::max(b, c)) - glm::min(a, glm::min(b, c));
+    if (!(glm::all(glm::lessThanEqual(span, glm::vec3(kComputeVoxelizeSpan))))) return false;  // NaN: the raster path
+  }
+  return true;
+}
+
 bool VoxelScene::record(render::FrameContext& frame) {
   if (!rebuildSvo_ || !haveVolume_) return false;
   VkCommandBuffer cmd = frame.cmd;
@@ -352,21 +395,18 @@ bool VoxelScene::record(render::FrameContext& frame) {
     }
     for (const auto& [first, count] : coalesceSpans(slotSpans)) vkCmdFillBuffer(cmd, fragments_.handle(), first * 16, count * 16, DYNGI_VOXEL_EMPTY);
     for (const auto& [first, count] : coalesceSpans(counterSpans)) vkCmdFillBuffer(cmd, counters_.handle(), first * 4, count * 4, 0);
-    render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+    render::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     if (!drawsToVoxelize_.empty()) {
-      // No attachments: the fragment shader appends to the entity's range.
-      render::RenderingScope rendering(cmd, res, res);
-      auto pipelineFor = [&](const render::DrawItem& d) -> const Pipeline& {
-        return voxelizePipelineFor(render::drawTextureBits(frame, d));
-      };
       writeVoxelizeRanges(frame);
       gpu::VoxelizePush pc{};
       pc.worldToVoxel = volume_.worldToVoxelMatrix();
       pc.resolution = res;
-      render::drawBatched(frame, drawsToVoxelize_, pipelineFor, [&](VkCommandBuffer c, const render::DrawItem& d, const Pipeline& pipeline) {
-        DescriptorWrites()
-            .storageBuffer(DYNGI_VOXELIZE_BINDING_FRAGMENTS, fragments_.handle())
+      // Both voxelizers: the fragment storage, the draw records, the ranges and the material's textures.
+      auto writes = [&](const render::DrawItem& d) {
+        DescriptorWrites w;
+        w.storageBuffer(DYNGI_VOXELIZE_BINDING_FRAGMENTS, fragments_.handle())
             .storageBuffer(DYNGI_VOXELIZE_BINDING_COUNTERS, counters_.handle())
             .storageBuffer(DYNGI_VOXELIZE_BINDING_INSTANCES, frame.instances->records->handle())
             .storageBuffer(DYNGI_VOXELIZE_BINDING_RANGES, voxelizeRanges_.handle())
@@ -374,11 +414,36 @@ bool VoxelScene::record(render::FrameContext& frame) {
             .sampledImage(DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, frame.textureView(d.material.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
             .sampledImage(DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX, frame.textureView(d.material.metallicRoughnessTexture), frame.linearSampler,
                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-            .sampledImage(DYNGI_VOXELIZE_BINDING_NORMAL_TEX, frame.textureView(d.material.normalTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-            .push(ctx_, c, pipeline);
-        vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                           sizeof(pc), &pc);
-      });
+            .sampledImage(DYNGI_VOXELIZE_BINDING_NORMAL_TEX, frame.textureView(d.material.normalTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        return w;
+      };
+      if (!rasterDraws_.empty()) {
+        // No attachments: the fragment shader appends to the entity's range.
+        render::RenderingScope rendering(cmd, res, res);
+        auto pipelineFor = [&](const render::DrawItem& d) -> const Pipeline& { return voxelizePipelineFor(render::drawTextureBits(frame, d)); };
+        render::drawBatched(frame, rasterDraws_, pipelineFor, [&](VkCommandBuffer c, const render::DrawItem& d, const Pipeline& pipeline) {
+          writes(d).push(ctx_, c, pipeline);
+          vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                             sizeof(pc), &pc);
+        });
+      }
+      if (!computeDraws_.empty()) {
+        render::computeWriteBarrier(cmd);  // an entity's draws may take both voxelizers: its counter's appends in order
+        render::forEachBatch(frame, computeDraws_, [&](const render::DrawItem& d, const render::GpuMesh& mesh, uint32_t first, uint32_t count) {
+          const Pipeline& pipeline = voxelizeSmallPipelineFor(render::drawTextureBits(frame, d));
+          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+          writes(d)
+              .storageBuffer(DYNGI_VOXELIZE_BINDING_VERTICES, mesh.vertices.handle())
+              .storageBuffer(DYNGI_VOXELIZE_BINDING_INDICES, mesh.indices.handle())
+              .push(ctx_, cmd, pipeline);
+          gpu::VoxelizePush batch = pc;
+          batch.firstInstance = first;
+          batch.instanceCount = count;
+          batch.triangleCount = mesh.indexCount / 3;
+          vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(batch), &batch);
+          vkCmdDispatch(cmd, uint32_t((uint64_t(count) * batch.triangleCount + 63) / 64), 1, 1);
+        });
+      }
     }
     render::computeWriteBarrier(cmd);
   }

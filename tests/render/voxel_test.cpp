@@ -127,6 +127,70 @@ TEST_F(VoxelTest, VoxelizationCoversExactOverlapAndSvoLeavesEqualIt) {
               (unsigned long long)st.leaves);
 }
 
+TEST_F(VoxelTest, SmallTrianglesTakeTheComputeVoxelizerAndWriteTheRasterPathsFragments) {
+  // 400 boxes about a voxel wide, turned every way, in plain, emissive and textured materials, over a
+  // floor whose triangles span the volume: the boxes take the compute voxelizer, the floor the raster
+  // one. The same snapshot voxelized with the raster path alone (a second voxel scene over the same
+  // volume) gives the same fragments, and both cover the exact overlap.
+  scene::TextureData texture;
+  texture.width = texture.height = 4;
+  for (int i = 0; i < 16; ++i) texture.rgba8.insert(texture.rgba8.end(), {uint8_t(40 * (i % 4) + 60), uint8_t(30 * (i / 4) + 90), 200, 255});
+  const scene::TextureId checker = assets.addTexture(texture);
+  const scene::MeshId floor = assets.addMesh(scene::makeQuad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}));
+  const scene::MeshId box = assets.addMesh(scene::makeBox(glm::vec3(0.008f)));
+  addMeshEntity(floor, scene::Transform{});
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> U(0.0f, 1.0f);
+  for (int i = 0; i < 400; ++i) {
+    scene::Transform t{.translation = glm::vec3(2.0f * U(rng) - 1.0f, 0.02f + 1.5f * U(rng), 2.0f * U(rng) - 1.0f)};
+    t.rotation = glm::normalize(glm::quat(U(rng) - 0.5f, U(rng) - 0.5f, U(rng) - 0.5f, U(rng) - 0.5f));
+    const ecs::Entity e = addMeshEntity(box, t);
+    scene::Material& m = world.write<scene::Material>(e);
+    m.baseColor = glm::vec4(U(rng), U(rng), U(rng), 1.0f);
+    if (i % 3 == 1) m.emissive = glm::vec3(4.0f * U(rng), U(rng), 0.5f);
+    if (i % 3 == 2) m.baseColorTexture = checker, m.metallic = 0.5f * U(rng);
+  }
+  attachVoxels(64, 32);
+  step();
+  EXPECT_EQ(voxels->stats().drawsComputeVoxelized, 400u);
+  EXPECT_EQ(voxels->stats().entitiesVoxelized, 401u);
+
+  auto sorted = [](std::vector<gi::VoxelFragment> f) {
+    auto key = [](const gi::VoxelFragment& a) {
+      return std::make_tuple(a.cell.x, a.cell.y, a.cell.z, a.albedo.r, a.albedo.g, a.albedo.b, a.emission.r, a.emission.g, a.emission.b, a.normal.x,
+                             a.normal.y, a.normal.z);
+    };
+    std::sort(f.begin(), f.end(), [&](const auto& a, const auto& b) { return key(a) < key(b); });
+    return f;
+  };
+  const std::vector<gi::VoxelFragment> both = sorted(gi::VoxelProbe(*voxels).readbackFragments());
+  gi::VoxelScene raster(context(), gi::VoxelSettings{.resolution = 64});
+  raster.setComputeVoxelization(false);
+  raster.setVolume(voxels->volume());
+  render::Renderer r2(context());
+  r2.addFeature(&raster);
+  r2.resize(16, 16);
+  r2.render(snapshot);
+  EXPECT_EQ(raster.stats().drawsComputeVoxelized, 0u);
+  const std::vector<gi::VoxelFragment> rasterOnly = sorted(gi::VoxelProbe(raster).readbackFragments());
+  ASSERT_EQ(both.size(), rasterOnly.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < both.size(); ++i) {
+    const gi::VoxelFragment &a = both[i], &b = rasterOnly[i];
+    differ += a.cell != b.cell || glm::any(glm::greaterThan(glm::abs(a.albedo - b.albedo), glm::vec4(1.5f / 255))) ||
+              glm::any(glm::greaterThan(glm::abs(a.emission - b.emission), glm::vec3(0.02f) * (b.emission + 1.0f))) ||
+              glm::any(glm::greaterThan(glm::abs(a.normal - b.normal), glm::vec3(1.5f / 127)));
+  }
+  dyngi::test::report("small triangles: %zu fragments by both voxelizers, %zu by the raster one alone, %zu differ\n", both.size(), rasterOnly.size(),
+                      differ);
+  EXPECT_GT(both.size(), 10000u);
+  EXPECT_EQ(differ, 0u);
+  gi::DenseVoxelGrid brute = gi::voxelizeBruteForce(voxelSpaceTriangles(snapshot, voxels->volume()), 64);
+  GridDiff d = diff(gi::VoxelProbe(*voxels).readbackFragmentGrid(), brute);
+  EXPECT_EQ(d.missing, 0u);
+  EXPECT_LE(d.extra, d.reference / 100);
+}
+
 TEST_F(VoxelTest, SvoMarchEqualsDenseDdaAndGpuEqualsCppTwin) {
   run("cornell", 64, 1);
   gi::DenseVoxelGrid grid = gi::VoxelProbe(*voxels).readbackFragmentGrid();

@@ -25,7 +25,9 @@ struct VoxelizePush {
 #endif
   mat4 worldToVoxel;    // world -> voxel units ([0, resolution)^3)
   uint resolution;      // voxels per side
-  uint pad0, pad1, pad2;
+  uint firstInstance;   // the compute voxelizer's batch: its first FrameInstances slot,
+  uint instanceCount;   // its instances
+  uint triangleCount;   // and its mesh's triangles
 };
 // An instance's fragment range (storage buffer, at its FrameInstances slot).
 #ifdef __cplusplus
@@ -167,6 +169,8 @@ struct SvoCounters {
 #define DYNGI_VOXELIZE_BINDING_NORMAL_TEX 5
 #define DYNGI_VOXELIZE_BINDING_INSTANCES 6
 #define DYNGI_VOXELIZE_BINDING_RANGES 7
+#define DYNGI_VOXELIZE_BINDING_VERTICES 8  // the compute voxelizer's mesh (voxelize_small.comp)
+#define DYNGI_VOXELIZE_BINDING_INDICES 9
 
 
 #define DYNGI_SVO_MARK_PUSH uint firstChunk; uint depth;

@@ -4,7 +4,6 @@
 // (coord, albedo, normal, emission) for each voxel the triangle overlaps into this entity's range.
 #extension GL_GOOGLE_include_directive : require
 #include "voxel_shared.h"
-#include "shared/normal_map.h"
 #include "tri_box.glsl"
 
 layout(push_constant) uniform Push { VoxelizePush pc; };
@@ -20,6 +19,7 @@ layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX) uniform sampler
 layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX) uniform sampler2D emissiveTex;
 layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX) uniform sampler2D metallicRoughnessTex;
 layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_NORMAL_TEX) uniform sampler2D normalTex;
+#include "voxel_fragment.glsl"
 
 layout(location = 0) flat in vec3 v0;
 layout(location = 1) flat in vec3 v1;
@@ -38,20 +38,12 @@ layout(location = 13) flat in vec4 instAlbedo;    // rgb base colour factor, a m
 layout(location = 14) flat in vec4 instEmission;  // rgb emitted radiance, a the alpha mask's threshold
 layout(location = 15) flat in uvec4 instRange;    // first slot, capacity, counter of the entity's range; w the normal scale's bits
 
-const float kEps = 1e-4;  // voxel units: touching counts as overlapping, so nothing is missed
+const float kEps = kVoxelTouchEps;
 
 vec3 unproject(vec2 uv, float w, uint a) {
   return a == 0u ? vec3(w, uv.x, uv.y) : (a == 1u ? vec3(uv.y, w, uv.x) : vec3(uv.x, uv.y, w));
 }
 float depthOf(vec3 p, uint a) { return a == 0u ? p.x : (a == 1u ? p.y : p.z); }
-
-uint packEmission(vec3 e) {
-  float m = max(e.r, max(e.g, e.b));
-  if (m <= 0.0) return 0u;
-  int k = clamp(int(ceil(log2(m))), -8, 23);
-  vec3 s = clamp(e / exp2(float(k)), 0.0, 1.0);
-  return packUnorm4x8(vec4(s, float(k + 8) / 255.0));
-}
 
 void main() {
   int res = int(pc.resolution);
@@ -75,48 +67,9 @@ void main() {
   if (px.x < 0 || px.y < 0 || px.x >= res || px.y >= res) return;
 
   vec3 nrm = normalize(n);
-  vec3 emission = instEmission.rgb;
+  VoxelTriangle t = VoxelTriangle(v0, v1, v2, uv0, uv1, uv2, n0, n1, n2, t0, t1, t2, instAlbedo, instEmission, instRange);
   for (int z = z0; z <= z1; ++z) {
     ivec3 v = ivec3(unproject(vec2(px), float(z), axis));
-    vec3 center = vec3(v) + 0.5;
-    if (!triangleOverlapsBox(center, vec3(0.5 + kEps), v0, v1, v2)) continue;
-    vec4 albedo = vec4(instAlbedo.rgb, 1.0);
-    float metallic = instAlbedo.a;
-    emission = instEmission.rgb;
-    float alpha = 1.0;
-    vec3 normal = nrm;
-    if (kBaseColorTexture || kEmissiveTexture || kMetallicRoughnessTexture || kNormalTexture) {
-      // Barycentrics of the voxel centre's projection onto the triangle (clamped) for texturing.
-      vec3 p = center - dot(center - v0, nrm) * nrm;
-      vec3 e0 = v1 - v0, e1 = v2 - v0, ep = p - v0;
-      float d00 = dot(e0, e0), d01 = dot(e0, e1), d11 = dot(e1, e1), d20 = dot(ep, e0), d21 = dot(ep, e1);
-      float den = d00 * d11 - d01 * d01;
-      float bv = den != 0.0 ? (d11 * d20 - d01 * d21) / den : 0.0;
-      float bw = den != 0.0 ? (d00 * d21 - d01 * d20) / den : 0.0;
-      vec3 bary = clamp(vec3(1.0 - bv - bw, bv, bw), 0.0, 1.0);
-      bary /= max(bary.x + bary.y + bary.z, 1e-6);
-      vec2 uv = bary.x * uv0 + bary.y * uv1 + bary.z * uv2;
-      if (kBaseColorTexture) {
-        vec4 texel = textureLod(baseColorTex, uv, 0.0);
-        albedo.rgb *= texel.rgb;
-        alpha = texel.a;
-      }
-      if (kEmissiveTexture) emission *= textureLod(emissiveTex, uv, 0.0).rgb;
-      if (kMetallicRoughnessTexture) metallic *= textureLod(metallicRoughnessTex, uv, 0.0).b;
-      if (kNormalTexture) {
-        // The shading normal at the voxel centre's projection, kept on the face normal's side (the side
-        // the fragments' normals are averaged on); the voxel's normal is then the mean of its fragments'.
-        vec3 ns = normalize(bary.x * n0 + bary.y * n1 + bary.z * n2);
-        vec4 tangent = vec4(bary.x * t0.xyz + bary.y * t1.xyz + bary.z * t2.xyz, t0.w);
-        normal = perturbNormal(ns, tangent, textureLod(normalTex, uv, 0.0).rgb, uintBitsToFloat(instRange.w));
-        if (dot(ns, nrm) < 0.0) normal = -normal;
-      }
-    }
-    if (kAlphaMask && alpha < instEmission.a) continue;  // cut out at the voxel's centre
-    albedo.rgb *= 1.0 - metallic;  // the diffuse share
-    uint slot = atomicAdd(counters[instRange.z], 1u);
-    if (slot >= instRange.y) continue;  // over capacity: counted, so the host grows the range
-    uint coord = uint(v.x) | (uint(v.y) << 10) | (uint(v.z) << 20);
-    fragments[instRange.x + slot] = uvec4(coord, packUnorm4x8(albedo), packSnorm4x8(vec4(normal, 0.0)), packEmission(emission));
+    if (triangleOverlapsBox(vec3(v) + 0.5, vec3(0.5 + kEps), v0, v1, v2)) appendVoxelFragment(v, t, nrm);
   }
 }

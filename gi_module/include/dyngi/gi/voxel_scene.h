@@ -56,6 +56,7 @@ struct VoxelStats {
   uint64_t totalBytes = 0;           // fragments + nodes + attributes, allocated
   uint32_t overflowedEntities = 0;   // re-voxelized next frame with a larger range
   uint32_t entitiesDeferred = 0;     // changed entities the voxelization cap left for a later frame
+  uint32_t drawsComputeVoxelized = 0;  // of the last frame that voxelized: draws of small triangles, by compute
   bool poolOverflow = false;         // SVO pool too small (occupancy then conservative)
   bool windowed = false;             // the volume covers the camera's surroundings (VoxelSettings::reach), not the scene
   uint32_t volumeMoves = 0;          // times the window moved with the camera (each a voxelization afresh)
@@ -117,6 +118,12 @@ class VoxelScene final : public render::RenderFeature {
   // each move voxelizes it afresh, and what the camera sees near a side changes at each, so small steps
   // keep the camera near the centre and each step's change small.
   static constexpr float kWindowStep = 0.125f;
+  // Draws whose triangles all span at most this many voxels a side (and no normal texture) are voxelized
+  // by a compute pass, an invocation a triangle testing its box's few voxels, instead of a geometry-
+  // shader quad and its pixels each: the same fragments for far less work with many small instances.
+  static constexpr float kComputeVoxelizeSpan = 2.0f;
+  // Off: every draw takes the raster voxelizer (to compare the two).
+  void setComputeVoxelization(bool on) { computeVoxelization_ = on; }
 
   const VoxelVolume& volume() const { return volume_; }
   bool hasVolume() const { return haveVolume_; }
@@ -189,6 +196,8 @@ class VoxelScene final : public render::RenderFeature {
 
   // What this frame records (decided in prepare).
   std::vector<size_t> drawsToVoxelize_;   // indices into snapshot.draws
+  std::vector<size_t> rasterDraws_, computeDraws_;  // drawsToVoxelize_ by voxelizer
+  bool computeVoxelization_ = true;
   std::vector<Range> rangesToEmpty_;
   bool rebuildSvo_ = false;
   bool storageMoved_ = false;  // fragments were moved or the derived buffers reallocated: rebuild the SVO
@@ -208,6 +217,9 @@ class VoxelScene final : public render::RenderFeature {
   // lavapipe would run the texture lookups of a branch not taken.
   render::Pipeline voxelize_[32];  // by the material's texture bits it reads (DYNGI_MATERIAL_*_TEX), + 8: alpha-masked, + 16: a normal texture
   render::Pipeline& voxelizePipelineFor(uint32_t textureBits);
+  render::Pipeline voxelizeSmall_[16];  // the compute voxelizer, by the same bits (no normal texture)
+  render::Pipeline& voxelizeSmallPipelineFor(uint32_t textureBits);
+  bool voxelizesByCompute(const render::RenderSnapshot& snapshot, const render::DrawItem& d, const glm::mat4& toVoxel) const;
   void writeVoxelizeRanges(const render::FrameContext& frame);
   std::unique_ptr<class VoxelDebugPass> debugPass_;  // voxel/voxel_debug_pass.h
   VoxelStats stats_;

@@ -71,6 +71,11 @@ using BatchSetup = std::function<void(VkCommandBuffer, const DrawItem& first, co
 void drawBatched(const FrameContext& frame, std::optional<std::span<const size_t>> indices, const DrawPipelineFor& pipelineFor,
                  const BatchSetup& setup);
 
+// The batches drawBatched draws, for a pass that handles them itself (a compute pass over instances):
+// `first` is one of the batch's draws, its instances at FrameInstances slots [firstSlot, firstSlot + count).
+using BatchVisitor = std::function<void(const DrawItem& first, const GpuMesh& mesh, uint32_t firstSlot, uint32_t count)>;
+void forEachBatch(const FrameContext& frame, std::optional<std::span<const size_t>> indices, const BatchVisitor& visit);
+
 // Builds FrameInstances for a snapshot: batches by mesh and textures, records written to `records`
 // (host-visible, grown as needed; frames are synchronous, so the last frame's are no longer read).
 void buildFrameInstances(VulkanContext& ctx, const RenderSnapshot& snapshot, const std::vector<GpuMesh*>& meshes, Buffer& records,
