@@ -47,7 +47,7 @@ void GiSystem::build(const GiSettings& s) {
   changes_ = ChangeTracker{};
   pending_ = ChangeSet{};
   giMs_ = -1;
-  bvh_ = std::make_unique<EmbreeScene>();
+  if (entry_->needsBvh(s)) bvh_ = std::make_unique<EmbreeScene>();
   if (entry_->needsVoxels(s)) {
     // The VPL techniques march the nodes only; the voxel debug view turns attributes on when asked.
     VoxelSettings vs = s.voxels;
@@ -55,7 +55,7 @@ void GiSystem::build(const GiSettings& s) {
     voxels_ = std::make_unique<VoxelScene>(ctx_, vs);
     voxelSync_ = std::make_unique<VoxelSyncSystem>(*voxels_, assets_);
   }
-  technique_ = entry_->create(TechniqueServices{ctx_, assets_, *bvh_, voxels_.get()}, s);
+  technique_ = entry_->create(TechniqueServices{ctx_, assets_, bvh_.get(), voxels_.get()}, s);
   frameUpdate_ = std::make_unique<GiFrameUpdate>(*this);
   indirectView_ = std::make_unique<GiIndirectView>(ctx_);
   if (view_ != "final" && !setDebugView(view_)) view_ = "final";  // the same view after a rebuild, when it still exists
@@ -131,8 +131,8 @@ void GiSystem::run(ecs::World& world, const ecs::SystemContext& ctx) {
   //    After reset() the new parts start from an empty world: everything is new (tick 0), as on a first run.
   const ChangeSet changes = changes_.compute(world, assets_, startOver_ ? 0 : ctx.lastRun);
   startOver_ = false;
-  // 2. BVH: instance transforms, refits, added/removed.
-  bvh_->sync(world, assets_, changes);
+  // 2. BVH (for a technique that traces rays on the CPU): instance transforms, refits, added/removed.
+  if (bvh_) bvh_->sync(world, assets_, changes);
   // 3. Voxels: mark what must be re-voxelized (the GPU work is recorded by the VoxelScene feature).
   if (voxelSync_) voxelSync_->apply(changes);
   // 4. The technique's CPU work waits for the renderer's snapshot (updateTechnique).
@@ -224,7 +224,7 @@ bool GiSystem::setDebugView(std::string_view name) {
 
 GiStats GiSystem::stats() const {
   GiStats s;
-  s.bvh = bvh_->stats();
+  s.bvh = bvh_ ? bvh_->stats() : BvhStats{};
   if (voxels_) s.voxels = voxels_->stats();
   s.syncMs = syncMs_;
   s.giMs = giMs_;

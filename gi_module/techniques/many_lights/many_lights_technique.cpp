@@ -72,6 +72,7 @@ TechniqueEntry manyLightsTechniqueEntry() {
           {"vpls", "subimages"},
           [](GiSettings& s) { return bindOptions(s.manyLights); },
           [](const GiSettings&) { return true; },
+          [](const GiSettings&) { return false; },
           [](const TechniqueServices& services, const GiSettings& s) -> std::unique_ptr<Technique> {
             return std::make_unique<ManyLightsTechnique>(services, s.manyLights);
           }};

@@ -33,8 +33,8 @@ namespace {
 class TemporalTechnique final : public Technique {
  public:
   TemporalTechnique(const TechniqueServices& services, const TemporalOptions& options)
-      : bvh_(services.bvh), assets_(services.assets), voxels_(services.voxels), paths_(options),
-        feature_(services.ctx, paths_, services.voxels, &services.bvh) {}
+      : bvh_(*services.bvh), assets_(services.assets), voxels_(services.voxels), paths_(options),
+        feature_(services.ctx, paths_, services.voxels, services.bvh) {}
 
   // VPLs on a re-coloured surface keep their paths and take the new albedo (so does every later bounce);
   // those on a surface that moved or deformed, with their later bounces, are invalidated; then up to the
@@ -118,6 +118,7 @@ TechniqueEntry temporalTechniqueEntry() {
           {},
           [](GiSettings& s) { return bindOptions(s.temporal); },
           [](const GiSettings& s) { return s.temporal.visibility == VisibilityBackend::Svo; },
+          [](const GiSettings&) { return true; },  // the VPL paths' rays, and the visibility with --visibility bvh
           [](const TechniqueServices& services, const GiSettings& s) -> std::unique_ptr<Technique> {
             return std::make_unique<TemporalTechnique>(services, s.temporal);
           }};

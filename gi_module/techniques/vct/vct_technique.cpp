@@ -155,6 +155,7 @@ TechniqueEntry vctTechniqueEntry() {
           {"radiance", "opacity", "ao", "specular"},
           [](GiSettings& s) { return bindOptions(s.vct); },
           [](const GiSettings&) { return true; },
+          [](const GiSettings&) { return false; },
           [](const TechniqueServices& services, const GiSettings& s) -> std::unique_ptr<Technique> {
             return std::make_unique<VctTechnique>(services, s.vct);
           }};

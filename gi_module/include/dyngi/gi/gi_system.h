@@ -66,7 +66,7 @@ class GiSystem final : public ecs::System {
   Technique& technique() { return *technique_; }
   const TechniqueEntry& techniqueEntry() const { return *entry_; }
   GiStats stats() const;
-  EmbreeScene& bvh() { return *bvh_; }
+  EmbreeScene* bvh() { return bvh_.get(); }  // null when the technique traces no rays on the CPU
   VoxelScene* voxels() { return voxels_.get(); }
   // The views of this GI: "final" and "indirect" (every technique's), then the technique's own.
   std::vector<std::string> debugViews() const;

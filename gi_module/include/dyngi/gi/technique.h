@@ -29,7 +29,7 @@ struct GiSettings;
 struct TechniqueServices {
   render::VulkanContext& ctx;
   const scene::AssetStore& assets;
-  EmbreeScene& bvh;     // kept in sync with the world every frame
+  EmbreeScene* bvh;     // kept in sync with the world every frame, when the technique's entry asked for it
   VoxelScene* voxels;   // the voxel scene and its SVO, when the technique's entry asked for it
 };
 
@@ -80,6 +80,7 @@ struct TechniqueEntry {
   // Its options struct inside GiSettings (what a command line or panel edits before it is made).
   std::vector<OptionRef> (*options)(GiSettings& settings);
   bool (*needsVoxels)(const GiSettings& settings);
+  bool (*needsBvh)(const GiSettings& settings);  // rays on the CPU: the GI system keeps an Embree BVH only then
   std::unique_ptr<Technique> (*create)(const TechniqueServices& services, const GiSettings& settings);
 };
 
