@@ -72,6 +72,11 @@ release_only=(
   SvoVisibilityInAWideWorldComesToEmbreesNearTheCamera
   NearTheCameraTheStreetLooksAsItsNearCopy
   AVolumeMoveLeavesNoFlash
+  ClampSpreadGivesTheCornersTheirLightBack
+  QualityFlickerAndSettleTimePerTechnique
+  MovedObjectChangesIndirectWherePathTracerSays
+  MatchesPathTracerPerRegionWithColourBleeding
+  MoreVplsKeepEnergyAndReduceError
 )
 exclude=$(IFS='|'; echo "${release_only[*]}")
 DYNGI_SYNC_VALIDATION=0 ctest --output-on-failure -j"$(nproc)" -L render -E "$exclude" "$@"
