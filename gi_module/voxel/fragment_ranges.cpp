@@ -1,10 +1,12 @@
 #include "dyngi/gi/fragment_ranges.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace dyngi::gi {
 
-uint64_t FragmentRanges::estimateFragments(const scene::MeshData& mesh, const glm::mat4& m, uint32_t resolution) {
+FragmentRanges::Estimate FragmentRanges::estimate(const scene::MeshData& mesh, const glm::mat4& m, uint32_t resolution) {
   // Per triangle: its area projected on the dominant plane plus its perimeter (the columns it can touch),
   // times two for the depth spread inside a column, plus slack; overshoots are caught after the frame.
   // A triangle gives a voxel one fragment at most, so the voxels of its bounding box (touching ones
@@ -13,9 +15,14 @@ uint64_t FragmentRanges::estimateFragments(const scene::MeshData& mesh, const gl
   constexpr float kTouch = 1e-3f;  // voxel units; above the voxelizer's contact epsilon
   double loose = 0;
   uint64_t bounded = 0;
+  float widest = 0;
   for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
     glm::vec3 a(m * glm::vec4(mesh.positions[mesh.indices[t]], 1)), b(m * glm::vec4(mesh.positions[mesh.indices[t + 1]], 1)),
         c(m * glm::vec4(mesh.positions[mesh.indices[t + 2]], 1));
+    const glm::vec3 extent = glm::max(a, glm::max(b, c)) - glm::min(a, glm::min(b, c));
+    const glm::vec3 sum = a + b + c;  // min/max drop a NaN: judge the vertices
+    const bool finite = std::isfinite(sum.x) && std::isfinite(sum.y) && std::isfinite(sum.z);
+    widest = finite ? std::max({widest, extent.x, extent.y, extent.z}) : std::numeric_limits<float>::infinity();
     glm::vec3 n = glm::abs(glm::cross(b - a, c - a));
     double area = 0.5 * std::max({n.x, n.y, n.z});
     double perimeter = glm::length(b - a) + glm::length(c - b) + glm::length(a - c);
@@ -31,7 +38,7 @@ uint64_t FragmentRanges::estimateFragments(const scene::MeshData& mesh, const gl
     if (boxVoxels <= estimate) bounded += uint64_t(boxVoxels);
     else loose += estimate;
   }
-  return bounded + (loose > 0 ? uint64_t(loose * 1.25) + 16 : 0);
+  return {bounded + (loose > 0 ? uint64_t(loose * 1.25) + 16 : 0), widest};
 }
 
 FragmentRanges::Need FragmentRanges::need(uint64_t estimate, const FragmentRange* previous) {

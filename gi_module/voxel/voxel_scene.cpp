@@ -268,10 +268,10 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     if (!newBounds.count(d.entity)) emittingEntities_.erase(d.entity);
     if (glm::any(glm::greaterThan(d.material.emissive, glm::vec3(0.0f)))) emittingEntities_.insert(d.entity);
     newBounds[d.entity].extend(snapshot.assets->mesh(d.mesh).bounds.transformed(toVoxel * d.model));
-    const uint64_t estimate = FragmentRanges::estimateFragments(snapshot.assets->mesh(d.mesh), toVoxel * d.model, volume_.resolution);
-    planned.push_back({d.entity, ranges_.plan(d.entity, estimate, newHighWater, rangesToEmpty_)});
+    const FragmentRanges::Estimate estimate = FragmentRanges::estimate(snapshot.assets->mesh(d.mesh), toVoxel * d.model, volume_.resolution);
+    planned.push_back({d.entity, ranges_.plan(d.entity, estimate.fragments, newHighWater, rangesToEmpty_)});
     drawsToVoxelize_.push_back(i);
-    (voxelizesByCompute(snapshot, d, toVoxel) ? computeDraws_ : rasterDraws_).push_back(i);
+    (voxelizesByCompute(snapshot, d, estimate) ? computeDraws_ : rasterDraws_).push_back(i);
   }
   ensureCapacity(newHighWater);  // grows by copying: nothing already voxelized is lost
   for (auto& [e, r] : planned) {
@@ -311,6 +311,24 @@ QualityKnob VoxelScene::updateFractionKnob() {
   return {"voxel_update_fraction", {1.0, 0.5, 0.25}, [this](double v) { setUpdateInterval(uint32_t(std::lround(1.0 / std::max(v, 1e-6)))); }};
 }
 
+// Both voxelizers' descriptor set: the raster path reads the draw records in its vertex stage and writes
+// in its fragment stage; the compute one does all of it and reads the mesh itself.
+static std::vector<render::Binding> voxelizeBindings(bool compute) {
+  const VkShaderStageFlags writes = compute ? VK_SHADER_STAGE_COMPUTE_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
+  const VkShaderStageFlags reads = compute ? VK_SHADER_STAGE_COMPUTE_BIT : VK_SHADER_STAGE_VERTEX_BIT;
+  constexpr VkDescriptorType kTexture = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  std::vector<render::Binding> b = {{DYNGI_VOXELIZE_BINDING_FRAGMENTS, kSSBO, writes},
+                                    {DYNGI_VOXELIZE_BINDING_COUNTERS, kSSBO, writes},
+                                    {DYNGI_VOXELIZE_BINDING_INSTANCES, kSSBO, reads},
+                                    {DYNGI_VOXELIZE_BINDING_RANGES, kSSBO, reads},
+                                    {DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX, kTexture, writes},
+                                    {DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, kTexture, writes},
+                                    {DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX, kTexture, writes},
+                                    {DYNGI_VOXELIZE_BINDING_NORMAL_TEX, kTexture, writes}};
+  if (compute) b.insert(b.end(), {{DYNGI_VOXELIZE_BINDING_VERTICES, kSSBO, reads}, {DYNGI_VOXELIZE_BINDING_INDICES, kSSBO, reads}});
+  return b;
+}
+
 render::Pipeline& VoxelScene::voxelizePipelineFor(uint32_t textureBits) {
   const bool alphaMask = textureBits & DYNGI_MATERIAL_ALPHA_MASK, normalTexture = textureBits & DYNGI_MATERIAL_NORMAL_TEX;
   textureBits &= DYNGI_MATERIAL_BASE_COLOR_TEX | DYNGI_MATERIAL_EMISSIVE_TEX | DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX;  // what it reads
@@ -324,14 +342,7 @@ render::Pipeline& VoxelScene::voxelizePipelineFor(uint32_t textureBits) {
   if (normalTexture) render::setMeshTangentInput(d);
   d.pushConstantStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_GEOMETRY_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   d.pushConstantBytes = sizeof(gpu::VoxelizePush);
-  d.bindings = {{DYNGI_VOXELIZE_BINDING_FRAGMENTS, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {DYNGI_VOXELIZE_BINDING_COUNTERS, kSSBO, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {DYNGI_VOXELIZE_BINDING_INSTANCES, kSSBO, VK_SHADER_STAGE_VERTEX_BIT},
-                {DYNGI_VOXELIZE_BINDING_RANGES, kSSBO, VK_SHADER_STAGE_VERTEX_BIT},
-                {DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT},
-                {DYNGI_VOXELIZE_BINDING_NORMAL_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+  d.bindings = voxelizeBindings(/*compute=*/false);
   auto bit = [&](uint32_t b) { return (textureBits & b) ? 1u : 0u; };
   d.fragmentSpecialization = {bit(DYNGI_MATERIAL_BASE_COLOR_TEX), bit(DYNGI_MATERIAL_EMISSIVE_TEX), bit(DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX),
                               alphaMask ? 1u : 0u, normalTexture ? 1u : 0u};
@@ -345,16 +356,7 @@ render::Pipeline& VoxelScene::voxelizeSmallPipelineFor(uint32_t textureBits) {
   textureBits &= DYNGI_MATERIAL_BASE_COLOR_TEX | DYNGI_MATERIAL_EMISSIVE_TEX | DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX;
   Pipeline& pipeline = voxelizeSmall_[textureBits | (alphaMask ? 8u : 0u)];
   if (pipeline.handle()) return pipeline;
-  const render::Binding bindings[] = {{DYNGI_VOXELIZE_BINDING_FRAGMENTS, kSSBO, VK_SHADER_STAGE_COMPUTE_BIT},
-                                        {DYNGI_VOXELIZE_BINDING_COUNTERS, kSSBO, VK_SHADER_STAGE_COMPUTE_BIT},
-                                        {DYNGI_VOXELIZE_BINDING_INSTANCES, kSSBO, VK_SHADER_STAGE_COMPUTE_BIT},
-                                        {DYNGI_VOXELIZE_BINDING_RANGES, kSSBO, VK_SHADER_STAGE_COMPUTE_BIT},
-                                        {DYNGI_VOXELIZE_BINDING_VERTICES, kSSBO, VK_SHADER_STAGE_COMPUTE_BIT},
-                                        {DYNGI_VOXELIZE_BINDING_INDICES, kSSBO, VK_SHADER_STAGE_COMPUTE_BIT},
-                                        {DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
-                                        {DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
-                                        {DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
-                                        {DYNGI_VOXELIZE_BINDING_NORMAL_TEX, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT}};
+  const std::vector<render::Binding> bindings = voxelizeBindings(/*compute=*/true);
   auto bit = [&](uint32_t b) { return (textureBits & b) ? 1u : 0u; };
   const uint32_t specialization[] = {bit(DYNGI_MATERIAL_BASE_COLOR_TEX), bit(DYNGI_MATERIAL_EMISSIVE_TEX), bit(DYNGI_MATERIAL_METALLIC_ROUGHNESS_TEX),
                                      alphaMask ? 1u : 0u};
@@ -362,20 +364,34 @@ render::Pipeline& VoxelScene::voxelizeSmallPipelineFor(uint32_t textureBits) {
   return pipeline;
 }
 
-// Whether every triangle of the draw spans at most kComputeVoxelizeSpan voxels a side (a normal texture
-// needs the raster path's vertex frame).
-bool VoxelScene::voxelizesByCompute(const render::RenderSnapshot& snapshot, const render::DrawItem& d, const glm::mat4& toVoxel) const {
-  if (!computeVoxelization_ || d.material.normalTexture != scene::kNoTexture) return false;
-  const scene::MeshData& mesh = snapshot.assets->mesh(d.mesh);
-  if (mesh.indices.size() < 3) return false;
-  const glm::mat4 m = toVoxel * d.model;
-  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-    const glm::vec3 a(m * glm::vec4(mesh.positions[mesh.indices[t]], 1)), b(m * glm::vec4(mesh.positions[mesh.indices[t + 1]], 1)),
-        c(m * glm::vec4(mesh.positions[mesh.indices[t + 2]], 1));
-    const glm::vec3 span = glm::max(a, glm::max(b, c)) - glm::min(a, glm::min(b, c));
-    if (!(glm::all(glm::lessThanEqual(span, glm::vec3(kComputeVoxelizeSpan))))) return false;  // NaN: the raster path
+std::vector<VoxelScene::ComputeVoxelizeDispatch> VoxelScene::splitComputeVoxelize(uint32_t instances, uint32_t triangles, glm::uvec2 limit) {
+  std::vector<ComputeVoxelizeDispatch> out;
+  if (instances == 0 || triangles == 0 || limit.x == 0 || limit.y == 0) return out;
+  const uint64_t maxInvocations = std::min<uint64_t>(uint64_t(limit.x) * limit.y * 64, uint64_t(1) << 31);
+  const uint32_t perDispatch = uint32_t(std::clamp<uint64_t>(maxInvocations / triangles, 1, instances));
+  for (uint32_t first = 0; first < instances; first += perDispatch) {
+    const uint32_t n = std::min(perDispatch, instances - first);
+    const uint64_t groups = (uint64_t(n) * triangles + 63) / 64;
+    const uint32_t x = uint32_t(std::min<uint64_t>(groups, limit.x));
+    out.push_back({first, n, glm::uvec2(x, uint32_t((groups + x - 1) / x))});
   }
-  return true;
+  return out;
+}
+
+glm::uvec2 VoxelScene::computeDispatchLimit() const {
+  if (computeDispatchLimit_.x > 0 && computeDispatchLimit_.y > 0) return computeDispatchLimit_;
+  const auto& l = ctx_.properties().limits;
+  return {l.maxComputeWorkGroupCount[0], l.maxComputeWorkGroupCount[1]};
+}
+
+// Whether every triangle of the draw spans at most kComputeVoxelizeSpan voxels a side (a normal texture
+// needs the raster path's vertex frame) and one instance fits a dispatch.
+bool VoxelScene::voxelizesByCompute(const render::RenderSnapshot& snapshot, const render::DrawItem& d, const FragmentRanges::Estimate& estimate) const {
+  const size_t triangles = snapshot.assets->mesh(d.mesh).indices.size() / 3;
+  const glm::uvec2 limit = computeDispatchLimit();
+  const uint64_t maxInvocations = std::min<uint64_t>(uint64_t(limit.x) * limit.y * 64, uint64_t(1) << 31);
+  return computeVoxelization_ && d.material.normalTexture == scene::kNoTexture && triangles >= 1 && triangles <= maxInvocations &&
+         estimate.widestTriangle <= kComputeVoxelizeSpan;
 }
 
 bool VoxelScene::record(render::FrameContext& frame) {
@@ -437,11 +453,13 @@ bool VoxelScene::record(render::FrameContext& frame) {
               .storageBuffer(DYNGI_VOXELIZE_BINDING_INDICES, mesh.indices.handle())
               .push(ctx_, cmd, pipeline);
           gpu::VoxelizePush batch = pc;
-          batch.firstInstance = first;
-          batch.instanceCount = count;
           batch.triangleCount = mesh.indexCount / 3;
-          vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(batch), &batch);
-          vkCmdDispatch(cmd, uint32_t((uint64_t(count) * batch.triangleCount + 63) / 64), 1, 1);
+          for (const ComputeVoxelizeDispatch& part : splitComputeVoxelize(count, batch.triangleCount, computeDispatchLimit())) {
+            batch.firstInstance = first + part.firstInstance;
+            batch.instanceCount = part.instanceCount;
+            vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(batch), &batch);
+            vkCmdDispatch(cmd, part.groups.x, part.groups.y, 1);
+          }
         });
       }
     }

@@ -145,11 +145,24 @@ TEST(FragmentRanges, TheEstimateBoundsEachTrianglesVoxelsAndStaysNearItForSmallO
         for (int y = lo.y; y <= hi.y; ++y)
           for (int x = lo.x; x <= hi.x; ++x)
             overlapped += triangleOverlapsBox(glm::dvec3(x, y, z) + 0.5, glm::dvec3(0.5 + 1e-4), p0, p1, p2) ? 1 : 0;
-      const uint64_t estimate = FragmentRanges::estimateFragments(mesh, glm::mat4(1.0f));
+      const FragmentRanges::Estimate both = FragmentRanges::estimate(mesh, glm::mat4(1.0f));
+      const uint64_t estimate = both.fragments;
       EXPECT_GE(estimate, overlapped) << "size " << size << ", trial " << trial;
+      const glm::dvec3 extent = glm::max(p0, glm::max(p1, p2)) - glm::min(p0, glm::min(p1, p2));
+      EXPECT_NEAR(both.widestTriangle, std::max({extent.x, extent.y, extent.z}), 1e-5) << "the widest side decides the voxelizer";
       if (size <= 0.3f) {  // the vertices within 0.6 voxels of each other on every axis
         EXPECT_LE(estimate, 8u) << "size " << size << ": a triangle under a voxel spans 8 voxels at most";
       }
     }
   }
+}
+
+// A mesh whose triangle has a non-finite vertex never counts as small (the raster path clips it).
+TEST(FragmentRanges, ANonFiniteTriangleIsNeverTheWidestSmallOne) {
+  dyngi::scene::MeshData mesh;
+  mesh.positions = {{1, 1, 1}, {1.5f, 1, 1}, {1, std::nanf(""), 1}, {1, 1.2f, 1}};
+  mesh.indices = {0, 1, 3, 0, 1, 2};
+  EXPECT_TRUE(std::isinf(FragmentRanges::estimate(mesh, glm::mat4(1.0f)).widestTriangle));
+  mesh.indices = {0, 1, 3};
+  EXPECT_FLOAT_EQ(FragmentRanges::estimate(mesh, glm::mat4(1.0f)).widestTriangle, 0.5f);
 }

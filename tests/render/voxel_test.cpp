@@ -189,6 +189,46 @@ TEST_F(VoxelTest, SmallTrianglesTakeTheComputeVoxelizerAndWriteTheRasterPathsFra
   GridDiff d = diff(gi::VoxelProbe(*voxels).readbackFragmentGrid(), brute);
   EXPECT_EQ(d.missing, 0u);
   EXPECT_LE(d.extra, d.reference / 100);
+
+  // A device allowing 3 x 4 workgroups a dispatch: the batches split into many 2-D dispatches, and the
+  // fragments stay the same.
+  gi::VoxelScene split(context(), gi::VoxelSettings{.resolution = 64});
+  split.setComputeDispatchLimit({3, 4});
+  split.setVolume(voxels->volume());
+  render::Renderer r3(context());
+  r3.addFeature(&split);
+  r3.resize(16, 16);
+  r3.render(snapshot);
+  EXPECT_EQ(split.stats().drawsComputeVoxelized, 400u);
+  const std::vector<gi::VoxelFragment> splitFragments = sorted(gi::VoxelProbe(split).readbackFragments());
+  ASSERT_EQ(splitFragments.size(), both.size());
+  size_t splitDiffer = 0;
+  for (size_t i = 0; i < both.size(); ++i) splitDiffer += splitFragments[i].cell != both[i].cell || splitFragments[i].albedo != both[i].albedo;
+  EXPECT_EQ(splitDiffer, 0u);
+}
+
+TEST(VoxelizeDispatch, EveryInstanceAndTriangleIsCoveredOnceWithinTheDeviceLimits) {
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const uint32_t instances = uint32_t(1 + rng() % 5000), triangles = uint32_t(1 + rng() % (trial % 3 == 0 ? 4000 : 40));
+    const glm::uvec2 limit(uint32_t(1 + rng() % (trial % 2 ? 70000 : 9)), uint32_t(1 + rng() % 9));
+    const auto parts = gi::VoxelScene::splitComputeVoxelize(instances, triangles, limit);
+    if (uint64_t(triangles) > uint64_t(limit.x) * limit.y * 64) continue;  // voxelizesByCompute sends such meshes to the raster path
+    uint32_t next = 0;
+    for (const auto& p : parts) {
+      ASSERT_EQ(p.firstInstance, next);
+      ASSERT_GT(p.instanceCount, 0u);
+      next += p.instanceCount;
+      ASSERT_LE(p.groups.x, limit.x);
+      ASSERT_LE(p.groups.y, limit.y);
+      const uint64_t invocations = uint64_t(p.groups.x) * p.groups.y * 64, needed = uint64_t(p.instanceCount) * triangles;
+      ASSERT_GE(invocations, needed) << "every triangle has an invocation";
+      ASSERT_LT(invocations, needed + 64 * (uint64_t(p.groups.x) + 1)) << "at most a row of groups to spare";
+    }
+    ASSERT_EQ(next, instances);
+  }
+  EXPECT_TRUE(gi::VoxelScene::splitComputeVoxelize(0, 12, {65535, 65535}).empty());
+  EXPECT_EQ(gi::VoxelScene::splitComputeVoxelize(200000, 2, {65535, 65535}).size(), 1u) << "one dispatch where the device allows it";
 }
 
 TEST_F(VoxelTest, SvoMarchEqualsDenseDdaAndGpuEqualsCppTwin) {

@@ -33,7 +33,7 @@ layout(set = 0, binding = DYNGI_VOXELIZE_BINDING_INDICES) readonly buffer Indice
 const uint kVertexFloats = 8u;  // GpuVertex: position, normal, uv
 
 void main() {
-  uint id = gl_GlobalInvocationID.x;
+  uint id = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationID.x;  // 2-D past the device's x limit
   if (id >= pc.instanceCount * pc.triangleCount) return;
   uint slot = pc.firstInstance + id / pc.triangleCount, triangle = id % pc.triangleCount;
   DrawInstance inst = drawInstances[slot];

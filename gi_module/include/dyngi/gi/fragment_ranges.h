@@ -44,7 +44,14 @@ class FragmentRanges {
   // An upper estimate of the fragments `mesh` writes under `modelToVoxel` (overshoots are caught after
   // the frame, from the counts), within a volume of `resolution`^3 voxels (0: unbounded): what lies
   // outside a window around the camera reserves nothing.
-  static uint64_t estimateFragments(const scene::MeshData& mesh, const glm::mat4& modelToVoxel, uint32_t resolution = 0);
+  static uint64_t estimateFragments(const scene::MeshData& mesh, const glm::mat4& modelToVoxel, uint32_t resolution = 0) {
+    return estimate(mesh, modelToVoxel, resolution).fragments;
+  }
+  struct Estimate {
+    uint64_t fragments = 0;
+    float widestTriangle = 0;  // the largest side of a triangle's box, voxels (+inf: not finite)
+  };
+  static Estimate estimate(const scene::MeshData& mesh, const glm::mat4& modelToVoxel, uint32_t resolution = 0);
 
   // Forgets every range (a new volume: everything is voxelized again).
   void clear();

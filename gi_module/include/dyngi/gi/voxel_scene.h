@@ -124,6 +124,17 @@ class VoxelScene final : public render::RenderFeature {
   static constexpr float kComputeVoxelizeSpan = 2.0f;
   // Off: every draw takes the raster voxelizer (to compare the two).
   void setComputeVoxelization(bool on) { computeVoxelization_ = on; }
+  // The compute voxelizer's dispatches for `instances` instances of a `triangles`-triangle mesh: 64
+  // invocations a group, at most limit.x by limit.y groups each and under 2^31 invocations (the shader's
+  // index), a whole number of instances each.
+  struct ComputeVoxelizeDispatch {
+    uint32_t firstInstance = 0, instanceCount = 0;
+    glm::uvec2 groups{0};
+  };
+  static std::vector<ComputeVoxelizeDispatch> splitComputeVoxelize(uint32_t instances, uint32_t triangles, glm::uvec2 limit);
+  // Workgroups a compute-voxelizer dispatch may take (0: the device's maxComputeWorkGroupCount).
+  void setComputeDispatchLimit(glm::uvec2 groups) { computeDispatchLimit_ = groups; }
+  glm::uvec2 computeDispatchLimit() const;
 
   const VoxelVolume& volume() const { return volume_; }
   bool hasVolume() const { return haveVolume_; }
@@ -198,6 +209,7 @@ class VoxelScene final : public render::RenderFeature {
   std::vector<size_t> drawsToVoxelize_;   // indices into snapshot.draws
   std::vector<size_t> rasterDraws_, computeDraws_;  // drawsToVoxelize_ by voxelizer
   bool computeVoxelization_ = true;
+  glm::uvec2 computeDispatchLimit_{0};
   std::vector<Range> rangesToEmpty_;
   bool rebuildSvo_ = false;
   bool storageMoved_ = false;  // fragments were moved or the derived buffers reallocated: rebuild the SVO
@@ -219,7 +231,7 @@ class VoxelScene final : public render::RenderFeature {
   render::Pipeline& voxelizePipelineFor(uint32_t textureBits);
   render::Pipeline voxelizeSmall_[16];  // the compute voxelizer, by the same bits (no normal texture)
   render::Pipeline& voxelizeSmallPipelineFor(uint32_t textureBits);
-  bool voxelizesByCompute(const render::RenderSnapshot& snapshot, const render::DrawItem& d, const glm::mat4& toVoxel) const;
+  bool voxelizesByCompute(const render::RenderSnapshot& snapshot, const render::DrawItem& d, const FragmentRanges::Estimate& estimate) const;
   void writeVoxelizeRanges(const render::FrameContext& frame);
   std::unique_ptr<class VoxelDebugPass> debugPass_;  // voxel/voxel_debug_pass.h
   VoxelStats stats_;
