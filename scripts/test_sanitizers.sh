@@ -3,9 +3,7 @@
 # no recovery: the first report fails the test). Builds build-asan/ and runs every unit, GI, end-to-end and
 # render test; extra arguments go to ctest.
 #
-# The render and end-to-end tests run two at a time here (DYNGI_SERIAL_GPU_TESTS=OFF), unlike the Release
-# job, whose timing-sensitive tests want the machine to themselves; here nothing is timed (five render
-# tests: 92 s one at a time, 79 s two at a time).
+# The render and end-to-end tests run two at a time, as in the Release job (DYNGI_SERIAL_GPU_TESTS).
 #
 # Lavapipe leaks a little at exit, and the Vulkan loader unloads the driver before LeakSanitizer's
 # report, so those leaks show as "<unknown module>" with no way to tell them from ours. The driver is
@@ -18,7 +16,7 @@ bash scripts/setup.sh
 # the build takes far less time (tests/render/vct_test.cpp: 45 s to compile with -g, 28 s with -g1).
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDYNGI_SANITIZE=ON -DDYNGI_BUILD_TESTS=ON \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
-  -DDYNGI_TEST_TIMEOUT_SCALE=6 -DDYNGI_SERIAL_GPU_TESTS=OFF >/dev/null
+  -DDYNGI_TEST_TIMEOUT_SCALE=6 >/dev/null
 cmake --build build-asan -j"$(nproc)" --target dyngi_unit_tests dyngi_gi_tests dyngi_render_tests dyngi_e2e_tests dyngi_sample
 
 driver=$(ls /usr/lib/*/libvulkan_lvp.so 2>/dev/null | head -1 || true)
