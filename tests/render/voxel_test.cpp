@@ -2,6 +2,7 @@
 // the SVO's C++ twin and the Embree BVH.
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtx/component_wise.hpp>
 #include <random>
@@ -164,15 +165,20 @@ TEST_F(VoxelTest, SmallTrianglesTakeTheComputeVoxelizerAndWriteTheRasterPathsFra
     return f;
   };
   const std::vector<gi::VoxelFragment> both = sorted(gi::VoxelProbe(*voxels).readbackFragments());
-  gi::VoxelScene raster(context(), gi::VoxelSettings{.resolution = 64});
-  raster.setComputeVoxelization(false);
-  raster.setVolume(voxels->volume());
-  render::Renderer r2(context());
-  r2.addFeature(&raster);
-  r2.resize(16, 16);
-  r2.render(snapshot);
-  EXPECT_EQ(raster.stats().drawsComputeVoxelized, 0u);
-  const std::vector<gi::VoxelFragment> rasterOnly = sorted(gi::VoxelProbe(raster).readbackFragments());
+  // The same snapshot voxelized by a second voxel scene over the same volume, set up by `configure`:
+  // its fragments, sorted, and how many draws took the compute voxelizer.
+  auto voxelizeAgain = [&](const std::function<void(gi::VoxelScene&)>& configure) {
+    gi::VoxelScene again(context(), gi::VoxelSettings{.resolution = 64});
+    configure(again);
+    again.setVolume(voxels->volume());
+    render::Renderer second(context());
+    second.addFeature(&again);
+    second.resize(16, 16);
+    second.render(snapshot);
+    return std::make_pair(sorted(gi::VoxelProbe(again).readbackFragments()), again.stats().drawsComputeVoxelized);
+  };
+  const auto [rasterOnly, rasterComputeDraws] = voxelizeAgain([](gi::VoxelScene& v) { v.setComputeVoxelization(false); });
+  EXPECT_EQ(rasterComputeDraws, 0u);
   ASSERT_EQ(both.size(), rasterOnly.size());
   size_t differ = 0;
   for (size_t i = 0; i < both.size(); ++i) {
@@ -192,15 +198,8 @@ TEST_F(VoxelTest, SmallTrianglesTakeTheComputeVoxelizerAndWriteTheRasterPathsFra
 
   // A device allowing 3 x 4 workgroups a dispatch: the batches split into many 2-D dispatches, and the
   // fragments stay the same.
-  gi::VoxelScene split(context(), gi::VoxelSettings{.resolution = 64});
-  split.setComputeDispatchLimit({3, 4});
-  split.setVolume(voxels->volume());
-  render::Renderer r3(context());
-  r3.addFeature(&split);
-  r3.resize(16, 16);
-  r3.render(snapshot);
-  EXPECT_EQ(split.stats().drawsComputeVoxelized, 400u);
-  const std::vector<gi::VoxelFragment> splitFragments = sorted(gi::VoxelProbe(split).readbackFragments());
+  const auto [splitFragments, splitComputeDraws] = voxelizeAgain([](gi::VoxelScene& v) { v.setComputeDispatchLimit({3, 4}); });
+  EXPECT_EQ(splitComputeDraws, 400u);
   ASSERT_EQ(splitFragments.size(), both.size());
   size_t splitDiffer = 0;
   for (size_t i = 0; i < both.size(); ++i) splitDiffer += splitFragments[i].cell != both[i].cell || splitFragments[i].albedo != both[i].albedo;
