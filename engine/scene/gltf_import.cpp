@@ -140,7 +140,7 @@ class Importer {
     validateNodes();
     std::vector<int> roots;
     if (std::string bad = content::sceneRoots(model_, roots); !bad.empty()) fail(bad);
-    size_t meshNodes = 0;
+    size_t meshNodes = 0, nodes = 0, namedNodes = 0, extraPrimitives = 0;  // what the commit phase creates
     // Composes the world transforms the commit phase will write and checks them: finite local values
     // can still multiply into infinities (1e15 scale under a 1e15 scale).
     std::function<void(int, int, const glm::mat4&)> visit = [&](int n, int depth, const glm::mat4& parentWorld) {
@@ -156,7 +156,10 @@ class Importer {
             fail(where + " places its mesh beyond the coordinate range (1e18)");
         }
         meshNodes += meshes_[size_t(node.mesh)].size();
+        if (!meshes_[size_t(node.mesh)].empty()) extraPrimitives += meshes_[size_t(node.mesh)].size() - 1;
       }
+      ++nodes;
+      namedNodes += node.name.empty() ? 0 : 1;
       for (int c : node.children) visit(c, depth + 1, world);
     };
     for (int r : roots) visit(r, 0, glm::mat4(1.0f));
@@ -190,6 +193,14 @@ class Importer {
       meshIds_.push_back(std::move(ids));
     }
     nodeEntities_.assign(model_.nodes.size(), ecs::kNullEntity);
+    world_.reserveEntities(nodes + extraPrimitives);
+    world_.reserve<Transform>(nodes + extraPrimitives);
+    world_.reserve<WorldTransform>(nodes + extraPrimitives);
+    world_.reserve<Name>(namedNodes);
+    world_.reserve<MeshInstance>(meshNodes);
+    world_.reserve<Material>(meshNodes);
+    if (opts_.markStatic) world_.reserve<StaticTag>(meshNodes);
+    else world_.reserve<DynamicTag>(meshNodes);
     for (int r : roots) commitNode(r, ecs::kNullEntity, glm::mat4(1.0f));
     commitSkins();
     commitAnimations();

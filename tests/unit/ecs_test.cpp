@@ -191,3 +191,23 @@ TEST(ChangeDetection, QueryOlderThanTrimFallsBackToFullScan) {
   EXPECT_EQ(w.changedSince<Position>(0).size(), 2u);  // both, via scan
   EXPECT_EQ(w.changedSince<Position>(mid).size(), 1u);
 }
+
+// A bulk load that reserves first: the pools take it without growing (no slack, no copies), and what
+// they hold is what was added.
+TEST(World, AReservedBulkLoadFillsItsArraysWithoutGrowingThem) {
+  World w;
+  for (int i = 0; i < 10; ++i) w.add(w.create(), Position{float(i)});
+  constexpr size_t kMore = 5000;
+  w.reserveEntities(kMore);
+  w.reserve<Position>(kMore);
+  const Position* before = &w.get<Position>(Entity{0, 0});
+  std::vector<Entity> added;
+  for (size_t i = 0; i < kMore; ++i) {
+    const Entity e = w.create();
+    w.add(e, Position{float(i)});
+    added.push_back(e);
+  }
+  EXPECT_EQ(&w.get<Position>(Entity{0, 0}), before) << "the dense array was not reallocated";
+  for (size_t i = 0; i < kMore; ++i) ASSERT_EQ(w.get<Position>(added[i]).x, float(i));
+  EXPECT_EQ(w.aliveCount(), kMore + 10);
+}

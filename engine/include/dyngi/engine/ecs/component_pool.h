@@ -51,6 +51,16 @@ class ComponentPool final : public ComponentPoolBase {
   T* tryGet(Entity e) { return contains(e) ? &dense_[sparse_[e.index]] : nullptr; }
   const T* tryGet(Entity e) const { return contains(e) ? &dense_[sparse_[e.index]] : nullptr; }
 
+  // Room for `more` components beside those held, and entity indices below `indexBound`.
+  void reserve(size_t more, size_t indexBound) {
+    const size_t n = dense_.size() + more;
+    dense_.reserve(n);
+    entities_.reserve(n);
+    changedTick_.reserve(n);
+    lastSeq_.reserve(n);
+    sparse_.reserve(indexBound);
+  }
+
   T& emplace(Entity e, T value, Tick tick) {
     if (contains(e)) {
       uint32_t d = sparse_[e.index];

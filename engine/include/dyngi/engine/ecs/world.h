@@ -50,6 +50,14 @@ class World {
     return e.index < slots_.size() && slots_[e.index].alive && slots_[e.index].generation == e.generation;
   }
   size_t aliveCount() const { return aliveCount_; }
+  // A bulk load that knows its size (the glTF importer) reserves before it creates: `more` entities,
+  // then `more` components of each type it adds; the arrays then hold no growth slack (up to half of
+  // them) and are not copied while they grow.
+  void reserveEntities(size_t more) { slots_.reserve(slots_.size() + more); }
+  template <typename T>
+  void reserve(size_t more) {
+    pool<T>().reserve(more, slots_.capacity());
+  }
 
   // --- components -----------------------------------------------------------------------------
   template <typename T>
