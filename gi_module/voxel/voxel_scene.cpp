@@ -364,10 +364,14 @@ render::Pipeline& VoxelScene::voxelizeSmallPipelineFor(uint32_t textureBits) {
   return pipeline;
 }
 
+// Invocations one compute-voxelizer dispatch may hold: 64 a group, limit.x by limit.y groups, and under
+// 2^31 (the shader's index).
+static uint64_t maxInvocationsPerDispatch(glm::uvec2 limit) { return std::min<uint64_t>(uint64_t(limit.x) * limit.y * 64, uint64_t(1) << 31); }
+
 std::vector<VoxelScene::ComputeVoxelizeDispatch> VoxelScene::splitComputeVoxelize(uint32_t instances, uint32_t triangles, glm::uvec2 limit) {
   std::vector<ComputeVoxelizeDispatch> out;
   if (instances == 0 || triangles == 0 || limit.x == 0 || limit.y == 0) return out;
-  const uint64_t maxInvocations = std::min<uint64_t>(uint64_t(limit.x) * limit.y * 64, uint64_t(1) << 31);
+  const uint64_t maxInvocations = maxInvocationsPerDispatch(limit);
   const uint32_t perDispatch = uint32_t(std::clamp<uint64_t>(maxInvocations / triangles, 1, instances));
   for (uint32_t first = 0; first < instances; first += perDispatch) {
     const uint32_t n = std::min(perDispatch, instances - first);
@@ -388,9 +392,8 @@ glm::uvec2 VoxelScene::computeDispatchLimit() const {
 // needs the raster path's vertex frame) and one instance fits a dispatch.
 bool VoxelScene::voxelizesByCompute(const render::RenderSnapshot& snapshot, const render::DrawItem& d, const FragmentRanges::Estimate& estimate) const {
   const size_t triangles = snapshot.assets->mesh(d.mesh).indices.size() / 3;
-  const glm::uvec2 limit = computeDispatchLimit();
-  const uint64_t maxInvocations = std::min<uint64_t>(uint64_t(limit.x) * limit.y * 64, uint64_t(1) << 31);
-  return computeVoxelization_ && d.material.normalTexture == scene::kNoTexture && triangles >= 1 && triangles <= maxInvocations &&
+  return computeVoxelization_ && d.material.normalTexture == scene::kNoTexture && triangles >= 1 &&
+         triangles <= maxInvocationsPerDispatch(computeDispatchLimit()) &&
          estimate.widestTriangle <= kComputeVoxelizeSpan;
 }
 
