@@ -9,6 +9,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "dyngi/engine/ecs/entity_map.h"
+
 #include "dyngi/engine/scene/alpha_cut.h"
 #include "dyngi/engine/scene/animation.h"
 #include "dyngi/engine/scene/components.h"
@@ -60,14 +62,13 @@ struct EmbreeScene::Impl {
   struct Instance {
     RTCGeometry geometry = nullptr;
     unsigned geomId = RTC_INVALID_GEOMETRY_ID;
-    ecs::Entity entity;
     scene::MeshId mesh = 0;
   };
 
   RTCDevice device = nullptr;
   RTCScene top = nullptr;
   std::unordered_map<scene::MeshId, Blas> blas;
-  std::unordered_map<ecs::Entity, Instance> instances;
+  ecs::EntityMap<Instance> instances;
   std::vector<ecs::Entity> byGeomId;  // top-level geomID -> entity
   std::vector<scene::MeshId> meshByGeomId;
 
@@ -108,7 +109,7 @@ struct EmbreeScene::Impl {
   }
 
   std::unordered_set<scene::MeshId> rebuiltThisSync, refitThisSync;
-  std::unordered_set<ecs::Entity> parked;  // instances out of the BVH while their mesh is not usable
+  ecs::EntitySet parked;  // instances out of the BVH while their mesh is not usable
 
   // Builds, refits or returns the bottom-level BVH of a mesh as its version requires.
   Blas& ensureBlas(const scene::MeshData& m, scene::MeshId id, bool deforming, BvhStats& st) {
@@ -166,7 +167,6 @@ struct EmbreeScene::Impl {
 
   void addInstance(ecs::Entity e, scene::MeshId mesh, const glm::mat4& m, const Blas& b) {
     Instance inst;
-    inst.entity = e;
     inst.mesh = mesh;
     inst.geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(inst.geometry, b.scene);
@@ -258,11 +258,10 @@ const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetSto
 void EmbreeScene::Impl::removeGone(SyncPass& pass, const ChangeSet& changes) {
   for (ecs::Entity e : changes.removed)
     if (instances.count(e)) removeInstance(e), ++pass.stats.instancesRemoved, pass.topDirty = true;
-  for (auto it = instances.begin(); it != instances.end();) {
-    ecs::Entity e = it->first;
-    ++it;
-    if (!pass.world.alive(e) || !pass.world.has<scene::MeshInstance>(e)) removeInstance(e), ++pass.stats.instancesRemoved, pass.topDirty = true;
-  }
+  std::vector<ecs::Entity> gone;  // found first: removing moves another entry into the removed one's place
+  for (const auto& [e, inst] : instances)
+    if (!pass.world.alive(e) || !pass.world.has<scene::MeshInstance>(e)) gone.push_back(e);
+  for (ecs::Entity e : gone) removeInstance(e), ++pass.stats.instancesRemoved, pass.topDirty = true;
 }
 
 // Deformed meshes: refit once per mesh, whichever entities use them. (Ids first: a rebuild replaces the
@@ -350,10 +349,11 @@ void EmbreeScene::Impl::upsert(SyncPass& pass, ecs::Entity e) {
 // instance uses gets the filter functions once; its instances are committed again with the changed BLAS.
 void EmbreeScene::Impl::applyAlphaCuts(SyncPass& pass) {
   assets = &pass.assets;
-  alphaByGeomId.assign(byGeomId.size(), MaskedInstance{});
+  alphaByGeomId = {};  // sized only when an instance is masked (most scenes have none)
   for (auto& [e, inst] : instances) {
     const auto* mat = pass.world.tryGet<scene::Material>(e);
     if (!mat || !mat->alphaMask) continue;
+    if (alphaByGeomId.empty()) alphaByGeomId.resize(byGeomId.size());
     alphaByGeomId[inst.geomId] = {inst.mesh, scene::AlphaCut::of(*mat)};
     Blas& b = blas.at(inst.mesh);
     if (b.filtered) continue;

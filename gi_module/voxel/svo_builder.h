@@ -5,7 +5,6 @@
 // every time), then top-down level passes give the occupied nodes their children, then, when asked,
 // the leaves get averaged attributes. The node pool follows what the SVO uses. VoxelScene owns one.
 #include <cstdint>
-#include <unordered_set>
 #include <vector>
 
 #include "dyngi/engine/render/frame_context.h"
@@ -83,7 +82,7 @@ class SvoBuilder {
   // moving entities' fragments only. Rebuilt when one of them moves or is removed, or when a moving
   // entity has settled and can join; so are their voxel attributes.
   render::Buffer staticOccupancy_;
-  std::unordered_set<ecs::Entity> staticEntities_;
+  ecs::EntitySet staticEntities_;
   bool rebuildStaticOccupancy_ = true;
   render::Buffer markChunks_;                     // DYNGI_SVO_CHUNK per mark workgroup
   const render::Buffer* counters_ = nullptr;      // the build being recorded's (record())

@@ -178,12 +178,12 @@ void VoxelScene::compactFragments() {
   reallocateFragments(std::max<uint64_t>(next + next / 4, FragmentRanges::kMinCompactSlots), keep);
 }
 
-std::unordered_set<ecs::Entity> VoxelScene::deferredByCap(const render::RenderSnapshot& snapshot, const glm::mat4& toVoxel) const {
+ecs::EntitySet VoxelScene::deferredByCap(const render::RenderSnapshot& snapshot, const glm::mat4& toVoxel) const {
   const uint64_t cap = voxelizeCap_ > 0 ? voxelizeCap_
                        : spreadVoxelization_ ? std::max<uint64_t>(kMinSpreadFragments, ranges_.storedFragments() / 4)
                                              : 0;
   if (cap == 0) return {};
-  std::unordered_map<ecs::Entity, uint64_t> estimates;  // of the dirty entities drawn this frame
+  ecs::EntityMap<uint64_t> estimates;  // of the dirty entities drawn this frame
   for (const auto& d : snapshot.draws)
     if (dirty_.count(d.entity)) estimates[d.entity] += FragmentRanges::estimateFragments(snapshot.assets->mesh(d.mesh), toVoxel * d.model, volume_.resolution);
   std::vector<std::pair<uint64_t, ecs::Entity>> waiting;  // (changed since, entity): the longest waiting first
@@ -192,7 +192,7 @@ std::unordered_set<ecs::Entity> VoxelScene::deferredByCap(const render::RenderSn
     waiting.push_back({since != dirtySince_.end() ? since->second : frameIndex_, e});
   }
   std::sort(waiting.begin(), waiting.end());
-  std::unordered_set<ecs::Entity> deferred;
+  ecs::EntitySet deferred;
   uint64_t taken = 0;
   for (const auto& [since, e] : waiting) {
     const uint64_t estimate = estimates[e];
@@ -223,7 +223,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   const glm::mat4 toVoxel = volume_.worldToVoxelMatrix();
 
   // Entities that disappeared from the draw list count as removed.
-  std::unordered_set<ecs::Entity> present;
+  ecs::EntitySet present;
   for (const auto& d : snapshot.draws) present.insert(d.entity);
   for (const auto& [e, r] : ranges_.all())
     if (!present.count(e)) removed_.insert(e);
@@ -258,10 +258,10 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   }
   removed_.clear();
   drawsToVoxelize_.clear();
-  const std::unordered_set<ecs::Entity> deferred = wholeVolume ? std::unordered_set<ecs::Entity>{} : deferredByCap(snapshot, toVoxel);
+  const ecs::EntitySet deferred = wholeVolume ? ecs::EntitySet{} : deferredByCap(snapshot, toVoxel);
   uint64_t newHighWater = ranges_.highWater();
   std::vector<std::pair<ecs::Entity, Range>> planned;
-  std::unordered_map<ecs::Entity, scene::Aabb> newBounds;  // voxel units, of the draws voxelized now
+  ecs::EntityMap<scene::Aabb> newBounds;  // voxel units, of the draws voxelized now
   for (size_t i = 0; i < snapshot.draws.size(); ++i) {
     const auto& d = snapshot.draws[i];
     if (!dirty_.count(d.entity) || deferred.count(d.entity)) continue;

@@ -1,7 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <map>
+#include <random>
 #include <set>
+#include <unordered_map>
 
+#include "dyngi/engine/ecs/entity_map.h"
 #include "dyngi/engine/ecs/world.h"
 
 using namespace dyngi::ecs;
@@ -210,4 +214,68 @@ TEST(World, AReservedBulkLoadFillsItsArraysWithoutGrowingThem) {
   EXPECT_EQ(&w.get<Position>(Entity{0, 0}), before) << "the dense array was not reallocated";
   for (size_t i = 0; i < kMore; ++i) ASSERT_EQ(w.get<Position>(added[i]).x, float(i));
   EXPECT_EQ(w.aliveCount(), kMore + 10);
+}
+
+// EntityMap and EntitySet against std::unordered_map under random inserts, lookups with stale
+// generations, erases by key and erases while iterating (the swap-remove the containers use).
+TEST(EntityMap, MatchesAStandardMapUnderRandomEditsAndStaleHandles) {
+  std::mt19937 rng(7);
+  EntityMap<uint64_t> map;
+  EntitySet set;
+  std::unordered_map<Entity, uint64_t> truth;
+  auto randomEntity = [&] { return Entity{uint32_t(rng() % 300), uint32_t(rng() % 3)}; };
+  auto same = [&] {
+    ASSERT_EQ(map.size(), truth.size());
+    ASSERT_EQ(set.size(), truth.size());
+    std::map<std::pair<uint32_t, uint32_t>, uint64_t> seen;
+    for (const auto& [e, v] : map) seen[{e.index, e.generation}] = v;
+    std::set<std::pair<uint32_t, uint32_t>> inSet;
+    for (Entity e : set) inSet.insert({e.index, e.generation});
+    ASSERT_EQ(seen.size(), truth.size());  // no entry twice
+    ASSERT_EQ(inSet.size(), truth.size());
+    for (const auto& [e, v] : truth) {
+      EXPECT_EQ((seen[{e.index, e.generation}]), v);
+      EXPECT_TRUE(inSet.count({e.index, e.generation}));
+    }
+  };
+  for (int step = 0; step < 20000; ++step) {
+    const Entity e = randomEntity();
+    switch (rng() % 6) {
+      case 0:
+      case 1: {
+        const uint64_t v = rng();
+        const bool added = map.try_emplace(e, v).second;
+        EXPECT_EQ(added, truth.emplace(e, v).second);
+        EXPECT_EQ(set.insert(e), added);
+        break;
+      }
+      case 2:
+        map[e] += 3, truth[e] += 3, set.insert(e);
+        break;
+      case 3:
+        EXPECT_EQ(map.erase(e), truth.erase(e));
+        set.erase(e);
+        break;
+      case 4:
+        EXPECT_EQ(map.count(e), truth.count(e));
+        EXPECT_EQ(set.count(e), truth.count(e));
+        if (truth.count(e)) EXPECT_EQ(map.at(e), truth.at(e));
+        else EXPECT_THROW(map.at(e), std::out_of_range);
+        break;
+      case 5:
+        if (step % 50 == 0) {  // erase the odd values while walking, as an unordered_map loop would
+          for (auto it = map.begin(); it != map.end();) it = it->second % 2 ? map.erase(it) : std::next(it);
+          for (auto it = truth.begin(); it != truth.end();) {
+            if (it->second % 2) set.erase(it->first), it = truth.erase(it);
+            else ++it;
+          }
+        }
+        break;
+    }
+    if (step % 1000 == 0) same();
+  }
+  same();
+  map.clear(), set.clear(), truth.clear();
+  same();
+  EXPECT_EQ(map.count(Entity{5, 0}), 0u);
 }

@@ -5,12 +5,11 @@
 // time, then by the count the voxelizer wrote; compacted when the ranges hold twice what they need.
 #include <cstdint>
 #include <optional>
-#include <unordered_map>
 #include <vector>
 
 #include <glm/glm.hpp>
 
-#include "dyngi/engine/ecs/entity.h"
+#include "dyngi/engine/ecs/entity_map.h"
 #include "dyngi/engine/scene/assets.h"
 
 namespace dyngi::gi {
@@ -72,8 +71,7 @@ class FragmentRanges {
   void setHighWater(uint64_t slots) { highWater_ = slots; }
   uint32_t counterCount() const { return counterCount_; }
   uint64_t storedFragments() const;  // fragments written, over all ranges
-  const std::unordered_map<ecs::Entity, FragmentRange>& all() const { return ranges_; }
-  std::unordered_map<ecs::Entity, FragmentRange>& all() { return ranges_; }
+  const ecs::EntityMap<FragmentRange>& all() const { return ranges_; }
   FragmentRange& at(ecs::Entity e) { return ranges_.at(e); }
   const FragmentRange& at(ecs::Entity e) const { return ranges_.at(e); }
 
@@ -85,7 +83,7 @@ class FragmentRanges {
   };
   static Need need(uint64_t estimate, const FragmentRange* previous);
 
-  std::unordered_map<ecs::Entity, FragmentRange> ranges_;
+  ecs::EntityMap<FragmentRange> ranges_;
   std::vector<uint32_t> freeCounters_;
   uint32_t counterCount_ = 0;
   uint64_t highWater_ = 0;

@@ -7,8 +7,6 @@
 // Static geometry is therefore voxelized once and cached. The SVO is rebuilt from all ranges whenever
 // any range changed, so voxels an object left are gone and the result equals a build from scratch.
 #include <memory>
-#include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
 #include "dyngi/gi/change_set.h"
@@ -180,7 +178,7 @@ class VoxelScene final : public render::RenderFeature {
   friend class VoxelProbe;  // tests' and tools' read-backs (gi_module/testing)
   using Range = FragmentRange;
   // The dirty entities this frame's voxelization cap leaves for later (empty without a cap).
-  std::unordered_set<ecs::Entity> deferredByCap(const render::RenderSnapshot& snapshot, const glm::mat4& toVoxel) const;
+  ecs::EntitySet deferredByCap(const render::RenderSnapshot& snapshot, const glm::mat4& toVoxel) const;
   // Fragment storage of `slots` slots at least; kept fragments are copied, nothing is re-voxelized.
   void ensureCapacity(uint64_t slots);
   // Moves every range's fragments into a buffer sized by what they hold (FragmentRanges::compact).
@@ -199,9 +197,9 @@ class VoxelScene final : public render::RenderFeature {
   uint32_t updateInterval_ = 1;
   uint64_t voxelizeCap_ = 0;
   bool spreadVoxelization_ = false;
-  std::unordered_map<ecs::Entity, uint64_t> dirtySince_;  // the frame each dirty entity changed first
+  ecs::EntityMap<uint64_t> dirtySince_;  // the frame each dirty entity changed first
   bool updatesThisFrame_ = true;
-  std::unordered_set<ecs::Entity> dirty_, removed_;
+  ecs::EntitySet dirty_, removed_;
   FragmentRanges ranges_;  // where each entity's fragments live in fragments_
   std::unique_ptr<class SvoBuilder> svo_;  // the SVO over fragments_ (voxel/svo_builder.h)
 
@@ -214,9 +212,9 @@ class VoxelScene final : public render::RenderFeature {
   bool rebuildSvo_ = false;
   bool storageMoved_ = false;  // fragments were moved or the derived buffers reallocated: rebuild the SVO
   std::vector<ecs::Entity> voxelizedThisFrame_;
-  std::unordered_map<ecs::Entity, VoxelBox> voxelBoxes_;  // each entity's box at its last voxelization
+  ecs::EntityMap<VoxelBox> voxelBoxes_;  // each entity's box at its last voxelization
   std::vector<VoxelBox> staleBoxes_, freshBoxes_;
-  std::unordered_set<ecs::Entity> emittingEntities_;  // voxelized with an emissive material
+  ecs::EntitySet emittingEntities_;  // voxelized with an emissive material
   bool staleEverywhere_ = false;
 
   render::Buffer fragments_, counters_;
