@@ -224,6 +224,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
 
   // Entities that disappeared from the draw list count as removed.
   ecs::EntitySet present;
+  present.reserve(snapshot.draws.size());
   for (const auto& d : snapshot.draws) present.insert(d.entity);
   for (const auto& [e, r] : ranges_.all())
     if (!present.count(e)) removed_.insert(e);
@@ -235,8 +236,10 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   if (allDirty_) {
     svo_->invalidateStaticOccupancy();
     ranges_.clear();
+    ranges_.reserve(snapshot.draws.size());  // filled below: no copies while it grows
     rangesToEmpty_.clear();
     voxelBoxes_.clear();
+    voxelBoxes_.reserve(snapshot.draws.size());
     emittingEntities_.clear();
     staleEverywhere_ = true;
     for (const auto& d : snapshot.draws) dirty_.insert(d.entity);
@@ -260,8 +263,8 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   drawsToVoxelize_.clear();
   const ecs::EntitySet deferred = wholeVolume ? ecs::EntitySet{} : deferredByCap(snapshot, toVoxel);
   uint64_t newHighWater = ranges_.highWater();
-  std::vector<std::pair<ecs::Entity, Range>> planned;
   ecs::EntityMap<scene::Aabb> newBounds;  // voxel units, of the draws voxelized now
+  newBounds.reserve(dirty_.size());
   for (size_t i = 0; i < snapshot.draws.size(); ++i) {
     const auto& d = snapshot.draws[i];
     if (!dirty_.count(d.entity) || deferred.count(d.entity)) continue;
@@ -269,15 +272,14 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     if (glm::any(glm::greaterThan(d.material.emissive, glm::vec3(0.0f)))) emittingEntities_.insert(d.entity);
     newBounds[d.entity].extend(snapshot.assets->mesh(d.mesh).bounds.transformed(toVoxel * d.model));
     const FragmentRanges::Estimate estimate = FragmentRanges::estimate(snapshot.assets->mesh(d.mesh), toVoxel * d.model, volume_.resolution);
-    planned.push_back({d.entity, ranges_.plan(d.entity, estimate.fragments, newHighWater, rangesToEmpty_)});
+    // Committed at once: the growth below keeps the slots under the last frame's high water, which
+    // a new range (planned above it) never overlaps.
+    ranges_.commit(d.entity, ranges_.plan(d.entity, estimate.fragments, newHighWater, rangesToEmpty_), frameIndex_);
+    voxelizedThisFrame_.push_back(d.entity);
     drawsToVoxelize_.push_back(i);
     (voxelizesByCompute(snapshot, d, estimate) ? computeDraws_ : rasterDraws_).push_back(i);
   }
   ensureCapacity(newHighWater);  // grows by copying: nothing already voxelized is lost
-  for (auto& [e, r] : planned) {
-    ranges_.commit(e, r, frameIndex_);
-    voxelizedThisFrame_.push_back(e);
-  }
   // Each re-voxelized entity's old box is stale; its new one is what it covers now (a voxel of margin:
   // the voxelization is conservative).
   const float top = float(volume_.resolution - 1);

@@ -54,11 +54,12 @@ class FragmentRanges {
 
   // Forgets every range (a new volume: everything is voxelized again).
   void clear();
+  void reserve(size_t entities) { ranges_.reserve(entities); }
   // Drops `e`'s range and frees its counter; returns the range, whose slots must be emptied.
   std::optional<FragmentRange> remove(ecs::Entity e);
   // `e`'s range for this frame's voxelization of `estimate` fragments: its own while it holds what it
   // needs, else a fresh one at `highWater` (advanced; the old one is appended to `toEmpty`). Not stored
-  // until commit(), so the buffer can grow first with only the committed ranges to keep.
+  // until commit(); highWater() moves only with setHighWater().
   FragmentRange plan(ecs::Entity e, uint64_t estimate, uint64_t& highWater, std::vector<FragmentRange>& toEmpty);
   void commit(ecs::Entity e, FragmentRange r, uint64_t frame);
   // True when the ranges hold more than twice what they need (counts from the last frame).
