@@ -55,7 +55,7 @@ uint32_t materialTextureBits(const scene::Material& m) {
 }
 
 uint32_t drawTextureBits(const FrameContext& frame, const DrawItem& d) {
-  uint32_t bits = materialTextureBits(d.material);
+  uint32_t bits = materialTextureBits(frame.snapshot.materialOf(d));
   if ((bits & DYNGI_MATERIAL_NORMAL_TEX) && frame.snapshot.assets->mesh(d.mesh).tangents.empty()) bits &= ~uint32_t(DYNGI_MATERIAL_NORMAL_TEX);
   return bits;
 }
@@ -69,13 +69,13 @@ struct BatchKey {
   bool alphaMask;
   auto operator<=>(const BatchKey&) const = default;
 };
-BatchKey batchKey(const DrawItem& d, const GpuMesh* mesh) {
-  const scene::Material& m = d.material;
+BatchKey batchKey(const RenderSnapshot& snapshot, const DrawItem& d, const GpuMesh* mesh) {
+  const scene::Material& m = snapshot.materialOf(d);
   return {mesh, {m.baseColorTexture, m.emissiveTexture, m.metallicRoughnessTexture, m.occlusionTexture, m.normalTexture}, m.alphaMask};
 }
 
-gpu::DrawInstance drawInstance(const DrawItem& d) {
-  const scene::Material& m = d.material;
+gpu::DrawInstance drawInstance(const RenderSnapshot& snapshot, const DrawItem& d) {
+  const scene::Material& m = snapshot.materialOf(d);
   gpu::DrawInstance r;
   r.model = d.model;
   r.baseColor = glm::vec4(glm::vec3(m.baseColor), m.alphaMask ? alphaMaskThreshold(m) : 1.0f);
@@ -90,7 +90,7 @@ void buildFrameInstances(VulkanContext& ctx, const RenderSnapshot& snapshot, con
                          FrameInstances& out) {
   const size_t n = snapshot.draws.size();
   std::vector<BatchKey> keys(n);
-  for (size_t i = 0; i < n; ++i) keys[i] = batchKey(snapshot.draws[i], meshes[i]);
+  for (size_t i = 0; i < n; ++i) keys[i] = batchKey(snapshot, snapshot.draws[i], meshes[i]);
   out.drawOfSlot.resize(n);
   std::iota(out.drawOfSlot.begin(), out.drawOfSlot.end(), 0u);
   std::stable_sort(out.drawOfSlot.begin(), out.drawOfSlot.end(), [&](uint32_t a, uint32_t b) { return keys[a] < keys[b]; });
@@ -106,7 +106,7 @@ void buildFrameInstances(VulkanContext& ctx, const RenderSnapshot& snapshot, con
     out.slotOfDraw[draw] = slot;
     if (slot > 0 && keys[draw] != keys[out.drawOfSlot[slot - 1]]) ++batch;
     out.batchOfSlot[slot] = batch;
-    mapped[slot] = drawInstance(snapshot.draws[draw]);
+    mapped[slot] = drawInstance(snapshot, snapshot.draws[draw]);
   }
   records.flush();
   out.records = &records;

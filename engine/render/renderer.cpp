@@ -194,9 +194,8 @@ std::vector<GpuMesh*> Renderer::uploadAssets(const RenderSnapshot& snapshot) {
   std::vector<GpuMesh*> meshes(snapshot.draws.size(), nullptr);
   if (!snapshot.assets) return meshes;
   for (size_t i = 0; i < snapshot.draws.size(); ++i) meshes[i] = meshFor(*snapshot.assets, snapshot.draws[i].mesh);
-  for (const DrawItem& d : snapshot.draws)
-    for (scene::TextureId id : {d.material.baseColorTexture, d.material.emissiveTexture, d.material.metallicRoughnessTexture,
-                                d.material.occlusionTexture, d.material.normalTexture})
+  for (const scene::Material& m : snapshot.materials)
+    for (scene::TextureId id : {m.baseColorTexture, m.emissiveTexture, m.metallicRoughnessTexture, m.occlusionTexture, m.normalTexture})
       textureView(*snapshot.assets, id);
   return meshes;
 }

@@ -1,6 +1,7 @@
 #include "dyngi/engine/render/snapshot.h"
 
 #include <algorithm>
+#include <bit>
 #include <atomic>
 #include <cstdio>
 #include <cmath>
@@ -30,6 +31,20 @@ CameraView frameBounds(const scene::Aabb& bounds, float yfov) {
   return c;
 }
 
+uint32_t RenderSnapshot::addMaterial(const scene::Material& m) {
+  // A hash of the values that tell materials apart; an equal material added recently shares its index.
+  uint32_t h = 2166136261u;
+  for (float f : {m.baseColor.r, m.baseColor.g, m.baseColor.b, m.baseColor.a, m.emissive.r, m.emissive.g, m.emissive.b, m.metallic, m.roughness})
+    h = (h ^ std::bit_cast<uint32_t>(f)) * 16777619u;
+  h = (h ^ m.baseColorTexture ^ (m.emissiveTexture << 8) ^ (m.normalTexture << 16)) * 16777619u;
+  h ^= h >> 16, h *= 0x85ebca6bu, h ^= h >> 13, h *= 0xc2b2ae35u, h ^= h >> 16;  // float bits differ high: mix them down
+  uint32_t& recent = recentMaterials_[h % recentMaterials_.size()];
+  if (recent < materials.size() && materials[recent] == m) return recent;
+  recent = uint32_t(materials.size());
+  materials.push_back(m);
+  return recent;
+}
+
 RenderSnapshot extractSnapshot(const ecs::World& world, const scene::AssetStore& assets, uint64_t frame) {
   RenderSnapshot s;
   extractSnapshot(world, assets, frame, s);
@@ -40,11 +55,14 @@ void extractSnapshot(const ecs::World& world, const scene::AssetStore& assets, u
   using namespace scene;
   std::vector<DrawItem> draws = std::move(into.draws);
   std::vector<LightItem> lights = std::move(into.lights);
+  std::vector<Material> materials = std::move(into.materials);
   draws.clear();
   lights.clear();
+  materials.assign(1, Material{});
   into = RenderSnapshot{};
   into.draws = std::move(draws);
   into.lights = std::move(lights);
+  into.materials = std::move(materials);
   RenderSnapshot& s = into;
   s.assets = &assets;
   s.frame = frame;
@@ -64,7 +82,7 @@ void extractSnapshot(const ecs::World& world, const scene::AssetStore& assets, u
     d.castShadows = mi.castShadows;
     // Clamped as the importer and the host API clamp: a component written directly (a system, a script,
     // a host's ECS code) cannot carry a NaN or an overflowing value into lighting.
-    if (const Material* m = world.tryGet<Material>(e)) d.material = inContentRange(*m);
+    if (const Material* m = world.tryGet<Material>(e)) d.material = s.addMaterial(inContentRange(*m));
     s.sceneBounds.extend(worldBounds);
     s.draws.push_back(d);
   });

@@ -35,7 +35,7 @@ bool SceneSurfaces::at(const RayHit& h, const glm::vec3& origin, const glm::vec3
   glm::vec3 ns = m.normals.size() == m.positions.size()
                      ? glm::normalize(normalMatrix * (w0 * m.normals[i0] + h.u * m.normals[i1] + h.v * m.normals[i2]))
                      : ng;
-  const scene::Material& mat = d.material;
+  const scene::Material& mat = snap_.materialOf(d);
   glm::vec2 uv(0.0f);
   if (m.uvs.size() == m.positions.size()) uv = w0 * m.uvs[i0] + h.u * m.uvs[i1] + h.v * m.uvs[i2];
   uv = gpu::applyUvTransform(mat.uvTransform.linear(), mat.uvTransform.offset, uv);  // KHR_texture_transform

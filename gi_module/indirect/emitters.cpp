@@ -25,11 +25,11 @@ EmitterSet::EmitterSet(const render::RenderSnapshot& snapshot, const scene::Asse
     : snap_(snapshot), assets_(assets) {
   for (size_t d = 0; d < snapshot.draws.size(); ++d) {
     const render::DrawItem& draw = snapshot.draws[d];
-    const glm::vec3 factor = draw.material.emissive;
+    const glm::vec3 factor = snapshot.materialOf(draw).emissive;
     if (!(emitterLuminance(factor) > 0.0f) || draw.mesh >= assets.meshCount()) continue;
     const scene::MeshData& m = assets.mesh(draw.mesh);
     if (!m.usable) continue;
-    const float radiance = emitterLuminance(factor * textureMean(assets, draw.material.emissiveTexture));
+    const float radiance = emitterLuminance(factor * textureMean(assets, snapshot.materialOf(draw).emissiveTexture));
     if (!(radiance > 0.0f) || !std::isfinite(radiance)) continue;
     float entityTotal = 0.0f;
     std::vector<float>& pdfs = pdfArea_[draw.entity];

@@ -269,7 +269,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     const auto& d = snapshot.draws[i];
     if (!dirty_.count(d.entity) || deferred.count(d.entity)) continue;
     if (!newBounds.count(d.entity)) emittingEntities_.erase(d.entity);
-    if (glm::any(glm::greaterThan(d.material.emissive, glm::vec3(0.0f)))) emittingEntities_.insert(d.entity);
+    if (glm::any(glm::greaterThan(snapshot.materialOf(d).emissive, glm::vec3(0.0f)))) emittingEntities_.insert(d.entity);
     newBounds[d.entity].extend(snapshot.assets->mesh(d.mesh).bounds.transformed(toVoxel * d.model));
     const FragmentRanges::Estimate estimate = FragmentRanges::estimate(snapshot.assets->mesh(d.mesh), toVoxel * d.model, volume_.resolution);
     // Committed at once: the growth below keeps the slots under the last frame's high water, which
@@ -394,7 +394,7 @@ glm::uvec2 VoxelScene::computeDispatchLimit() const {
 // needs the raster path's vertex frame) and one instance fits a dispatch.
 bool VoxelScene::voxelizesByCompute(const render::RenderSnapshot& snapshot, const render::DrawItem& d, const FragmentRanges::Estimate& estimate) const {
   const size_t triangles = snapshot.assets->mesh(d.mesh).indices.size() / 3;
-  return computeVoxelization_ && d.material.normalTexture == scene::kNoTexture && triangles >= 1 &&
+  return computeVoxelization_ && snapshot.materialOf(d).normalTexture == scene::kNoTexture && triangles >= 1 &&
          triangles <= maxInvocationsPerDispatch(computeDispatchLimit()) &&
          estimate.widestTriangle <= kComputeVoxelizeSpan;
 }
@@ -431,11 +431,11 @@ bool VoxelScene::record(render::FrameContext& frame) {
             .storageBuffer(DYNGI_VOXELIZE_BINDING_COUNTERS, counters_.handle())
             .storageBuffer(DYNGI_VOXELIZE_BINDING_INSTANCES, frame.instances->records->handle())
             .storageBuffer(DYNGI_VOXELIZE_BINDING_RANGES, voxelizeRanges_.handle())
-            .sampledImage(DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX, frame.textureView(d.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-            .sampledImage(DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, frame.textureView(d.material.emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-            .sampledImage(DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX, frame.textureView(d.material.metallicRoughnessTexture), frame.linearSampler,
+            .sampledImage(DYNGI_VOXELIZE_BINDING_BASE_COLOR_TEX, frame.textureView(frame.snapshot.materialOf(d).baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+            .sampledImage(DYNGI_VOXELIZE_BINDING_EMISSIVE_TEX, frame.textureView(frame.snapshot.materialOf(d).emissiveTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+            .sampledImage(DYNGI_VOXELIZE_BINDING_METALLIC_ROUGHNESS_TEX, frame.textureView(frame.snapshot.materialOf(d).metallicRoughnessTexture), frame.linearSampler,
                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-            .sampledImage(DYNGI_VOXELIZE_BINDING_NORMAL_TEX, frame.textureView(d.material.normalTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+            .sampledImage(DYNGI_VOXELIZE_BINDING_NORMAL_TEX, frame.textureView(frame.snapshot.materialOf(d).normalTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         return w;
       };
       if (!rasterDraws_.empty()) {

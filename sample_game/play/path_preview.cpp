@@ -23,8 +23,9 @@ void PathPreview::prepare(render::VulkanContext& ctx, const render::RenderSnapsh
   std::vector<glm::vec4> materials, lights;
   for (const render::DrawItem& d : snapshot.draws) {
     models.push_back(d.model);
-    materials.push_back(d.material.baseColor);
-    materials.push_back(glm::vec4(d.material.emissive, d.material.roughness));
+    const scene::Material& m = snapshot.materialOf(d);
+    materials.push_back(m.baseColor);
+    materials.push_back(glm::vec4(m.emissive, m.roughness));
   }
   for (const render::LightItem& l : snapshot.lights) {
     lights.push_back(glm::vec4(l.position, l.light.intensity * float(l.light.enabled)));

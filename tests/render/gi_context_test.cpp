@@ -69,7 +69,7 @@ Mirror mirror(gi::GiContext& host, const ecs::World& world, const scene::AssetSt
       const scene::MeshData& m = assets.mesh(d.mesh);
       meshes[d.mesh] = host.addMesh({m.positions, m.normals, m.uvs, m.indices, m.name});
     }
-    const gi::MaterialHandle material = host.addMaterial(materialDesc(d.material));
+    const gi::MaterialHandle material = host.addMaterial(materialDesc(s.materialOf(d)));
     out.instances[d.entity] = host.addInstance({meshes[d.mesh], material, d.model, !world.has<scene::StaticTag>(d.entity)});
   }
   for (const render::LightItem& l : s.lights) out.lights[l.entity] = host.addLight(lightDesc(l));

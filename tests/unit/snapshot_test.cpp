@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <set>
 
 #include "dyngi/engine/render/snapshot.h"
 #include "dyngi/engine/scene/assets.h"
@@ -53,7 +54,7 @@ TEST(Snapshot, ExtractingIntoAnOldSnapshotGivesAFreshOneInItsMemory) {
   for (size_t i = 0; i < fresh.draws.size(); ++i) {
     EXPECT_EQ(reused.draws[i].entity, fresh.draws[i].entity);
     EXPECT_EQ(reused.draws[i].model, fresh.draws[i].model);
-    EXPECT_EQ(reused.draws[i].material.baseColor, fresh.draws[i].material.baseColor);
+    EXPECT_EQ(reused.materialOf(reused.draws[i]), fresh.materialOf(fresh.draws[i]));
   }
   ASSERT_EQ(reused.lights.size(), fresh.lights.size());
   EXPECT_EQ(reused.lights[0].light.intensity, fresh.lights[0].light.intensity);
@@ -84,7 +85,7 @@ TEST(Snapshot, ComponentsOutOfContentRangeAreClampedIntoIt) {
   const render::RenderSnapshot s = render::extractSnapshot(w, a, 0);
   ASSERT_EQ(s.draws.size(), 1u);
   ASSERT_EQ(s.lights.size(), 1u);
-  const scene::Material& m = s.draws[0].material;
+  const scene::Material& m = s.materialOf(s.draws[0]);
   EXPECT_EQ(m.baseColor, glm::vec4(1.0f, 0.0f, 1.0f, 0.5f));
   EXPECT_EQ(m.emissive, glm::vec3(scene::kMaxEmission, scene::kMaxEmission, 0.0f));
   EXPECT_EQ(m.metallic, 0.0f);
@@ -96,4 +97,37 @@ TEST(Snapshot, ComponentsOutOfContentRangeAreClampedIntoIt) {
   EXPECT_FLOAT_EQ(l.outerConeAngle, 0.5f);
   EXPECT_LT(l.innerConeAngle, l.outerConeAngle);
   EXPECT_GE(l.innerConeAngle, 0.0f);
+}
+
+// Each draw's material is its entity's component (or the default without one); instances that share a
+// material share one entry, and distinct materials are never merged.
+TEST(Snapshot, DrawsShareEqualMaterialsAndKeepTheirOwn) {
+  for (const bool distinct : {false, true}) {
+    ecs::World w;
+    scene::AssetStore a;
+    const scene::MeshId quad = a.addMesh(scene::makeQuad({-0.5f, -0.5f, 0}, {1, 0, 0}, {0, 1, 0}));
+    std::vector<ecs::Entity> entities;
+    for (int i = 0; i < 3000; ++i) {
+      const ecs::Entity e = w.create();
+      w.add(e, scene::WorldTransform{glm::translate(glm::mat4(1.0f), glm::vec3(float(i), 0.0f, 0.0f))});
+      w.add(e, scene::MeshInstance{quad, true});
+      if (i % 7 == 3) continue;  // no material: the default
+      scene::Material m;
+      m.roughness = distinct ? float(i) / 3000.0f : float(i % 3) * 0.25f;
+      m.baseColor = glm::vec4(0.5f, 0.25f, distinct ? float(i % 2) : 0.5f, 1.0f);
+      w.add(e, m);
+    }
+    const render::RenderSnapshot s = render::extractSnapshot(w, a, 0);
+    ASSERT_EQ(s.draws.size(), 3000u);
+    std::set<uint32_t> used;
+    for (const render::DrawItem& d : s.draws) {
+      const scene::Material* own = w.tryGet<scene::Material>(d.entity);
+      EXPECT_EQ(s.materialOf(d), own ? *own : scene::Material{});
+      used.insert(d.material);
+    }
+    EXPECT_EQ(s.materials.size(), used.size()) << "every entry is some draw's";
+    if (!distinct) {
+      EXPECT_EQ(s.materials.size(), 4u) << "three materials and the default";
+    }
+  }
 }

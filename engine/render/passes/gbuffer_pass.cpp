@@ -56,7 +56,7 @@ void GBufferPass::execute(FrameContext& frame, const TextureLookup& textures) {
         frame, std::nullopt,
         [&](const DrawItem& d) -> const Pipeline& { return pipelineFor(drawTextureBits(frame, d)); },
         [&](VkCommandBuffer c, const DrawItem& d, const Pipeline& pipeline) {
-          const scene::Material& m = d.material;
+          const scene::Material& m = frame.snapshot.materialOf(d);
           DescriptorWrites()
               .uniformBuffer(DYNGI_GBUFFER_BINDING_FRAME, frame.frameUniforms.handle())
               .storageBuffer(DYNGI_GBUFFER_BINDING_INSTANCES, frame.instances->records->handle())

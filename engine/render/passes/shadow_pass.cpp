@@ -119,12 +119,12 @@ void ShadowPass::drawCasters(VkCommandBuffer cmd, const Layers& target, uint32_t
                            depthAttachment(target.depth.layerView(layer), load));
   const gpu::ShadowPush pc{viewProj};
   drawBatched(
-      frame, draws, [&](const DrawItem& d) -> const Pipeline& { return d.material.alphaMask ? maskedPipeline_ : pipeline_; },
+      frame, draws, [&](const DrawItem& d) -> const Pipeline& { return frame.snapshot.materialOf(d).alphaMask ? maskedPipeline_ : pipeline_; },
       [&](VkCommandBuffer c, const DrawItem& d, const Pipeline& p) {
         DescriptorWrites writes;
         writes.storageBuffer(DYNGI_SHADOW_BINDING_INSTANCES, frame.instances->records->handle());
-        if (d.material.alphaMask)
-          writes.sampledImage(DYNGI_SHADOW_BINDING_BASE_COLOR_TEX, frame.textureView(d.material.baseColorTexture), frame.linearSampler,
+        if (frame.snapshot.materialOf(d).alphaMask)
+          writes.sampledImage(DYNGI_SHADOW_BINDING_BASE_COLOR_TEX, frame.textureView(frame.snapshot.materialOf(d).baseColorTexture), frame.linearSampler,
                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         writes.push(ctx_, c, p);
         vkCmdPushConstants(c, p.layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(pc), &pc);

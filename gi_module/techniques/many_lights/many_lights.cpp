@@ -249,10 +249,10 @@ void ManyLights::recordReflectiveShadowMaps(render::FrameContext& frame) {
             .storageBuffer(DYNGI_RSM_BINDING_LAYERS, layers_.handle())
             .storageBuffer(DYNGI_RSM_BINDING_LIGHTS, lights_.handle())
             .storageBuffer(DYNGI_RSM_BINDING_INSTANCES, frame.instances->records->handle())
-            .sampledImage(DYNGI_RSM_BINDING_BASE_COLOR_TEX, frame.textureView(dr.material.baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-            .sampledImage(DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX, frame.textureView(dr.material.metallicRoughnessTexture), frame.linearSampler,
+            .sampledImage(DYNGI_RSM_BINDING_BASE_COLOR_TEX, frame.textureView(frame.snapshot.materialOf(dr).baseColorTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+            .sampledImage(DYNGI_RSM_BINDING_METALLIC_ROUGHNESS_TEX, frame.textureView(frame.snapshot.materialOf(dr).metallicRoughnessTexture), frame.linearSampler,
                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-            .sampledImage(DYNGI_RSM_BINDING_NORMAL_TEX, frame.textureView(dr.material.normalTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+            .sampledImage(DYNGI_RSM_BINDING_NORMAL_TEX, frame.textureView(frame.snapshot.materialOf(dr).normalTexture), frame.linearSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
             .push(ctx_, c, pipeline);
         vkCmdPushConstants(c, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
       });

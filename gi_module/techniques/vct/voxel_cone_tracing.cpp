@@ -572,7 +572,8 @@ VoxelConeTracing::TraceFrame VoxelConeTracing::beginTrace(const render::FrameCon
   // Without a draw smoother than specularConeBelow (a roughness texture may make any pixel so), no
   // pixel marches a specular cone: the variant without its code, which lavapipe would run masked.
   trace.glossy = options_.specular && std::any_of(frame.snapshot.draws.begin(), frame.snapshot.draws.end(), [&](const render::DrawItem& d) {
-                   return d.material.roughness < options_.specularConeBelow || d.material.metallicRoughnessTexture != scene::kNoTexture;
+                   const scene::Material& m = frame.snapshot.materialOf(d);
+                   return m.roughness < options_.specularConeBelow || m.metallicRoughnessTexture != scene::kNoTexture;
                  });
   stats_.specularCones = trace.glossy;
   // The specular image is written where some pixel's specular light is a cone's, or the debug view

@@ -1,6 +1,7 @@
 #pragma once
 // The read-only copy of what the renderer needs from the ECS this frame. Data flows one way:
 // ECS -> snapshot -> GPU; nothing in render/ writes back into the world.
+#include <array>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -15,7 +16,7 @@ struct DrawItem {
   scene::Entity entity;
   scene::MeshId mesh = 0;
   glm::mat4 model{1.0f};
-  scene::Material material;
+  uint32_t material = 0;  // index into RenderSnapshot::materials
   bool castShadows = true;
 };
 
@@ -39,12 +40,22 @@ struct CameraView {
 
 struct RenderSnapshot {
   std::vector<DrawItem> draws;
+  // The draws' materials, each held once where neighbouring draws share one (instances of a prop):
+  // [0] is the default material, for a draw without one.
+  std::vector<scene::Material> materials{scene::Material{}};
   std::vector<LightItem> lights;
   CameraView camera;
   scene::Aabb sceneBounds;  // of all draws, world space
   uint32_t skippedDraws = 0;  // mesh instances left out: mesh not usable, or world bounds beyond the coordinate range
   const scene::AssetStore* assets = nullptr;
   uint64_t frame = 0;
+
+  const scene::Material& materialOf(const DrawItem& d) const { return materials[d.material]; }
+  // The index of `m` in `materials`: an equal one among the last few added, else appended.
+  uint32_t addMaterial(const scene::Material& m);
+
+ private:
+  std::array<uint32_t, 64> recentMaterials_{};  // by a hash of the material: an index into `materials`
 };
 
 // A camera that frames `bounds` from the +Z side (used when the scene has none).

@@ -97,6 +97,7 @@ struct Material {
   // there (foliage, fences): cut from the G-buffer, the shadow maps, the voxels, the RSMs and the rays.
   bool alphaMask = false;
   float alphaCutoff = 0.5f;
+  bool operator==(const Material&) const = default;
 };
 
 enum class LightType : uint32_t { Directional = 0, Point = 1, Spot = 2 };
