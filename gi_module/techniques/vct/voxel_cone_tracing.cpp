@@ -104,6 +104,15 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
   changedBoxes_ = Buffer(ctx_, 2 * kMaxChangedBoxes * sizeof(glm::uvec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "vct changed boxes");
 }
 
+// A variant made on its first use (LazyPipeline): of the trace's eight, a run uses one or two.
+render::LazyPipeline VoxelConeTracing::lazyCompute(render::ShaderCode code, std::span<const render::Binding> bindings, uint32_t pushBytes,
+                                                   const char* name, std::span<const uint32_t> specialization) {
+  return render::LazyPipeline([&ctx = ctx_, code, bindings = std::vector<render::Binding>(bindings.begin(), bindings.end()), pushBytes, name,
+                               spec = std::vector<uint32_t>(specialization.begin(), specialization.end())] {
+    return Pipeline::compute(ctx, code, bindings, pushBytes, name, spec);
+  });
+}
+
 // The passes over the occupied voxels: injection, clearing what emptied, the bounce and its commit.
 void VoxelConeTracing::createLeafPipelines() {
   const Binding leafB[] = {{DYNGI_VCT_INJECT_BINDING_LEAF_LIST, kSSBO, kCS},
@@ -137,8 +146,8 @@ void VoxelConeTracing::createLeafPipelines() {
     for (bool unitStep : {false, true}) {
       const ConeVariant v{aniso, unitStep};
       const uint32_t spec[] = {aniso ? 1u : 0u, 0u, unitStep ? 1u : 0u};  // constant 1 is not theirs; 2 is vct_cone.glsl's kVctUnitStep
-      bounce_[v.index()] = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_bounce_comp), bounceB, sizeof(gpu::VctBouncePush), "vct_bounce", spec);
-      probe_[v.index()] = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_cone_probe_comp), probeB, sizeof(gpu::VctProbePush), "vct_cone_probe", spec);
+      bounce_[v.index()] = lazyCompute(DYNGI_SHADER(spv_vct_bounce_comp), bounceB, sizeof(gpu::VctBouncePush), "vct_bounce", spec);
+      probe_[v.index()] = lazyCompute(DYNGI_SHADER(spv_vct_cone_probe_comp), probeB, sizeof(gpu::VctProbePush), "vct_cone_probe", spec);
     }
 }
 
@@ -153,7 +162,7 @@ void VoxelConeTracing::createMipsPipelines() {
       {MipsVariant::IsotropicOpaqueAxis, {0u, 1u, 0u, 0u}}, {MipsVariant::AtlasFromLevel0, {1u, 0u, 1u, 0u}},
       {MipsVariant::AtlasFromDirect, {1u, 0u, 1u, 1u}}};
   for (const auto& [variant, spec] : variants)
-    mips_[uint32_t(variant)] = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", spec);
+    mips_[uint32_t(variant)] = lazyCompute(DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", spec);
 }
 
 // The screen's passes: trace, reproject, filter, upsample, and the debug views.
@@ -170,12 +179,12 @@ void VoxelConeTracing::createScreenPipelines() {
                             {DYNGI_VCT_DEBUG_BINDING_SPECULAR, kStorageImage, kCS}, {DYNGI_VCT_DEBUG_BINDING_OUT_HDR, kStorageImage, kCS}};
   for (bool aniso : {false, true}) {
     const uint32_t spec[] = {aniso ? 1u : 0u};
-    debug_[aniso ? 1 : 0] = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_debug_comp), debugB, sizeof(gpu::VctDebugPush), "vct_debug", spec);
+    debug_[aniso ? 1 : 0] = lazyCompute(DYNGI_SHADER(spv_vct_debug_comp), debugB, sizeof(gpu::VctDebugPush), "vct_debug", spec);
     for (bool specular : {false, true})
       for (bool unitStep : {false, true}) {
         const uint32_t traceSpec[] = {aniso ? 1u : 0u, specular ? 1u : 0u, unitStep ? 1u : 0u};  // vct_trace.comp's, then kVctUnitStep
         trace_[TraceVariant{aniso, specular, unitStep}.index()] =
-            Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_trace_comp), traceB, sizeof(gpu::VctTracePush), "vct_trace", traceSpec);
+            lazyCompute(DYNGI_SHADER(spv_vct_trace_comp), traceB, sizeof(gpu::VctTracePush), "vct_trace", traceSpec);
       }
   }
   const Binding upB[] = {{DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL, kStorageImage, kCS},
@@ -184,7 +193,7 @@ void VoxelConeTracing::createScreenPipelines() {
                          {DYNGI_VCT_UPSAMPLE_BINDING_FRAME, kUBO, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_LOW_SURFACE, kStorageImage, kCS}};
   for (bool specular : {false, true}) {
     const uint32_t spec[] = {specular ? 1u : 0u};
-    upsample_[specular ? 1 : 0] = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_upsample_comp), upB, sizeof(gpu::VctUpsamplePush), "vct_upsample", spec);
+    upsample_[specular ? 1 : 0] = lazyCompute(DYNGI_SHADER(spv_vct_upsample_comp), upB, sizeof(gpu::VctUpsamplePush), "vct_upsample", spec);
   }
   const Binding reprojectB[] = {{DYNGI_VCT_REPROJECT_BINDING_FRAME, kUBO, kCS},
                                 {DYNGI_VCT_REPROJECT_BINDING_G_POSITION, kStorageImage, kCS},
@@ -546,7 +555,7 @@ void VoxelConeTracing::recordBounces(render::FrameContext& frame) {
         .sampledImage(DYNGI_VCT_BOUNCE_BINDING_RADIANCE, radiance_.view(), sampler_)
         .sampledImage(DYNGI_VCT_BOUNCE_BINDING_ANISO, anisoView(), sampler_)
         .storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, bounced_.view());
-    recordLeafPass(cmd, bounce_[coneVariant().index()], &pc, sizeof(pc), w);
+    recordLeafPass(cmd, bounce_[coneVariant().index()].get(), &pc, sizeof(pc), w);
     DescriptorWrites c;
     c.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, bounced_.view()).storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, radiance_.mipView(0));
     recordLeafPass(cmd, commit_, &pc, sizeof(pc), c);
@@ -589,7 +598,7 @@ void VoxelConeTracing::recordTrace(render::FrameContext& frame, const TraceFrame
   VkCommandBuffer cmd = frame.cmd;
   render::ScopedPass scope(ctx_, frame.timer, cmd, "trace");
   render::RenderTargets& t = frame.targets;
-  const Pipeline& p = trace_[TraceVariant{options_.anisotropic, trace.glossy, unitStep() == 1}.index()];
+  const Pipeline& p = trace_[TraceVariant{options_.anisotropic, trace.glossy, unitStep() == 1}.index()].get();
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
   DescriptorWrites()
       .uniformBuffer(DYNGI_VCT_TRACE_BINDING_FRAME, frame.frameUniforms.handle())
@@ -682,7 +691,7 @@ void VoxelConeTracing::recordUpsample(render::FrameContext& frame, const TraceFr
   VkCommandBuffer cmd = frame.cmd;
   render::RenderTargets& t = frame.targets;
   render::ScopedPass scope(ctx_, frame.timer, cmd, "upsample");
-  const Pipeline& up = upsample_[specularSource_ == render::SpecularSource::Target ? 1 : 0];
+  const Pipeline& up = upsample_[specularSource_ == render::SpecularSource::Target ? 1 : 0].get();
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, up.handle());
   DescriptorWrites()
       .uniformBuffer(DYNGI_VCT_UPSAMPLE_BINDING_FRAME, frame.frameUniforms.handle())
@@ -708,7 +717,7 @@ void VoxelConeTracing::recordAfterLighting(render::FrameContext& frame) {
   render::RenderTargets& t = frame.targets;
   t.hdr.transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   const bool aniso = options_.anisotropic;
-  const Pipeline& p = debug_[aniso ? 1 : 0];
+  const Pipeline& p = debug_[aniso ? 1 : 0].get();
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
   DescriptorWrites()
       .uniformBuffer(DYNGI_VCT_DEBUG_BINDING_FRAME, frame.frameUniforms.handle())
@@ -736,7 +745,7 @@ std::vector<glm::vec4> VoxelConeTracing::probeCones(const std::vector<std::pair<
   rayBuf.upload(packed.data(), packed.size() * sizeof(glm::vec4));
   Buffer out(ctx_, rays.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "vct probe results");
   const bool aniso = options_.anisotropic;
-  const Pipeline& p = probe_[coneVariant().index()];  // the trace's variant
+  const Pipeline& p = probe_[coneVariant().index()].get();  // the trace's variant
   ctx_.immediate([&](VkCommandBuffer cmd) {
     for (Image* img : {&radiance_, &aniso_})
       if (img->valid()) img->transition(cmd, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);

@@ -91,7 +91,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   };
   enum class MipsVariant : uint32_t { Isotropic, Atlas, IsotropicOpaqueAxis, AtlasFromLevel0, AtlasFromDirect, Count };
   ConeVariant coneVariant() const { return {options_.anisotropic, unitStep() == 1}; }
-  const render::Pipeline& mips(MipsVariant v) const { return mips_[uint32_t(v)]; }
+  const render::Pipeline& mips(MipsVariant v) const { return mips_[uint32_t(v)].get(); }
   VkImageView anisoView() const { return options_.anisotropic ? aniso_.view() : radiance_.view(); }  // bound either way
 
   // The traced pixels, this frame's and last (alternating): diffuse (AO in alpha), specular (alpha: frames
@@ -114,6 +114,8 @@ class VoxelConeTracing final : public render::RenderFeature {
   void createLeafPipelines();
   void createMipsPipelines();
   void createScreenPipelines();
+  render::LazyPipeline lazyCompute(render::ShaderCode code, std::span<const render::Binding> bindings, uint32_t pushBytes, const char* name,
+                                   std::span<const uint32_t> specialization);
   void createSampler();
   // The part of the voxels a frame's radiance update covers (vct_parts.glsl): part of parts, and the
   // first boxCount changed boxes (changedBoxes_) of a frame whose SVO build changed voxels.
@@ -182,8 +184,8 @@ class VoxelConeTracing final : public render::RenderFeature {
   glm::mat4 previousViewProj_{1.0f};
   VkSampler sampler_ = VK_NULL_HANDLE;
   render::Pipeline inject_, clearStale_, commit_, reproject_, filter_;
-  render::Pipeline mips_[uint32_t(MipsVariant::Count)], bounce_[4], probe_[4], trace_[8];  // by MipsVariant, ConeVariant, TraceVariant
-  render::Pipeline upsample_[2], debug_[2];  // [specular image written], [anisotropic]
+  render::LazyPipeline mips_[uint32_t(MipsVariant::Count)], bounce_[4], probe_[4], trace_[8];  // by MipsVariant, ConeVariant, TraceVariant
+  render::LazyPipeline upsample_[2], debug_[2];  // [specular image written], [anisotropic]
   VctFrameStats stats_;
 };
 

@@ -2,6 +2,7 @@
 // Pipelines with one push-descriptor set (set 0) and optional push constants. Push descriptors keep
 // passes free of descriptor pools and let a pass bind per-draw textures without descriptor indexing
 // (which lavapipe lacks).
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -70,6 +71,24 @@ class Pipeline {
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
   VkPipelineBindPoint bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
+};
+
+// A pipeline made the first time it is asked for: the variants a run never uses (debug views, options
+// that are off, materials absent from the scene) cost neither the driver's compile time nor its memory.
+// The first use of a variant compiles it there (a hitch of one compile).
+class LazyPipeline {
+ public:
+  LazyPipeline() = default;
+  explicit LazyPipeline(std::function<Pipeline()> make) : make_(std::move(make)) {}
+  const Pipeline& get() const {
+    if (pipeline_.handle() == VK_NULL_HANDLE && make_) pipeline_ = make_();
+    return pipeline_;
+  }
+  bool made() const { return pipeline_.handle() != VK_NULL_HANDLE; }
+
+ private:
+  std::function<Pipeline()> make_;
+  mutable Pipeline pipeline_;
 };
 
 // Builds push-descriptor writes without boilerplate; the infos live inside the builder.
