@@ -74,10 +74,8 @@ BatchKey batchKey(const RenderSnapshot& snapshot, const DrawItem& d, const GpuMe
   return {mesh, {m.baseColorTexture, m.emissiveTexture, m.metallicRoughnessTexture, m.occlusionTexture, m.normalTexture}, m.alphaMask};
 }
 
-gpu::DrawInstance drawInstance(const RenderSnapshot& snapshot, const DrawItem& d) {
-  const scene::Material& m = snapshot.materialOf(d);
-  gpu::DrawInstance r;
-  r.model = d.model;
+gpu::DrawMaterialRecord materialRecord(const scene::Material& m) {
+  gpu::DrawMaterialRecord r;
   r.baseColor = glm::vec4(glm::vec3(m.baseColor), m.alphaMask ? alphaMaskThreshold(m) : 1.0f);
   r.emissive = glm::vec4(m.emissive, std::bit_cast<float>(glm::packHalf2x16(glm::vec2(m.occlusionStrength, m.normalScale))));
   r.params = glm::vec4(m.metallic, m.roughness, m.uvTransform.offset);
@@ -96,17 +94,23 @@ void buildFrameInstances(VulkanContext& ctx, const RenderSnapshot& snapshot, con
   std::stable_sort(out.drawOfSlot.begin(), out.drawOfSlot.end(), [&](uint32_t a, uint32_t b) { return keys[a] < keys[b]; });
   out.slotOfDraw.resize(n);
   out.batchOfSlot.resize(n);
-  const VkDeviceSize bytes = std::max<VkDeviceSize>(n, 1) * sizeof(gpu::DrawInstance);
+  static_assert(sizeof(gpu::DrawRecord) == sizeof(gpu::DrawMaterialRecord));
+  const size_t materials = snapshot.materials.size();
+  const VkDeviceSize bytes = (n + materials) * sizeof(gpu::DrawRecord);
   if (!records.valid() || records.size() < bytes)
-    records = Buffer(ctx, records.valid() ? bytes + bytes / 2 : bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "draw instances");
-  auto* mapped = static_cast<gpu::DrawInstance*>(records.mapped());
+    records = Buffer(ctx, records.valid() ? bytes + bytes / 2 : bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "draw records");
+  auto* mapped = static_cast<gpu::DrawRecord*>(records.mapped());
+  auto* materialRecords = reinterpret_cast<gpu::DrawMaterialRecord*>(mapped + n);
+  for (size_t m = 0; m < materials; ++m) materialRecords[m] = materialRecord(snapshot.materials[m]);
   uint32_t batch = 0;
   for (uint32_t slot = 0; slot < n; ++slot) {
     const uint32_t draw = out.drawOfSlot[slot];
     out.slotOfDraw[draw] = slot;
     if (slot > 0 && keys[draw] != keys[out.drawOfSlot[slot - 1]]) ++batch;
     out.batchOfSlot[slot] = batch;
-    mapped[slot] = drawInstance(snapshot, snapshot.draws[draw]);
+    const DrawItem& d = snapshot.draws[draw];
+    const glm::mat4 rows = glm::transpose(d.model);
+    mapped[slot] = gpu::DrawRecord{{rows[0], rows[1], rows[2]}, glm::uvec4(uint32_t(n) + d.material, 0u, 0u, 0u)};
   }
   records.flush();
   out.records = &records;

@@ -7,12 +7,12 @@
 #include "shared/draw_instances.glsl"
 
 layout(set = 0, binding = DYNGI_GBUFFER_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(location = 4) flat out vec4 outBaseColor;  // DrawInstance::baseColor
+layout(location = 4) flat out vec4 outBaseColor;  // gpu::DrawMaterialRecord::baseColor
 layout(location = 5) flat out vec3 outEmissive;
 layout(location = 6) flat out vec4 outMaterial;   // metallic, roughness, occlusion strength, normal scale
 
 void gbufferVertex(vec4 objectTangent) {
-  DrawInstance inst = drawInstances[gl_InstanceIndex];
+  DrawInstance inst = drawInstance(gl_InstanceIndex);
   gl_Position = frame.viewProj * meshVertex(inst.model, inst.uvLinear, inst.params.zw, objectTangent);
   outBaseColor = inst.baseColor;
   outEmissive = inst.emissive.rgb;

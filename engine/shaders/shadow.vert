@@ -6,4 +6,4 @@
 #include "shared/draw_instances.glsl"
 layout(push_constant) uniform Push { DYNGI_SHADOW_PUSH };
 layout(location = 0) in vec3 inPosition;
-void main() { gl_Position = lightViewProj * (drawInstances[gl_InstanceIndex].model * vec4(inPosition, 1.0)); }
+void main() { gl_Position = lightViewProj * (drawModel(gl_InstanceIndex) * vec4(inPosition, 1.0)); }

@@ -12,7 +12,7 @@ layout(location = 2) in vec2 inUv;
 layout(location = 0) out vec2 outUv;
 layout(location = 1) flat out float outThreshold;  // alphaMaskThreshold()
 void main() {
-  DrawInstance inst = drawInstances[gl_InstanceIndex];
+  DrawInstance inst = drawInstance(gl_InstanceIndex);
   outUv = applyUvTransform(inst.uvLinear, inst.params.zw, inUv);
   outThreshold = inst.baseColor.a;
   gl_Position = lightViewProj * (inst.model * vec4(inPosition, 1.0));

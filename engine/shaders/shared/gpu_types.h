@@ -50,11 +50,15 @@ DYNGI_GPU_STRUCT(GpuLight) {
   vec4 cone;            // x cos(outer), y cos(inner), z first shadow layer (as float; <0: none), w normal-offset scale
 };
 
-// One draw of the frame as the raster passes read it (a storage buffer of them, FrameInstances): its
-// transform and material constants. Draws sharing a mesh and textures go in one instanced draw, each
-// instance reading its record at gl_InstanceIndex.
-DYNGI_GPU_STRUCT(DrawInstance) {
-  mat4 model;
+// The frame's draw records as the raster passes read them (one storage buffer, FrameInstances): a record
+// per draw slot, then one per material of the snapshot, each 64 bytes. Draws sharing a mesh and textures
+// go in one instanced draw, each instance reading its record at gl_InstanceIndex (draw_instances.glsl
+// assembles the draw's transform and material from its two records).
+DYNGI_GPU_STRUCT(DrawRecord) {
+  vec4 modelRows[3];    // the model matrix's first three rows (the fourth is 0 0 0 1)
+  uvec4 material;       // x: the index of its material's record
+};
+DYNGI_GPU_STRUCT(DrawMaterialRecord) {
   vec4 baseColor;       // rgb linear factor; a: alphaMaskThreshold() for masked materials, else 1 (alpha is not stored)
   vec4 emissive;        // rgb outgoing radiance factor, w's bits: packHalf2x16(occlusion strength, normal scale)
   vec4 params;          // x metallic, y roughness, zw the texture coordinates' offset (KHR_texture_transform)
@@ -112,7 +116,7 @@ static_assert(sizeof(ShadowPush) == 64);
 static_assert(sizeof(LightingPush) == 4);
 static_assert(sizeof(FrameUniforms) == 4 * 64 + 8 * 16);
 static_assert(sizeof(GpuLight) == 64);
-static_assert(sizeof(DrawInstance) == 128);
+static_assert(sizeof(DrawRecord) == 64 && sizeof(DrawMaterialRecord) == 64);
 }  // namespace dyngi::gpu
 #endif
 

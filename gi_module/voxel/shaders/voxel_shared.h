@@ -17,7 +17,7 @@ DYNGI_GPU_NAMESPACE_BEGIN
 #define DYNGI_VOXEL_COORD_BITS 10
 
 // Push constants of the voxelization draw (one batch of instances: each reads its transform and material
-// from the frame's DrawInstance records and its fragment range from VoxelizeRange, both at its slot).
+// from the frame's draw records and its fragment range from VoxelizeRange, both at its slot).
 #ifdef __cplusplus
 struct alignas(16) VoxelizePush {
 #else

@@ -36,7 +36,7 @@ void main() {
   uint id = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationID.x;  // 2-D past the device's x limit
   if (id >= pc.instanceCount * pc.triangleCount) return;
   uint slot = pc.firstInstance + id / pc.triangleCount, triangle = id % pc.triangleCount;
-  DrawInstance inst = drawInstances[slot];
+  DrawInstance inst = drawInstance(slot);
   mat4 modelToVoxel = pc.worldToVoxel * inst.model;
   vec3 p[3];
   vec2 uv[3];

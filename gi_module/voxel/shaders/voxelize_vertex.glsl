@@ -19,7 +19,7 @@ layout(location = 4) flat out vec4 outAlbedo;     // rgb base colour factor, a m
 layout(location = 5) flat out vec4 outEmission;   // rgb emitted radiance, a the alpha mask's threshold
 layout(location = 6) flat out uvec4 outRange;     // VoxelizeRange: first slot, capacity, counter; w the normal scale's bits
 void voxelizeVertex(vec3 objectNormal, vec4 objectTangent) {
-  DrawInstance inst = drawInstances[gl_InstanceIndex];
+  DrawInstance inst = drawInstance(gl_InstanceIndex);
   mat4 modelToVoxel = pc.worldToVoxel * inst.model;
   outVoxelPos = (modelToVoxel * vec4(inPosition, 1.0)).xyz;
   outUv = applyUvTransform(inst.uvLinear, inst.params.zw, inUv);

@@ -11,7 +11,7 @@ layout(push_constant) uniform Push { DYNGI_RSM_PUSH };
 layout(location = 4) flat out vec4 outBaseColor;  // rgb linear base colour factor, a the alpha mask's threshold
 layout(location = 5) flat out vec2 outMaterial;   // metallic factor, normal scale
 void rsmVertex(vec4 objectTangent) {
-  DrawInstance inst = drawInstances[gl_InstanceIndex];
+  DrawInstance inst = drawInstance(gl_InstanceIndex);
   gl_Position = layers[layer].viewProj * meshVertex(inst.model, inst.uvLinear, inst.params.zw, objectTangent);
   outBaseColor = inst.baseColor;
   outMaterial = vec2(inst.params.x, unpackHalf2x16(floatBitsToUint(inst.emissive.w)).y);

@@ -99,12 +99,12 @@ enum class SpecularSource : uint8_t {
              // targets.specular is not written, and the lighting reads one image instead of two
 };
 
-// The frame's draws as gpu::DrawInstance records in one storage buffer, in an order where draws that
-// share a mesh and a material's textures (so a pipeline and descriptors in every raster pass) are
-// consecutive: a pass draws each run of them with one instanced draw (drawBatched), each instance
+// The frame's draws as gpu::DrawRecord records in one storage buffer (their materials' records after
+// them), in an order where draws that share a mesh and a material's textures (so a pipeline and
+// descriptors in every raster pass) are consecutive: a pass draws each run of them with one instanced draw (drawBatched), each instance
 // reading its record at gl_InstanceIndex. Built by the renderer once a frame; valid while recording.
 struct FrameInstances {
-  const Buffer* records = nullptr;     // gpu::DrawInstance per slot
+  const Buffer* records = nullptr;     // gpu::DrawRecord per slot, then gpu::DrawMaterialRecord per snapshot material
   std::vector<uint32_t> slotOfDraw;    // indexed like snapshot.draws
   std::vector<uint32_t> drawOfSlot;
   std::vector<uint32_t> batchOfSlot;   // equal for neighbouring slots that one instanced draw may hold
