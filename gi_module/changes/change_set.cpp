@@ -5,8 +5,10 @@
 
 namespace dyngi::gi {
 
-std::unordered_set<ecs::Entity> ChangeSet::geometryChanged() const {
-  std::unordered_set<ecs::Entity> out(moved.begin(), moved.end());
+ecs::EntitySet ChangeSet::geometryChanged() const {
+  ecs::EntitySet out;
+  out.reserve(moved.size() + deformed.size() + meshWritten.size());
+  out.insert(moved.begin(), moved.end());
   out.insert(deformed.begin(), deformed.end());
   out.insert(meshWritten.begin(), meshWritten.end());
   out.insert(removed.begin(), removed.end());
@@ -45,9 +47,10 @@ ChangeSet ChangeTracker::compute(const ecs::World& world, const scene::AssetStor
 
 void ChangeSet::merge(const ChangeSet& later) {
   auto add = [](std::vector<ecs::Entity>& to, const std::vector<ecs::Entity>& from) {
-    std::unordered_set<ecs::Entity> have(to.begin(), to.end());
+    ecs::EntitySet have;
+    have.insert(to.begin(), to.end());
     for (ecs::Entity e : from)
-      if (have.insert(e).second) to.push_back(e);
+      if (have.insert(e)) to.push_back(e);
   };
   add(moved, later.moved);
   add(deformed, later.deformed);

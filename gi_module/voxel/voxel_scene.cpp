@@ -222,12 +222,14 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   if (!updatesThisFrame_) return;  // dirty_ and removed_ keep what changed for the next update
   const glm::mat4 toVoxel = volume_.worldToVoxelMatrix();
 
-  // Entities that disappeared from the draw list count as removed.
-  ecs::EntitySet present;
-  present.reserve(snapshot.draws.size());
-  for (const auto& d : snapshot.draws) present.insert(d.entity);
-  for (const auto& [e, r] : ranges_.all())
-    if (!present.count(e)) removed_.insert(e);
+  // Entities that disappeared from the draw list count as removed (a full update forgets them all).
+  if (!allDirty_ && !ranges_.all().empty()) {
+    ecs::EntitySet present;
+    present.reserve(snapshot.draws.size());
+    for (const auto& d : snapshot.draws) present.insert(d.entity);
+    for (const auto& [e, r] : ranges_.all())
+      if (!present.count(e)) removed_.insert(e);
+  }
 
   // Compact when the ranges hold more than twice what they need (counts from the last frame): after
   // the first frame, and again as moved entities leave holes.
@@ -242,7 +244,6 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     voxelBoxes_.reserve(snapshot.draws.size());
     emittingEntities_.clear();
     staleEverywhere_ = true;
-    for (const auto& d : snapshot.draws) dirty_.insert(d.entity);
     allDirty_ = false;
     rebuildSvo_ = true;
   }
@@ -263,14 +264,25 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   drawsToVoxelize_.clear();
   const ecs::EntitySet deferred = wholeVolume ? ecs::EntitySet{} : deferredByCap(snapshot, toVoxel);
   uint64_t newHighWater = ranges_.highWater();
-  ecs::EntityMap<scene::Aabb> newBounds;  // voxel units, of the draws voxelized now
-  newBounds.reserve(dirty_.size());
+  // Each re-voxelized entity's old box is stale; its new one is what it covers now (a voxel of margin:
+  // the voxelization is conservative). A snapshot has one draw per entity.
+  const float top = float(volume_.resolution - 1);
   for (size_t i = 0; i < snapshot.draws.size(); ++i) {
     const auto& d = snapshot.draws[i];
-    if (!dirty_.count(d.entity) || deferred.count(d.entity)) continue;
-    if (!newBounds.count(d.entity)) emittingEntities_.erase(d.entity);
+    if (!(wholeVolume || dirty_.count(d.entity)) || deferred.count(d.entity)) continue;
     if (glm::any(glm::greaterThan(snapshot.materialOf(d).emissive, glm::vec3(0.0f)))) emittingEntities_.insert(d.entity);
-    newBounds[d.entity].extend(snapshot.assets->mesh(d.mesh).bounds.transformed(toVoxel * d.model));
+    else emittingEntities_.erase(d.entity);
+    if (const auto old = voxelBoxes_.find(d.entity); old != voxelBoxes_.end()) {
+      staleBoxes_.push_back(old->second);
+      voxelBoxes_.erase(old);
+    }
+    const scene::Aabb bounds = snapshot.assets->mesh(d.mesh).bounds.transformed(toVoxel * d.model);
+    const glm::vec3 lo = glm::floor(bounds.min) - 1.0f, hi = glm::floor(bounds.max) + 1.0f;
+    if (bounds.valid() && !glm::any(glm::greaterThan(lo, glm::vec3(top))) && !glm::any(glm::lessThan(hi, glm::vec3(0.0f)))) {
+      const VoxelBox box{glm::uvec3(glm::clamp(lo, 0.0f, top)), glm::uvec3(glm::clamp(hi, 0.0f, top))};
+      voxelBoxes_[d.entity] = box;
+      freshBoxes_.push_back(box);
+    }
     const FragmentRanges::Estimate estimate = FragmentRanges::estimate(snapshot.assets->mesh(d.mesh), toVoxel * d.model, volume_.resolution);
     // Committed at once: the growth below keeps the slots under the last frame's high water, which
     // a new range (planned above it) never overlaps.
@@ -280,17 +292,6 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     (voxelizesByCompute(snapshot, d, estimate) ? computeDraws_ : rasterDraws_).push_back(i);
   }
   ensureCapacity(newHighWater);  // grows by copying: nothing already voxelized is lost
-  // Each re-voxelized entity's old box is stale; its new one is what it covers now (a voxel of margin:
-  // the voxelization is conservative).
-  const float top = float(volume_.resolution - 1);
-  for (const auto& [e, bounds] : newBounds) {
-    if (const auto old = voxelBoxes_.find(e); old != voxelBoxes_.end()) staleBoxes_.push_back(old->second);
-    voxelBoxes_.erase(e);
-    const glm::vec3 lo = glm::floor(bounds.min) - 1.0f, hi = glm::floor(bounds.max) + 1.0f;
-    if (!bounds.valid() || glm::any(glm::greaterThan(lo, glm::vec3(top))) || glm::any(glm::lessThan(hi, glm::vec3(0.0f)))) continue;
-    voxelBoxes_[e] = VoxelBox{glm::uvec3(glm::clamp(lo, 0.0f, top)), glm::uvec3(glm::clamp(hi, 0.0f, top))};
-    freshBoxes_.push_back(voxelBoxes_[e]);
-  }
   ranges_.setHighWater(newHighWater);
   dirty_ = deferred;
   stats_.entitiesDeferred = uint32_t(deferred.size());

@@ -21,7 +21,7 @@ using namespace dyngi::scene;
 namespace {
 // Propagates transforms, syncs the BVH, returns the snapshot and the entities that moved.
 render::RenderSnapshot stepFrame(ecs::World& world, const AssetStore& assets, ecs::Scheduler& scheduler, gi::EmbreeScene& bvh,
-                                 std::unordered_set<ecs::Entity>* moved) {
+                                 ecs::EntitySet* moved) {
   // Everything written since the previous frame happened at the current tick or later.
   const ecs::Tick since = world.tick() - 1;
   scheduler.runFrame(world, {});
@@ -42,7 +42,7 @@ struct Fixture {
     sample::buildBuiltinScene("cornell", world, assets);
     scheduler.add(ecs::Phase::PostUpdate, std::make_unique<TransformSystem>());
   }
-  render::RenderSnapshot frame(std::unordered_set<ecs::Entity>* moved = nullptr) { return stepFrame(world, assets, scheduler, bvh, moved); }
+  render::RenderSnapshot frame(ecs::EntitySet* moved = nullptr) { return stepFrame(world, assets, scheduler, bvh, moved); }
 };
 
 // 256 one-bounce VPLs in four temporal sets, filled at once, every set marked rendered: the starting
@@ -72,7 +72,7 @@ TEST_P(VplPathsOccluder, InvalidatesExactlyWhatItBlocksAndDescendants) {
   f.world.add(occ, ot);
   f.world.add(occ, MeshInstance{f.assets.addMesh(makeBox({0.12f, 0.02f, 0.12f})), true});
   f.world.add(occ, Material{});
-  std::unordered_set<ecs::Entity> moved;
+  ecs::EntitySet moved;
   auto snap = f.frame(&moved);
   gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 3000, .bounces = 3, .bounceTail = tail}, .reshootBudget = 100000});
   paths.update(snap, f.bvh, f.assets, moved);
@@ -147,12 +147,12 @@ TEST(VplPaths, AnUnchangedSceneInvalidatesNothing) {
     gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 30000, .bounces = 3, .bounceTail = true}, .reshootBudget = 100000});
     paths.update(snap, f.bvh, f.assets, {});
     ASSERT_EQ(paths.stats().valid, 30000u);
-    std::unordered_set<ecs::Entity> none;
+    ecs::EntitySet none;
     paths.invalidate(snap, f.bvh, none);
     EXPECT_EQ(paths.stats().invalidatedThisFrame, 0u) << "light type " << int(type);
     // The light listed as moved (it did not): the tail's probes are traced again, and each must still
     // land where it did.
-    std::unordered_set<ecs::Entity> light{snap.lights.at(0).entity};
+    ecs::EntitySet light{snap.lights.at(0).entity};
     paths.invalidate(snap, f.bvh, light);
     EXPECT_EQ(paths.stats().invalidatedThisFrame, 0u) << "light type " << int(type) << ", probes checked";
   }
@@ -181,7 +181,7 @@ TEST(VplPaths, AProbesSurfaceMovingInvalidatesItsVpl) {
     if (b == 2 && !expectInvalid[i] && before[i].probeSurface == box) expectInvalid[i] = true, ++probes;
   }
   ASSERT_GT(probes, 10);
-  std::unordered_set<ecs::Entity> moved{box};
+  ecs::EntitySet moved{box};
   paths.invalidate(snap, f.bvh, moved);
   int mismatches = 0;
   for (uint32_t i = 0; i < before.size(); ++i) mismatches += paths.vpls()[i].valid == expectInvalid[i];
@@ -291,7 +291,7 @@ TEST(VplPaths, BudgetIsRespectedRestoreIsTimelyAndCursorIsFair) {
   auto snap = f.frame();
   const uint32_t budget = 37;
   gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 600, .bounces = 2}, .reshootBudget = budget, .reshootBurst = 0});
-  std::unordered_set<ecs::Entity> none;
+  ecs::EntitySet none;
   // From empty: valid grows by exactly the budget per frame and is complete after ceil(600/37) frames.
   uint32_t frames = 0;
   while (paths.stats().valid < 600 && frames < 100) {
@@ -329,7 +329,7 @@ TEST(VplPaths, BudgetIsRespectedRestoreIsTimelyAndCursorIsFair) {
 TEST(VplPaths, ABurstRefillsThePoolAtOnceUpToItsLimit) {
   Fixture f;
   auto snap = f.frame();
-  std::unordered_set<ecs::Entity> none;
+  ecs::EntitySet none;
   gi::VplPaths unlimited(gi::TemporalOptions{.vpl = {.vpls = 600, .bounces = 2}, .reshootBudget = 37, .reshootBurst = 4096});
   unlimited.update(snap, f.bvh, f.assets, none);
   EXPECT_EQ(unlimited.stats().valid, 600u) << "one frame";
@@ -348,7 +348,7 @@ TEST(VplPaths, ABurstRefillsThePoolAtOnceUpToItsLimit) {
 TEST(VplPaths, OnlyASwitchedOrJumpingLightMakesSetsStale) {
   Fixture f;
   auto snap = f.frame();
-  std::unordered_set<ecs::Entity> none;
+  ecs::EntitySet none;
   const uint32_t T = kStaleSets;
   gi::VplPaths paths = freshPaths(f, snap);
   auto renderAll = [&] {
@@ -402,7 +402,7 @@ TEST(VplPaths, ASecondLightSwitchedOnRedrawsEveryPath) {
   f.world.add(second, t);
   f.world.add(second, Light{.type = LightType::Point, .intensity = 2.0f, .enabled = false});
   auto snap = f.frame();
-  std::unordered_set<ecs::Entity> none;
+  ecs::EntitySet none;
   const uint32_t T = kStaleSets;
   gi::VplPaths paths = freshPaths(f, snap);
   paths.update(snap, f.bvh, f.assets, none);
@@ -435,7 +435,7 @@ TEST(VplPaths, LightSwitchedOffLeavesNoValidVpl) {
   Fixture f;
   auto snap = f.frame();
   gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 256, .bounces = 2}, .reshootBudget = 1000});
-  std::unordered_set<ecs::Entity> none;
+  ecs::EntitySet none;
   paths.update(snap, f.bvh, f.assets, none);
   ASSERT_EQ(paths.stats().valid, 256u);
   f.world.each<Light>([&](Entity e, const Light&) { f.world.commands().run([e](ecs::World& w) { w.write<Light>(e).enabled = false; }); });
@@ -459,7 +459,7 @@ TEST(VplPaths, DeformingSkinnedMeshInvalidatesExactlyWhatItBlocksAndWhatLiesOnIt
   const MeshId deformed = room.deformed;
   uint32_t version = 0;
   // One frame at time t; `moved` as the GI system finds it: entities whose deformed mesh changed.
-  auto frame = [&](double t, uint64_t n, std::unordered_set<ecs::Entity>& moved) {
+  auto frame = [&](double t, uint64_t n, ecs::EntitySet& moved) {
     ecs::Tick since = world.tick();
     scheduler.runFrame(world, ecs::FrameTime{1.0 / 60, t, n});
     bvh.sync(world, assets, n == 0 ? 0 : since);
@@ -468,7 +468,7 @@ TEST(VplPaths, DeformingSkinnedMeshInvalidatesExactlyWhatItBlocksAndWhatLiesOnIt
     version = assets.mesh(deformed).version;
     return render::extractSnapshot(world, assets, n);
   };
-  std::unordered_set<ecs::Entity> moved;
+  ecs::EntitySet moved;
   // Hold the animation at t = 0 while the paths are shot: the bar stands straight.
   world.write<Animator>(bar.animator).playing = false;
   auto snap = frame(0.0, 0, moved);
@@ -603,7 +603,7 @@ struct EmitterRoom {
       world.add(light, Light{.type = LightType::Spot, .intensity = 2.0f});
     }
   }
-  render::RenderSnapshot frame(std::unordered_set<ecs::Entity>* moved = nullptr) { return stepFrame(world, assets, scheduler, bvh, moved); }
+  render::RenderSnapshot frame(ecs::EntitySet* moved = nullptr) { return stepFrame(world, assets, scheduler, bvh, moved); }
 };
 }  // namespace
 
@@ -636,7 +636,7 @@ TEST(VplPaths, EmissivePanelStartsPathsOnItselfWithItsExactFlux) {
 // only them); its emission changed or switched off, they are redrawn (hard), and off, none starts from it.
 TEST(VplPaths, EmitterPathsShareByPowerAndFollowTheEmitter) {
   EmitterRoom room(true);
-  std::unordered_set<ecs::Entity> moved;
+  ecs::EntitySet moved;
   auto snap = room.frame(&moved);
   gi::VplPaths paths(gi::TemporalOptions{.vpl = {.vpls = 4000, .bounces = 1}, .reshootBudget = 100000});
   paths.update(snap, room.bvh, room.assets, moved);

@@ -40,8 +40,8 @@ class TemporalTechnique final : public Technique {
   // those on a surface that moved or deformed, with their later bounces, are invalidated; then up to the
   // budget are reshot.
   void update(const TechniqueFrame& frame) override {
-    const std::unordered_set<ecs::Entity> geometry = frame.changes.geometryChanged();
-    std::unordered_set<ecs::Entity> recoloured;
+    const ecs::EntitySet geometry = frame.changes.geometryChanged();
+    ecs::EntitySet recoloured;
     for (ecs::Entity e : frame.changes.materials)
       if (!geometry.count(e)) recoloured.insert(e);
     paths_.refreshMaterials(frame.snapshot, bvh_, assets_, recoloured);

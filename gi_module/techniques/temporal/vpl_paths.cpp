@@ -46,7 +46,7 @@ VplPaths::VplPaths(const TemporalOptions& s) : settings_(s) {
 }
 
 void VplPaths::update(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
-                      const std::unordered_set<ecs::Entity>& moved) {
+                      const ecs::EntitySet& moved) {
   const EmitterSet emitters(snapshot, assets);  // once a frame: what invalidate() compares with, what replace() samples
   cacheEmitters(emitters);
   invalidate(snapshot, bvh, moved);
@@ -65,7 +65,7 @@ const EmitterSource* VplPaths::emitterSource(ecs::Entity entity) const {
 }
 
 void VplPaths::refreshMaterials(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
-                                const std::unordered_set<ecs::Entity>& recoloured) {
+                                const ecs::EntitySet& recoloured) {
   stats_.refreshedThisFrame = 0;
   if (recoloured.empty()) return;
   SceneSurfaces surfaces(snapshot, assets);
@@ -144,7 +144,7 @@ void VplPaths::invalidateIndex(uint32_t index, bool hard) {
   }
 }
 
-void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const std::unordered_set<ecs::Entity>& moved) {
+void VplPaths::invalidate(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const ecs::EntitySet& moved) {
   auto t0 = Clock::now();
   stats_.invalidatedThisFrame = 0;
   focus_ = cameraFocus(snapshot, settings_.vpl.directionalReach);

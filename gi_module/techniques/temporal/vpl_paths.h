@@ -18,11 +18,11 @@
 //  3. temporal sets: set k holds VPLs[T i + k]; sets whose VPLs changed since they were last rendered
 //     are reported dirty.
 #include <cstdint>
-#include <unordered_set>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "dyngi/engine/ecs/entity_map.h"
 #include "dyngi/engine/render/snapshot.h"
 #include "dyngi/gi/bvh.h"
 #include "dyngi/gi/temporal_options.h"
@@ -84,15 +84,15 @@ class VplPaths {
   // One frame: invalidate against `moved` (entities whose world transform or mesh changed) and the
   // snapshot's lights, then replace up to the budget.
   void update(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
-              const std::unordered_set<ecs::Entity>& moved);
-  void invalidate(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const std::unordered_set<ecs::Entity>& moved);
+              const ecs::EntitySet& moved);
+  void invalidate(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const ecs::EntitySet& moved);
   // A material edit changes what a surface reflects, not where paths go: each valid VPL on a re-coloured
   // entity gets its albedo again (its ray re-traced to the same hit), and its flux and every later
   // bounce's flux follow. Reshooting them instead would draw new directions, and the edited surface
   // would keep only the share of them that lands on it again: a bias. Entities that also moved or
   // deformed are left to invalidate().
   void refreshMaterials(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets,
-                        const std::unordered_set<ecs::Entity>& recoloured);
+                        const ecs::EntitySet& recoloured);
   void replace(const render::RenderSnapshot& snapshot, const EmbreeScene& bvh, const scene::AssetStore& assets);
 
   const std::vector<PathVpl>& vpls() const { return vpls_; }
@@ -142,7 +142,7 @@ class VplPaths {
   struct FrameChecks {
     const render::RenderSnapshot& snapshot;
     const EmbreeScene& bvh;
-    const std::unordered_set<ecs::Entity>& moved;
+    const ecs::EntitySet& moved;
     float scale = 1.0f, eps = 0.0f, totalPower = 0.0f;  // the scene's diagonal, a ray's slack, lights' and emitters' power
   };
   bool rayStillReaches(const PathVpl& v, const FrameChecks& c) const;

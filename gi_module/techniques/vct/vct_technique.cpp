@@ -2,10 +2,9 @@
 // every frame, filtered into a 3D mip chain, traced by cones from the screen.
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
+#include "dyngi/engine/ecs/entity_map.h"
 #include "dyngi/gi/gi_settings.h"
 #include "techniques/vct/voxel_cone_tracing.h"
 #include "techniques/registry_entries.h"
@@ -67,7 +66,8 @@ class VctTechnique final : public Technique {
     // Meshes: only those the change set says moved or were written can have jumped; the others keep
     // their place from the frame they last changed.
     if (!frame.changes.moved.empty() || !frame.changes.meshWritten.empty()) {
-      std::unordered_set<scene::Entity> touched(frame.changes.moved.begin(), frame.changes.moved.end());
+      ecs::EntitySet touched;
+      touched.insert(frame.changes.moved.begin(), frame.changes.moved.end());
       touched.insert(frame.changes.meshWritten.begin(), frame.changes.meshWritten.end());
       for (const render::DrawItem& d : frame.snapshot.draws) {
         if (!touched.count(d.entity)) continue;
@@ -143,7 +143,7 @@ class VctTechnique final : public Technique {
   VoxelScene& voxels_;
   VoxelConeTracing feature_;
   std::vector<LightState> lights_;                          // as last frame saw them
-  std::unordered_map<scene::Entity, glm::vec3> places_;     // each mesh's origin when it last changed
+  ecs::EntityMap<glm::vec3> places_;     // each mesh's origin when it last changed
   uint64_t historyDrops_ = 0;
 };
 

@@ -4,9 +4,9 @@
 // VPL invalidation agree on one answer. A consumer used on its own (BvhSyncSystem, VoxelSyncSystem)
 // computes the same set with its own ChangeTracker.
 #include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
+#include "dyngi/engine/ecs/entity_map.h"
 #include "dyngi/engine/ecs/world.h"
 #include "dyngi/engine/scene/alpha_cut.h"
 #include "dyngi/engine/scene/assets.h"
@@ -29,7 +29,7 @@ struct ChangeSet {
 
   // Geometry (place, shape or alpha cut): what the BVH must update and what invalidates VPLs. Other
   // material changes apart.
-  std::unordered_set<ecs::Entity> geometryChanged() const;
+  ecs::EntitySet geometryChanged() const;
   // Adds a later set's changes (each entity once per list): what changed over two runs.
   void merge(const ChangeSet& later);
 };

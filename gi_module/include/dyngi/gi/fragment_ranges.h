@@ -16,11 +16,11 @@ namespace dyngi::gi {
 
 struct FragmentRange {
   uint64_t first = 0, capacity = 0;  // slots
+  uint64_t lastEstimate = 0;         // estimateFragments() when it was last voxelized (lastCount's pose)
+  uint64_t lastVoxelizedFrame = 0;
   uint32_t counter = 0;              // index into the counters buffer
   uint32_t lastCount = 0;            // fragments written (read back after the frame)
   uint32_t voxelizations = 0;        // how often the entity was voxelized (more than once: it moves)
-  uint64_t lastEstimate = 0;         // estimateFragments() when it was last voxelized (lastCount's pose)
-  uint64_t lastVoxelizedFrame = 0;
   bool written = false;
 };
 

@@ -10,6 +10,7 @@
 // index are two keys. Iteration is in insertion order until the first erase.
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <iterator>
 #include <stdexcept>
 #include <tuple>
@@ -135,6 +136,9 @@ class EntitySet {
   };
   using const_iterator = iterator;
 
+  EntitySet() = default;
+  EntitySet(std::initializer_list<Entity> entities) { insert(entities.begin(), entities.end()); }
+
   iterator begin() const { return iterator(map_.begin()); }
   iterator end() const { return iterator(map_.end()); }
   size_t size() const { return map_.size(); }
@@ -143,6 +147,10 @@ class EntitySet {
   size_t count(Entity e) const { return map_.count(e); }
   bool contains(Entity e) const { return map_.contains(e); }
   bool insert(Entity e) { return map_.try_emplace(e).second; }  // whether e was absent
+  template <typename It>
+  void insert(It first, It last) {
+    for (; first != last; ++first) insert(*first);
+  }
   size_t erase(Entity e) { return map_.erase(e); }
   void clear() { map_.clear(); }
 

@@ -39,7 +39,7 @@ struct CameraView {
 };
 
 struct RenderSnapshot {
-  std::vector<DrawItem> draws;
+  std::vector<DrawItem> draws;  // one per mesh instance (entity)
   // The draws' materials, each held once where neighbouring draws share one (instances of a prop):
   // [0] is the default material, for a draw without one.
   std::vector<scene::Material> materials{scene::Material{}};
