@@ -36,6 +36,9 @@ ManyLights* manyLightsOf(GiSystem& gi) { return featureOf<ManyLights>(gi); }
 
 VoxelProbe::VoxelProbe(VoxelScene& voxels) : voxels_(voxels) {}
 
+uint64_t VoxelProbe::attributeLeaves() const { return voxels_.attributeLeaves_; }
+uint64_t VoxelProbe::leafSlotBound() const { return voxels_.leafSlotBound(); }
+
 // The march pipelines are made on first use: a probe that only reads back compiles nothing.
 const render::Pipeline& VoxelProbe::marchPipeline(bool march) {
   render::Pipeline& p = march ? march_ : marchOff_;

@@ -58,6 +58,8 @@ class VoxelProbe {
     uint64_t leaves = 0, wrongCount = 0, wrongAlbedo = 0, wrongNormal = 0, sumsLeft = 0;
   };
   LeafAttributesCheck checkLeafAttributes();
+  uint64_t attributeLeaves() const;  // leaf slots the attribute sums have room for
+  uint64_t leafSlotBound() const;    // VoxelScene's bound on the leaf slots, from the voxel boxes
   // Visibility of world-space segments through the SVO on the GPU (svo_march.comp); out[i] = 1 when
   // occluded. Returns the GPU time of the march dispatch in ms.
   double marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels = 1e-3f);

@@ -79,7 +79,7 @@ SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t
   }
   static_assert(DYNGI_VOXEL_ATTRIBUTES_STEP_STATIC == 0 && DYNGI_VOXEL_ATTRIBUTES_STEP_MERGE == 3, "voxelAttributes_ is indexed by step");
   // One bit per cell of every level 0..depth (DYNGI_SVO_LEVEL_BASE): level depth + 1 would start here.
-  const uint32_t depth = depthOf(resolution);
+  const uint32_t depth = depth_ = depthOf(resolution);
   const uint64_t pyramidBits = 8 + 8 * (((uint64_t(1) << (3 * depth)) - 1) / 7);
   for (Buffer& pyramid : occupancy_)
     pyramid = Buffer(ctx, (pyramidBits + 31) / 32 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -302,6 +302,8 @@ bool SvoBuilder::frameFinished(VoxelStats& stats) {
   uint64_t groups = std::min<uint64_t>(c->groups.x, c->groups.y);
   stats.nodes = groups * 8;
   stats.leaves = c->groups.w;
+  levels_.invalidateForRead();
+  stats.leafSlots = static_cast<const gpu::SvoLevel*>(levels_.mapped())[depth_].range.y;
   stats.poolOverflow = c->groups.z != 0;
   stats.svoBytes = stats.nodes * 4;
   // The kept static attributes miss the leaves an overflowing build left out: made again next build.

@@ -83,6 +83,7 @@ class SvoBuilder {
   // entity has settled and can join; so are their voxel attributes.
   render::Buffer staticOccupancy_;
   ecs::EntitySet staticEntities_;
+  uint32_t depth_ = 0;  // of the leaf level
   bool rebuildStaticOccupancy_ = true;
   render::Buffer markChunks_;                     // DYNGI_SVO_CHUNK per mark workgroup
   const render::Buffer* counters_ = nullptr;      // the build being recorded's (record())

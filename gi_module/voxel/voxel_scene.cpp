@@ -46,13 +46,14 @@ std::vector<std::pair<uint64_t, uint64_t>> coalesceSpans(std::vector<std::pair<u
   return out;
 }
 constexpr uint32_t kAttributeInts = DYNGI_LEAF_ATTRIBUTE_INTS;  // ints per leaf in the attribute buffer
-// The leaf slots the attributes start with: two per fragment slot, at most 2^20 (32 MB), and at least what
-// the last build's nodes need (what frameFinished grows them to after a build that needed more). Dense
-// fragments (many small instances) would otherwise reserve far more leaves than the SVO has.
+// The leaf slots the attributes start with: two per fragment slot, at most 2^20 (32 MB) and at most what
+// the voxel boxes allow (leafSlotBound), and at least what the last build's leaf level needs (what
+// frameFinished grows them to after a build that needed more). Dense fragments (many small instances)
+// would otherwise reserve far more leaves than the SVO has.
 constexpr uint64_t kAttributeSlotsPerFragment = 2;
 constexpr uint64_t kAttributeLeavesAtFirst = 1u << 20;
-uint64_t startingAttributeLeaves(uint64_t fragmentSlots, uint64_t lastNodes) {
-  return std::max(std::min(kAttributeSlotsPerFragment * fragmentSlots, kAttributeLeavesAtFirst), lastNodes + lastNodes / 2);
+uint64_t startingAttributeLeaves(uint64_t fragmentSlots, uint64_t lastLeafSlots, uint64_t leafSlotBound = UINT64_MAX) {
+  return std::max(std::min({kAttributeSlotsPerFragment * fragmentSlots, kAttributeLeavesAtFirst, leafSlotBound}), lastLeafSlots + lastLeafSlots / 2);
 }
 }  // namespace
 
@@ -83,7 +84,7 @@ void VoxelScene::setDebugView(VoxelDebugView v) {
 void VoxelScene::enableLeafAttributes() {
   if (!settings_.leafAttributes) {
     settings_.leafAttributes = true;
-    allocateAttributes(startingAttributeLeaves(stats_.fragmentCapacity, stats_.nodes));
+    allocateAttributes(startingAttributeLeaves(stats_.fragmentCapacity, stats_.leafSlots));
     storageMoved_ = true;  // build them
   }
 }
@@ -142,8 +143,33 @@ void VoxelScene::reallocateFragments(uint64_t slots, const std::vector<SlotCopy>
   });
   fragments_ = std::move(fresh);
   stats_.fragmentCapacity = slots;
-  allocateAttributes(settings_.leafAttributes ? startingAttributeLeaves(slots, stats_.nodes) : 0);
+  allocateAttributes(settings_.leafAttributes ? startingAttributeLeaves(slots, stats_.leafSlots, leafSlotBound()) : 0);
   storageMoved_ = true;
+}
+
+// The SVO's leaf level holds the eight children of every cell of twice the voxel's side that has a voxel,
+// and every voxel lies in its entity's box: eight slots per such cell the boxes touch bound the leaf
+// slots. Dense small instances (a field of 200,000 quads: 1.3 million fragments in 65,000 slots) would
+// otherwise start the attributes at the 2^20 cap. Before the first voxelization, or past kMaxCells of
+// work, no bound is given.
+uint64_t VoxelScene::leafSlotBound() const {
+  constexpr uint64_t kMaxCells = 1u << 24;
+  const uint32_t side = std::max(volume_.resolution / 2, 1u);
+  if (voxelBoxes_.empty() || uint64_t(side) * side * side > kMaxCells) return UINT64_MAX;  // no boxes yet: unknown
+  std::vector<uint64_t> seen((uint64_t(side) * side * side + 63) / 64, 0);
+  uint64_t cells = 0, visited = 0;
+  for (const auto& [e, box] : voxelBoxes_) {
+    const glm::uvec3 lo = box.min / 2u, hi = glm::min(box.max / 2u, glm::uvec3(side - 1));
+    visited += uint64_t(hi.x - lo.x + 1) * (hi.y - lo.y + 1) * (hi.z - lo.z + 1);
+    if (visited > kMaxCells) return UINT64_MAX;
+    for (uint32_t z = lo.z; z <= hi.z; ++z)
+      for (uint32_t y = lo.y; y <= hi.y; ++y)
+        for (uint32_t x = lo.x; x <= hi.x; ++x) {
+          const uint64_t i = (uint64_t(z) * side + y) * side + x;
+          if (!(seen[i / 64] >> (i % 64) & 1u)) seen[i / 64] |= uint64_t(1) << (i % 64), ++cells;
+        }
+  }
+  return 8 * cells;
 }
 
 void VoxelScene::allocateAttributes(uint64_t leafSlots) {
@@ -513,15 +539,15 @@ void VoxelScene::frameFinished(render::VulkanContext&) {
   stats_.fragments = ranges_.storedFragments();
   if (svo_->frameFinished(stats_)) storageMoved_ = true;  // the conservative SVO stands until the next build
   // The attributes are indexed by the leaf level's slots (empty siblings included), which can outnumber
-  // the fragments: grow to the node count (a bound on them) and build again.
-  if (settings_.leafAttributes && stats_.nodes > attributeLeaves_) {
-    allocateAttributes(stats_.nodes + stats_.nodes / 2);
+  // the fragments: grow to them and build again.
+  if (settings_.leafAttributes && stats_.leafSlots > attributeLeaves_) {
+    allocateAttributes(stats_.leafSlots + stats_.leafSlots / 2);
     svo_->invalidateStaticOccupancy();  // the voxel attributes may miss the leaves that did not fit
     storageMoved_ = true;
   }
   // Far more than the build needs (the fragments shrank, the room emptied): the scratch sums follow.
-  else if (settings_.leafAttributes && attributeLeaves_ > 2 * startingAttributeLeaves(stats_.fragmentCapacity, stats_.nodes))
-    allocateAttributes(startingAttributeLeaves(stats_.fragmentCapacity, stats_.nodes));
+  else if (settings_.leafAttributes && attributeLeaves_ > 2 * startingAttributeLeaves(stats_.fragmentCapacity, stats_.leafSlots))
+    allocateAttributes(startingAttributeLeaves(stats_.fragmentCapacity, stats_.leafSlots));
   const render::ImageDesc& kept = voxelAttributes_.desc();
   stats_.totalBytes = fragments_.size() + svo_->bytes() + attributes_.size() + uint64_t(kept.width) * kept.height * kept.depth * 16;
 }

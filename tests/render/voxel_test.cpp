@@ -645,6 +645,30 @@ TEST_F(VoxelTest, NodePoolGrowsWhenTheSceneNeedsMore) {
 // The first build has the whole node pool, which then shrinks to what the SVO uses while the SVO itself
 // stands until something changes. Its node cells (where radiance injection puts each leaf, where the VCT
 // atlas puts each node's texel) must come along, in a still scene as many frames later as it likes.
+// Many small instances: more fragments than the first storage holds, so it grows in the first frame,
+// the leaf attributes sized by the bound the voxel boxes give instead of two slots a fragment. The
+// bound holds (the SVO's leaf level fits it), every leaf's attributes match its fragments (truth: the
+// fragments averaged on the CPU), and the next frame finds nothing to grow.
+TEST_F(VoxelTest, ManySmallInstancesGetLeafAttributesSizedByTheirBoxes) {
+  const scene::MeshId box = assets.addMesh(scene::makeBox(glm::vec3(0.01f)));
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> U(-1.0f, 1.0f);
+  for (int i = 0; i < 6000; ++i) addMeshEntity(box, scene::Transform{.translation = glm::vec3(U(rng), 0.25f * U(rng), U(rng))});
+  attachVoxels(64, 16);
+  step();
+  const gi::VoxelStats& s = voxels->stats();
+  gi::VoxelProbe probe(*voxels);
+  ASSERT_GT(s.fragmentCapacity, 1u << 16) << "the storage grew in the first frame";
+  EXPECT_GE(probe.leafSlotBound(), s.leafSlots);
+  EXPECT_GE(probe.attributeLeaves(), s.leafSlots) << "every leaf slot has its sums";
+  EXPECT_LT(probe.attributeLeaves(), std::min<uint64_t>(2 * s.fragmentCapacity, 1u << 20) / 2) << "the bound, not two slots a fragment";
+  const gi::VoxelProbe::LeafAttributesCheck check = probe.checkLeafAttributes();
+  EXPECT_GT(check.leaves, 3000u);
+  EXPECT_EQ(check.wrongCount + check.wrongAlbedo + check.wrongNormal, 0u);
+  step();
+  EXPECT_FALSE(voxels->stats().rebuilt) << "nothing moved and nothing grew: the SVO stands";
+}
+
 TEST_F(VoxelTest, ShrunkNodePoolKeepsTheLeavesWhereTheyAre) {
   run("cornell", 64, 1);
   const gi::DenseVoxelGrid fragments = gi::VoxelProbe(*voxels).readbackFragmentGrid();

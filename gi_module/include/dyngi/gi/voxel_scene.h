@@ -50,6 +50,7 @@ struct VoxelStats {
   uint64_t fragmentCapacity = 0;
   uint64_t nodes = 0;                // SVO nodes allocated (8 per group)
   uint64_t leaves = 0;               // occupied voxels
+  uint64_t leafSlots = 0;            // the SVO's leaf level: eight per group, empty siblings included
   uint64_t svoBytes = 0;             // node pool bytes in use
   uint64_t totalBytes = 0;           // fragments + nodes + attributes, allocated
   uint32_t overflowedEntities = 0;   // re-voxelized next frame with a larger range
@@ -182,6 +183,7 @@ class VoxelScene final : public render::RenderFeature {
   ecs::EntitySet deferredByCap(const render::RenderSnapshot& snapshot, const glm::mat4& toVoxel) const;
   // Fragment storage of `slots` slots at least; kept fragments are copied, nothing is re-voxelized.
   void ensureCapacity(uint64_t slots);
+  uint64_t leafSlotBound() const;  // of the SVO's leaf slots, from the entities' voxel boxes
   // Moves every range's fragments into a buffer sized by what they hold (FragmentRanges::compact).
   void compactFragments();
   void reallocateFragments(uint64_t slots, const std::vector<SlotCopy>& keep);
