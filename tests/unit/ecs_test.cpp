@@ -214,6 +214,17 @@ TEST(World, AReservedBulkLoadFillsItsArraysWithoutGrowingThem) {
   EXPECT_EQ(&w.get<Position>(Entity{0, 0}), before) << "the dense array was not reallocated";
   for (size_t i = 0; i < kMore; ++i) ASSERT_EQ(w.get<Position>(added[i]).x, float(i));
   EXPECT_EQ(w.aliveCount(), kMore + 10);
+  // Not logged, yet seen: a reader from before the load gets all 5,010 by a scan; writes in later
+  // ticks are logged again, and a reader from the load's tick sees them alone.
+  EXPECT_EQ(w.poolIfAny<Position>()->changeLogSize(), 0u);
+  const Tick load = w.tick();
+  EXPECT_EQ(w.changedSince<Position>(load - 1).size(), kMore + 10);
+  w.advanceTick();
+  w.write<Position>(added[7]);
+  EXPECT_EQ(w.poolIfAny<Position>()->changeLogSize(), 1u);
+  const std::vector<Entity> later = w.changedSince<Position>(load);
+  ASSERT_EQ(later.size(), 1u);
+  EXPECT_EQ(later[0], added[7]);
 }
 
 // EntityMap and EntitySet against std::unordered_map under random inserts, lookups with stale

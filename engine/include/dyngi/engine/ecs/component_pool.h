@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 #include <typeinfo>
+#include <optional>
 #include <vector>
 
 #include "dyngi/engine/ecs/entity.h"
@@ -51,14 +52,21 @@ class ComponentPool final : public ComponentPoolBase {
   T* tryGet(Entity e) { return contains(e) ? &dense_[sparse_[e.index]] : nullptr; }
   const T* tryGet(Entity e) const { return contains(e) ? &dense_[sparse_[e.index]] : nullptr; }
 
-  // Room for `more` components beside those held, and entity indices below `indexBound`.
-  void reserve(size_t more, size_t indexBound) {
+  // Room for `more` components beside those held, and entity indices below `indexBound`. A bulk load
+  // (`more` past kMinDroppedLog) is not logged for the rest of `tick`: its records would be dropped at a
+  // quarter of the pool anyway; readers from before the tick scan the pool.
+  void reserve(size_t more, size_t indexBound, Tick tick) {
     const size_t n = dense_.size() + more;
     dense_.reserve(n);
     entities_.reserve(n);
     changedTick_.reserve(n);
     lastSeq_.reserve(n);
     sparse_.reserve(indexBound);
+    if (more >= kMinDroppedLog) {
+      changeLog_ = {};
+      logFloor_ = std::max(logFloor_, tick);
+      unloggedTick_ = tick;
+    }
   }
 
   T& emplace(Entity e, T value, Tick tick) {
@@ -156,6 +164,7 @@ class ComponentPool final : public ComponentPoolBase {
     // A log holding records for a quarter of the pool walks about as fast as a scan of it (which reads
     // the ticks in order; forEachChangedSince scans for readers older than logFloor_): it is dropped
     // with its memory, so a bulk load of N entities logs N / 4 records at most.
+    if (tick == unloggedTick_) return;  // a reserved bulk load: readers from before it scan
     if (changeLog_.size() >= kMinDroppedLog && 4 * changeLog_.size() >= dense_.size()) {
       changeLog_ = {};
       logFloor_ = std::max(logFloor_, tick);
@@ -178,6 +187,7 @@ class ComponentPool final : public ComponentPoolBase {
   uint64_t seq_ = 0;
   std::vector<ChangeRecord> removedLog_;
   Tick logFloor_ = 0;  // the logs hold every record newer than this
+  std::optional<Tick> unloggedTick_;  // the tick of a reserved bulk load
 };
 
 }  // namespace dyngi::ecs

@@ -56,7 +56,7 @@ class World {
   void reserveEntities(size_t more) { slots_.reserve(slots_.size() + more); }
   template <typename T>
   void reserve(size_t more) {
-    pool<T>().reserve(more, slots_.capacity());
+    pool<T>().reserve(more, slots_.capacity(), tick_);
   }
 
   // --- components -----------------------------------------------------------------------------
