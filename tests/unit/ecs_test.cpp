@@ -289,4 +289,7 @@ TEST(EntityMap, MatchesAStandardMapUnderRandomEditsAndStaleHandles) {
   map.clear(), set.clear(), truth.clear();
   same();
   EXPECT_EQ(map.count(Entity{5, 0}), 0u);
+  EXPECT_EQ(set.count(kNullEntity), 0u) << "looking up the null entity is fine";
+  EXPECT_THROW(map[kNullEntity], std::invalid_argument) << "keying by it is refused, not a 2^32 slot array";
+  EXPECT_THROW(set.insert(kNullEntity), std::invalid_argument);
 }

@@ -49,6 +49,7 @@ class EntityMap {
   std::pair<iterator, bool> try_emplace(Entity e, Args&&... args) {
     const size_t p = position(e);
     if (p < dense_.size()) return {dense_.begin() + ptrdiff_t(p), false};
+    if (e.isNull()) throw std::invalid_argument("EntityMap: the null entity is not a key");  // its index would size head_ to 2^32
     if (dense_.size() >= kAbsent) throw std::length_error("EntityMap: too many entries");
     if (e.index >= head_.size()) head_.resize(size_t(e.index) + 1 + head_.size() / 2, kAbsent);
     dense_.emplace_back(std::piecewise_construct, std::forward_as_tuple(e), std::forward_as_tuple(std::forward<Args>(args)...));
