@@ -16,7 +16,7 @@ class GiIndirectView final : public render::RenderFeature {
 
  private:
   render::VulkanContext& ctx_;
-  render::Pipeline pipeline_;
+  render::LazyPipeline pipeline_;  // made on first use: a debug view
 };
 
 }  // namespace dyngi::gi

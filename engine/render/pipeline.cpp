@@ -55,6 +55,14 @@ void Pipeline::createLayout(std::span<const Binding> bindings, VkShaderStageFlag
   DYNGI_VK(vkCreatePipelineLayout(ctx_->device(), &lci, ctx_->allocator(), &layout_));
 }
 
+LazyPipeline LazyPipeline::compute(VulkanContext& ctx, ShaderCode code, std::span<const Binding> bindings, uint32_t pushConstantBytes,
+                                   const char* name, std::span<const uint32_t> specialization) {
+  return LazyPipeline([&ctx, code, bindings = std::vector<Binding>(bindings.begin(), bindings.end()), pushConstantBytes, name,
+                       spec = std::vector<uint32_t>(specialization.begin(), specialization.end())] {
+    return Pipeline::compute(ctx, code, bindings, pushConstantBytes, name, spec);
+  });
+}
+
 Pipeline Pipeline::compute(VulkanContext& ctx, ShaderCode code, std::span<const Binding> bindings, uint32_t pushConstantBytes,
                            const char* name, std::span<const uint32_t> specialization) {
   Pipeline p;

@@ -64,7 +64,7 @@ SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t
                            {DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_COUNTERS, kSSBO, kCS}};
   for (uint32_t emission : {0u, 1u}) {
     const uint32_t spec[] = {emission};
-    leafAttributes_[emission] = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, sizeof(gpu::SvoLeafAttributesPush),
+    leafAttributes_[emission] = render::LazyPipeline::compute(ctx, DYNGI_SHADER(spv_svo_leaf_attributes_comp), attrB, sizeof(gpu::SvoLeafAttributesPush),
                                                   "svo_leaf_attributes", spec);
   }
   const Binding voxelB[] = {{DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_LEAF_LIST, kSSBO, kCS},
@@ -74,7 +74,7 @@ SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t
                             {DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_MOVING, kSSBO, kCS}};
   for (uint32_t step = 0; step < 4; ++step) {
     const uint32_t spec[] = {step};
-    voxelAttributes_[step] = Pipeline::compute(ctx, DYNGI_SHADER(spv_svo_voxel_attributes_comp), voxelB, sizeof(gpu::SvoVoxelAttributesPush),
+    voxelAttributes_[step] = render::LazyPipeline::compute(ctx, DYNGI_SHADER(spv_svo_voxel_attributes_comp), voxelB, sizeof(gpu::SvoVoxelAttributesPush),
                                                "svo_voxel_attributes", spec);
   }
   static_assert(DYNGI_VOXEL_ATTRIBUTES_STEP_STATIC == 0 && DYNGI_VOXEL_ATTRIBUTES_STEP_MERGE == 3, "voxelAttributes_ is indexed by step");
@@ -177,7 +177,7 @@ void SvoBuilder::recordMark(VkCommandBuffer cmd, const render::Buffer& fragments
 void SvoBuilder::recordLeafSums(VkCommandBuffer cmd, const render::Buffer& fragments, uint32_t depth, const LeafAttributeTargets& attributes,
                                 uint32_t firstChunk, uint32_t chunkCount, bool listLeaves) {
   if (chunkCount == 0) return;
-  const Pipeline& pipeline = leafAttributes_[attributes.emission ? 1 : 0];
+  const Pipeline& pipeline = leafAttributes_[attributes.emission ? 1 : 0].get();
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
   DescriptorWrites()
       .storageBuffer(DYNGI_SVO_LEAF_ATTRIBUTES_BINDING_FRAGMENTS, fragments.handle())
@@ -196,7 +196,7 @@ void SvoBuilder::recordLeafSums(VkCommandBuffer cmd, const render::Buffer& fragm
 
 void SvoBuilder::recordVoxelAttributes(VkCommandBuffer cmd, uint32_t step, uint32_t depth, const LeafAttributeTargets& attributes,
                                        const render::Buffer& args, VkDeviceSize argsOffset) {
-  const Pipeline& pipeline = voxelAttributes_[step];
+  const Pipeline& pipeline = voxelAttributes_[step].get();
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
   DescriptorWrites()
       .storageBuffer(DYNGI_SVO_VOXEL_ATTRIBUTES_BINDING_LEAF_LIST, leafList_.handle())

@@ -91,8 +91,10 @@ class SvoBuilder {
   // The moving leaves of the last build (DYNGI_SVO_VOXEL_ATTRIBUTES in gi_gpu_types.h): room for one a
   // slot of the moving entities' ranges.
   render::Buffer movingLeaves_;
-  render::Pipeline mark_, level_, expand_, leafAttributes_[2];  // leafAttributes_[1]: with the emission sums
-  render::Pipeline voxelAttributes_[4];                         // by step (DYNGI_VOXEL_ATTRIBUTES_STEP_*)
+  render::Pipeline mark_, level_, expand_;
+  // Made on first use: only builds with leaf attributes run them.
+  render::LazyPipeline leafAttributes_[2];   // [1]: with the emission sums
+  render::LazyPipeline voxelAttributes_[4];  // by step (DYNGI_VOXEL_ATTRIBUTES_STEP_*)
 };
 
 }  // namespace dyngi::gi

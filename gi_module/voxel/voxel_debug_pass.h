@@ -16,7 +16,7 @@ class VoxelDebugPass {
 
  private:
   render::VulkanContext& ctx_;
-  render::Pipeline pipeline_;
+  render::LazyPipeline pipeline_;  // made on first use: a debug view
 };
 
 }  // namespace dyngi::gi

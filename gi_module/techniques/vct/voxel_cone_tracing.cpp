@@ -104,15 +104,6 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
   changedBoxes_ = Buffer(ctx_, 2 * kMaxChangedBoxes * sizeof(glm::uvec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "vct changed boxes");
 }
 
-// A variant made on its first use (LazyPipeline): of the trace's eight, a run uses one or two.
-render::LazyPipeline VoxelConeTracing::lazyCompute(render::ShaderCode code, std::span<const render::Binding> bindings, uint32_t pushBytes,
-                                                   const char* name, std::span<const uint32_t> specialization) {
-  return render::LazyPipeline([&ctx = ctx_, code, bindings = std::vector<render::Binding>(bindings.begin(), bindings.end()), pushBytes, name,
-                               spec = std::vector<uint32_t>(specialization.begin(), specialization.end())] {
-    return Pipeline::compute(ctx, code, bindings, pushBytes, name, spec);
-  });
-}
-
 // The passes over the occupied voxels: injection, clearing what emptied, the bounce and its commit.
 void VoxelConeTracing::createLeafPipelines() {
   const Binding leafB[] = {{DYNGI_VCT_INJECT_BINDING_LEAF_LIST, kSSBO, kCS},
@@ -146,8 +137,8 @@ void VoxelConeTracing::createLeafPipelines() {
     for (bool unitStep : {false, true}) {
       const ConeVariant v{aniso, unitStep};
       const uint32_t spec[] = {aniso ? 1u : 0u, 0u, unitStep ? 1u : 0u};  // constant 1 is not theirs; 2 is vct_cone.glsl's kVctUnitStep
-      bounce_[v.index()] = lazyCompute(DYNGI_SHADER(spv_vct_bounce_comp), bounceB, sizeof(gpu::VctBouncePush), "vct_bounce", spec);
-      probe_[v.index()] = lazyCompute(DYNGI_SHADER(spv_vct_cone_probe_comp), probeB, sizeof(gpu::VctProbePush), "vct_cone_probe", spec);
+      bounce_[v.index()] = render::LazyPipeline::compute(ctx_, DYNGI_SHADER(spv_vct_bounce_comp), bounceB, sizeof(gpu::VctBouncePush), "vct_bounce", spec);
+      probe_[v.index()] = render::LazyPipeline::compute(ctx_, DYNGI_SHADER(spv_vct_cone_probe_comp), probeB, sizeof(gpu::VctProbePush), "vct_cone_probe", spec);
     }
 }
 
@@ -162,7 +153,7 @@ void VoxelConeTracing::createMipsPipelines() {
       {MipsVariant::IsotropicOpaqueAxis, {0u, 1u, 0u, 0u}}, {MipsVariant::AtlasFromLevel0, {1u, 0u, 1u, 0u}},
       {MipsVariant::AtlasFromDirect, {1u, 0u, 1u, 1u}}};
   for (const auto& [variant, spec] : variants)
-    mips_[uint32_t(variant)] = lazyCompute(DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", spec);
+    mips_[uint32_t(variant)] = render::LazyPipeline::compute(ctx_, DYNGI_SHADER(spv_vct_mips_comp), mipsB, sizeof(gpu::VctMipsPush), "vct_mips", spec);
 }
 
 // The screen's passes: trace, reproject, filter, upsample, and the debug views.
@@ -179,12 +170,12 @@ void VoxelConeTracing::createScreenPipelines() {
                             {DYNGI_VCT_DEBUG_BINDING_SPECULAR, kStorageImage, kCS}, {DYNGI_VCT_DEBUG_BINDING_OUT_HDR, kStorageImage, kCS}};
   for (bool aniso : {false, true}) {
     const uint32_t spec[] = {aniso ? 1u : 0u};
-    debug_[aniso ? 1 : 0] = lazyCompute(DYNGI_SHADER(spv_vct_debug_comp), debugB, sizeof(gpu::VctDebugPush), "vct_debug", spec);
+    debug_[aniso ? 1 : 0] = render::LazyPipeline::compute(ctx_, DYNGI_SHADER(spv_vct_debug_comp), debugB, sizeof(gpu::VctDebugPush), "vct_debug", spec);
     for (bool specular : {false, true})
       for (bool unitStep : {false, true}) {
         const uint32_t traceSpec[] = {aniso ? 1u : 0u, specular ? 1u : 0u, unitStep ? 1u : 0u};  // vct_trace.comp's, then kVctUnitStep
         trace_[TraceVariant{aniso, specular, unitStep}.index()] =
-            lazyCompute(DYNGI_SHADER(spv_vct_trace_comp), traceB, sizeof(gpu::VctTracePush), "vct_trace", traceSpec);
+            render::LazyPipeline::compute(ctx_, DYNGI_SHADER(spv_vct_trace_comp), traceB, sizeof(gpu::VctTracePush), "vct_trace", traceSpec);
       }
   }
   const Binding upB[] = {{DYNGI_VCT_UPSAMPLE_BINDING_G_POSITION, kStorageImage, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_G_NORMAL, kStorageImage, kCS},
@@ -193,7 +184,7 @@ void VoxelConeTracing::createScreenPipelines() {
                          {DYNGI_VCT_UPSAMPLE_BINDING_FRAME, kUBO, kCS}, {DYNGI_VCT_UPSAMPLE_BINDING_LOW_SURFACE, kStorageImage, kCS}};
   for (bool specular : {false, true}) {
     const uint32_t spec[] = {specular ? 1u : 0u};
-    upsample_[specular ? 1 : 0] = lazyCompute(DYNGI_SHADER(spv_vct_upsample_comp), upB, sizeof(gpu::VctUpsamplePush), "vct_upsample", spec);
+    upsample_[specular ? 1 : 0] = render::LazyPipeline::compute(ctx_, DYNGI_SHADER(spv_vct_upsample_comp), upB, sizeof(gpu::VctUpsamplePush), "vct_upsample", spec);
   }
   const Binding reprojectB[] = {{DYNGI_VCT_REPROJECT_BINDING_FRAME, kUBO, kCS},
                                 {DYNGI_VCT_REPROJECT_BINDING_G_POSITION, kStorageImage, kCS},

@@ -114,8 +114,6 @@ class VoxelConeTracing final : public render::RenderFeature {
   void createLeafPipelines();
   void createMipsPipelines();
   void createScreenPipelines();
-  render::LazyPipeline lazyCompute(render::ShaderCode code, std::span<const render::Binding> bindings, uint32_t pushBytes, const char* name,
-                                   std::span<const uint32_t> specialization);
   void createSampler();
   // The part of the voxels a frame's radiance update covers (vct_parts.glsl): part of parts, and the
   // first boxCount changed boxes (changedBoxes_) of a frame whose SVO build changed voxels.

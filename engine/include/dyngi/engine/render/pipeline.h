@@ -80,6 +80,9 @@ class LazyPipeline {
  public:
   LazyPipeline() = default;
   explicit LazyPipeline(std::function<Pipeline()> make) : make_(std::move(make)) {}
+  // Pipeline::compute's arguments, kept (the bindings and specialization copied) until first use.
+  static LazyPipeline compute(VulkanContext& ctx, ShaderCode code, std::span<const Binding> bindings, uint32_t pushConstantBytes,
+                              const char* name, std::span<const uint32_t> specialization = {});
   const Pipeline& get() const {
     if (pipeline_.handle() == VK_NULL_HANDLE && make_) pipeline_ = make_();
     return pipeline_;
