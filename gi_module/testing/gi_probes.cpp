@@ -37,7 +37,9 @@ ManyLights* manyLightsOf(GiSystem& gi) { return featureOf<ManyLights>(gi); }
 VoxelProbe::VoxelProbe(VoxelScene& voxels) : voxels_(voxels) {}
 
 uint64_t VoxelProbe::attributeLeaves() const { return voxels_.attributeLeaves_; }
-uint64_t VoxelProbe::leafSlotBound() const { return voxels_.leafSlotBound(); }
+uint64_t VoxelProbe::leafSlotBound() const { return voxels_.occupancyBound().leafSlots; }
+uint64_t VoxelProbe::nodeGroupBound() const { return voxels_.occupancyBound().nodeGroups; }
+uint64_t VoxelProbe::nodeGroupCapacity() const { return voxels_.svo_->nodeGroupCapacity(); }
 
 // The march pipelines are made on first use: a probe that only reads back compiles nothing.
 const render::Pipeline& VoxelProbe::marchPipeline(bool march) {

@@ -59,7 +59,9 @@ class VoxelProbe {
   };
   LeafAttributesCheck checkLeafAttributes();
   uint64_t attributeLeaves() const;  // leaf slots the attribute sums have room for
-  uint64_t leafSlotBound() const;    // VoxelScene's bound on the leaf slots, from the voxel boxes
+  uint64_t leafSlotBound() const;      // VoxelScene's bound on the leaf slots, from the voxel boxes
+  uint64_t nodeGroupBound() const;     // ... and on the SVO's node groups
+  uint64_t nodeGroupCapacity() const;  // node groups the SVO's pool holds now
   // Visibility of world-space segments through the SVO on the GPU (svo_march.comp); out[i] = 1 when
   // occluded. Returns the GPU time of the march dispatch in ms.
   double marchSegments(const std::vector<Segment>& segments, std::vector<uint8_t>& out, float epsVoxels = 1e-3f);

@@ -86,7 +86,8 @@ SvoBuilder::SvoBuilder(render::VulkanContext& ctx, uint32_t resolution, uint32_t
                      MemoryUsage::GpuOnly, "svo occupancy pyramid");
   staticOccupancy_ = Buffer(ctx, occupancy_[0].size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                             MemoryUsage::GpuOnly, "svo static occupancy pyramid");
-  // The first build gets the whole pool; afterwards it follows what the SVO uses (resizeNodePool).
+  // The first build gets the whole pool unless fitFirstPool cuts it; afterwards the pool follows what
+  // the SVO uses (resizeNodePool).
   nodeGroupCapacity_ = std::max(maxNodeGroups_, 2u);
   nodes_ = Buffer(ctx, VkDeviceSize(nodeGroupCapacity_) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo nodes");
   nodeCells_ = Buffer(ctx, VkDeviceSize(nodeGroupCapacity_) * 8 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "svo node cells");
@@ -296,7 +297,15 @@ void SvoBuilder::record(render::FrameContext& frame, const render::Buffer& fragm
   }
 }
 
+void SvoBuilder::fitFirstPool(uint64_t groupBound) {
+  if (built_ || groupBound == UINT64_MAX) return;
+  // Half over the bound: a build that fills three quarters of the pool grows it (frameFinished).
+  const uint64_t want = std::clamp<uint64_t>(groupBound + groupBound / 2, std::min<uint32_t>(kMinNodeGroups, maxNodeGroups_), maxNodeGroups_);
+  if (want < nodeGroupCapacity_) resizeNodePool(uint32_t(want), 0);
+}
+
 bool SvoBuilder::frameFinished(VoxelStats& stats) {
+  built_ = true;
   svoCounters_.invalidateForRead();
   const auto* c = static_cast<const gpu::SvoCounters*>(svoCounters_.mapped());
   uint64_t groups = std::min<uint64_t>(c->groups.x, c->groups.y);

@@ -30,6 +30,11 @@ class SvoBuilder {
   // workgroup-sized chunks of the ranges. `voxelized` and `removed`: this frame's.
   void plan(const FragmentRanges& ranges, uint64_t frame, const std::vector<ecs::Entity>& voxelized, const std::vector<ecs::Entity>& removed,
             VoxelStats& stats);
+  // Before the first build: the pool cut to `groupBound` node groups, an upper bound on what the build
+  // needs (VoxelScene's from the voxel boxes), instead of the full tree's.
+  void fitFirstPool(uint64_t groupBound);
+  bool built() const { return built_; }  // a build has finished (frameFinished)
+  uint32_t nodeGroupCapacity() const { return nodeGroupCapacity_; }
   // Everything is voxelized again: the static pyramid is rebuilt at the next build.
   void invalidateStaticOccupancy() { rebuildStaticOccupancy_ = true; }
   // Records the build over `fragments`; with `attributes`, the voxel attributes too: when the static set
@@ -72,6 +77,7 @@ class SvoBuilder {
   render::VulkanContext& ctx_;
   uint32_t maxNodeGroups_;
   uint32_t nodeGroupCapacity_ = 0;
+  bool built_ = false;
   render::Buffer nodes_, levels_, svoCounters_;
   render::Buffer nodeCells_;  // per group of 8 nodes (leaves included), at its first slot: the first child's Morton code
                               // (svo_expand.comp; SVO_NODE_CELL derives the siblings'), sized like nodes_

@@ -1,6 +1,7 @@
 #include "dyngi/gi/voxel_scene.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <chrono>
@@ -47,13 +48,13 @@ std::vector<std::pair<uint64_t, uint64_t>> coalesceSpans(std::vector<std::pair<u
 }
 constexpr uint32_t kAttributeInts = DYNGI_LEAF_ATTRIBUTE_INTS;  // ints per leaf in the attribute buffer
 // The leaf slots the attributes start with: two per fragment slot, at most 2^20 (32 MB) and at most what
-// the voxel boxes allow (leafSlotBound), and at least what the last build's leaf level needs (what
+// the voxel boxes allow (occupancyBound), and at least what the last build's leaf level needs (what
 // frameFinished grows them to after a build that needed more). Dense fragments (many small instances)
 // would otherwise reserve far more leaves than the SVO has.
 constexpr uint64_t kAttributeSlotsPerFragment = 2;
 constexpr uint64_t kAttributeLeavesAtFirst = 1u << 20;
-uint64_t startingAttributeLeaves(uint64_t fragmentSlots, uint64_t lastLeafSlots, uint64_t leafSlotBound = UINT64_MAX) {
-  return std::max(std::min({kAttributeSlotsPerFragment * fragmentSlots, kAttributeLeavesAtFirst, leafSlotBound}), lastLeafSlots + lastLeafSlots / 2);
+uint64_t startingAttributeLeaves(uint64_t fragmentSlots, uint64_t lastLeafSlots, uint64_t boxesBound = UINT64_MAX) {
+  return std::max(std::min({kAttributeSlotsPerFragment * fragmentSlots, kAttributeLeavesAtFirst, boxesBound}), lastLeafSlots + lastLeafSlots / 2);
 }
 }  // namespace
 
@@ -143,25 +144,26 @@ void VoxelScene::reallocateFragments(uint64_t slots, const std::vector<SlotCopy>
   });
   fragments_ = std::move(fresh);
   stats_.fragmentCapacity = slots;
-  allocateAttributes(settings_.leafAttributes ? startingAttributeLeaves(slots, stats_.leafSlots, leafSlotBound()) : 0);
+  allocateAttributes(settings_.leafAttributes ? startingAttributeLeaves(slots, stats_.leafSlots, occupancyBound().leafSlots) : 0);
   storageMoved_ = true;
 }
 
-// The SVO's leaf level holds the eight children of every cell of twice the voxel's side that has a voxel,
-// and every voxel lies in its entity's box: eight slots per such cell the boxes touch bound the leaf
+// The SVO has a group of eight nodes under every occupied cell of levels 0..depth-1, and every voxel
+// lies in its entity's box: the cells of twice the voxel's side that the boxes touch, and their parents
+// up to the root, bound the groups, and eight leaf slots per such half-resolution cell bound the leaf
 // slots. Dense small instances (a field of 200,000 quads: 1.3 million fragments in 65,000 slots) would
-// otherwise start the attributes at the 2^20 cap. Before the first voxelization, or past kMaxCells of
-// work, no bound is given.
-uint64_t VoxelScene::leafSlotBound() const {
+// otherwise start the leaf attributes at the 2^20 cap and the node pool at the full tree. Before the
+// first voxelization, or past kMaxCells of work, no bound is given.
+VoxelScene::OccupancyBound VoxelScene::occupancyBound() const {
   constexpr uint64_t kMaxCells = 1u << 24;
-  const uint32_t side = std::max(volume_.resolution / 2, 1u);
-  if (voxelBoxes_.empty() || uint64_t(side) * side * side > kMaxCells) return UINT64_MAX;  // no boxes yet: unknown
+  uint32_t side = std::max(volume_.resolution / 2, 1u);
+  if (voxelBoxes_.empty() || uint64_t(side) * side * side > kMaxCells) return {};  // no boxes yet: unknown
   std::vector<uint64_t> seen((uint64_t(side) * side * side + 63) / 64, 0);
   uint64_t cells = 0, visited = 0;
   for (const auto& [e, box] : voxelBoxes_) {
     const glm::uvec3 lo = box.min / 2u, hi = glm::min(box.max / 2u, glm::uvec3(side - 1));
     visited += uint64_t(hi.x - lo.x + 1) * (hi.y - lo.y + 1) * (hi.z - lo.z + 1);
-    if (visited > kMaxCells) return UINT64_MAX;
+    if (visited > kMaxCells) return {};
     for (uint32_t z = lo.z; z <= hi.z; ++z)
       for (uint32_t y = lo.y; y <= hi.y; ++y)
         for (uint32_t x = lo.x; x <= hi.x; ++x) {
@@ -169,7 +171,20 @@ uint64_t VoxelScene::leafSlotBound() const {
           if (!(seen[i / 64] >> (i % 64) & 1u)) seen[i / 64] |= uint64_t(1) << (i % 64), ++cells;
         }
   }
-  return 8 * cells;
+  OccupancyBound bound{8 * cells, cells};
+  for (; side > 1; side /= 2) {  // each level's touched cells are the parents of the level below's
+    const uint32_t half = side / 2;
+    std::vector<uint64_t> parents((uint64_t(half) * half * half + 63) / 64, 0);
+    for (size_t w = 0; w < seen.size(); ++w)
+      for (uint64_t bits = seen[w]; bits != 0; bits &= bits - 1) {
+        const uint64_t i = w * 64 + uint64_t(std::countr_zero(bits));
+        const uint64_t x = i % side, y = i / side % side, z = i / (uint64_t(side) * side);
+        const uint64_t j = (z / 2 * half + y / 2) * half + x / 2;
+        if (!(parents[j / 64] >> (j % 64) & 1u)) parents[j / 64] |= uint64_t(1) << (j % 64), ++bound.nodeGroups;
+      }
+    seen.swap(parents);
+  }
+  return bound;
 }
 
 void VoxelScene::allocateAttributes(uint64_t leafSlots) {
@@ -333,6 +348,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
   }
   stats_.entitiesVoxelized = uint32_t(drawsToVoxelize_.size());
   if (!drawsToVoxelize_.empty()) stats_.drawsComputeVoxelized = uint32_t(computeDraws_.size());
+  if (rebuildSvo_ && !svo_->built()) svo_->fitFirstPool(occupancyBound().nodeGroups);
   if (rebuildSvo_) svo_->plan(ranges_, frameIndex_, voxelizedThisFrame_, removedNow, stats_);
 }
 

@@ -609,17 +609,21 @@ TEST_F(VoxelTest, AFullVolumeFitsTheNodePoolAFullTreeNeeds) {
   EXPECT_EQ(diff(leaves(), gi::voxelizeBruteForce(voxelSpaceTriangles(snapshot, voxels->volume()), kRes)).missing, 0u);
 }
 
-// The node pool shrinks to what the first build used; when the scene then needs more, the build that
-// overflows is conservative (no voxel missing) and the pool grows so the next one is exact.
+// The first build's node pool is fitted to the bound the voxel boxes give (half over it); when the scene
+// then needs more, the build that overflows is conservative (no voxel missing) and the pool grows so the
+// next one is exact.
 TEST_F(VoxelTest, NodePoolGrowsWhenTheSceneNeedsMore) {
   run("cornell", 128, 2);
   const uint64_t smallPool = voxels->stats().totalBytes;
-  // Twelve slanted sheets across the room: far more occupied voxels than the box had.
+  gi::VoxelProbe probe(*voxels);
+  EXPECT_GE(probe.nodeGroupBound(), voxels->stats().nodes / 8) << "the bound holds";
+  EXPECT_LE(probe.nodeGroupCapacity(), probe.nodeGroupBound() * 3 / 2) << "the first pool is fitted, not the full tree";
+  // Thirty slanted sheets across the room: far more occupied voxels than the box had.
   scene::MeshId sheet = assets.addMesh(scene::makeQuad({-0.95f, 0.0f, -0.95f}, {1.9f, 0.0f, 0.0f}, {0.0f, 0.15f, 1.9f}));
-  for (int i = 0; i < 12; ++i) {
+  for (int i = 0; i < 30; ++i) {
     ecs::Entity e = world.create();
     scene::Transform t;
-    t.translation = {0.0f, 0.1f + 0.14f * float(i), 0.0f};
+    t.translation = {0.0f, 0.1f + 0.055f * float(i), 0.0f};
     world.add(e, t);
     world.add(e, scene::WorldTransform{t.matrix()});
     world.add(e, scene::MeshInstance{sheet, true});
@@ -642,13 +646,11 @@ TEST_F(VoxelTest, NodePoolGrowsWhenTheSceneNeedsMore) {
   expectLeafAttributesSumTheirFragments(*voxels, "the build after");
 }
 
-// The first build has the whole node pool, which then shrinks to what the SVO uses while the SVO itself
-// stands until something changes. Its node cells (where radiance injection puts each leaf, where the VCT
-// atlas puts each node's texel) must come along, in a still scene as many frames later as it likes.
 // Many small instances: more fragments than the first storage holds, so it grows in the first frame,
-// the leaf attributes sized by the bound the voxel boxes give instead of two slots a fragment. The
-// bound holds (the SVO's leaf level fits it), every leaf's attributes match its fragments (truth: the
-// fragments averaged on the CPU), and the next frame finds nothing to grow.
+// the leaf attributes and the first node pool sized by the bounds the voxel boxes give instead of two
+// slots a fragment and the full tree. The bounds hold (the SVO fits them: no overflow), every leaf's
+// attributes match its fragments (truth: the fragments averaged on the CPU), and the next frame finds
+// nothing to grow.
 TEST_F(VoxelTest, ManySmallInstancesGetLeafAttributesSizedByTheirBoxes) {
   const scene::MeshId box = assets.addMesh(scene::makeBox(glm::vec3(0.01f)));
   std::mt19937 rng(11);
@@ -660,6 +662,9 @@ TEST_F(VoxelTest, ManySmallInstancesGetLeafAttributesSizedByTheirBoxes) {
   gi::VoxelProbe probe(*voxels);
   ASSERT_GT(s.fragmentCapacity, 1u << 16) << "the storage grew in the first frame";
   EXPECT_GE(probe.leafSlotBound(), s.leafSlots);
+  EXPECT_GE(probe.nodeGroupBound(), s.nodes / 8);
+  EXPECT_FALSE(s.poolOverflow);
+  EXPECT_LE(probe.nodeGroupCapacity(), 2 * probe.nodeGroupBound()) << "the bound, not the full tree";
   EXPECT_GE(probe.attributeLeaves(), s.leafSlots) << "every leaf slot has its sums";
   EXPECT_LT(probe.attributeLeaves(), std::min<uint64_t>(2 * s.fragmentCapacity, 1u << 20) / 2) << "the bound, not two slots a fragment";
   const gi::VoxelProbe::LeafAttributesCheck check = probe.checkLeafAttributes();
@@ -669,8 +674,20 @@ TEST_F(VoxelTest, ManySmallInstancesGetLeafAttributesSizedByTheirBoxes) {
   EXPECT_FALSE(voxels->stats().rebuilt) << "nothing moved and nothing grew: the SVO stands";
 }
 
+// The node pool shrinks to what the SVO uses after a build that needs far less, while the SVO itself
+// stands until something changes. Its node cells (where radiance injection puts each leaf, where the VCT
+// atlas puts each node's texel) must come along, in a still scene as many frames later as it likes.
 TEST_F(VoxelTest, ShrunkNodePoolKeepsTheLeavesWhereTheyAre) {
   run("cornell", 64, 1);
+  // All but the short box removed: the SVO needs a fraction of the pool, which shrinks after the build.
+  const uint64_t poolBefore = gi::VoxelProbe(*voxels).nodeGroupCapacity();
+  std::vector<ecs::Entity> others;
+  world.each<scene::Name>([&](ecs::Entity e, const scene::Name& n) {
+    if (n.value != "short_box" && world.has<scene::MeshInstance>(e)) others.push_back(e);
+  });
+  for (ecs::Entity e : others) world.destroy(e);
+  step();
+  ASSERT_LT(gi::VoxelProbe(*voxels).nodeGroupCapacity(), poolBefore / 2) << "the test means to shrink the pool";
   const gi::DenseVoxelGrid fragments = gi::VoxelProbe(*voxels).readbackFragmentGrid();
   for (int still = 0; still < 2; ++still) {
     GridDiff d = diff(gi::VoxelProbe(*voxels).readbackLeafCells(), fragments);
@@ -863,3 +880,4 @@ TEST_F(VoxelTest, TheVolumeFollowsTheCameraInAWideWorld) {
   d = diff(leaves(), firstLeaves);
   EXPECT_EQ(d.missing + d.extra, 0u) << "back in the first cell: the first voxels";
 }
+

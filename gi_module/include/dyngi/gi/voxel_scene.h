@@ -183,7 +183,11 @@ class VoxelScene final : public render::RenderFeature {
   ecs::EntitySet deferredByCap(const render::RenderSnapshot& snapshot, const glm::mat4& toVoxel) const;
   // Fragment storage of `slots` slots at least; kept fragments are copied, nothing is re-voxelized.
   void ensureCapacity(uint64_t slots);
-  uint64_t leafSlotBound() const;  // of the SVO's leaf slots, from the entities' voxel boxes
+  // What the entities' voxel boxes allow the SVO: its leaf slots and node groups (UINT64_MAX: unknown).
+  struct OccupancyBound {
+    uint64_t leafSlots = UINT64_MAX, nodeGroups = UINT64_MAX;
+  };
+  OccupancyBound occupancyBound() const;
   // Moves every range's fragments into a buffer sized by what they hold (FragmentRanges::compact).
   void compactFragments();
   void reallocateFragments(uint64_t slots, const std::vector<SlotCopy>& keep);
