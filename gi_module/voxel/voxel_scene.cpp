@@ -314,7 +314,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     if (glm::any(glm::greaterThan(snapshot.materialOf(d).emissive, glm::vec3(0.0f)))) emittingEntities_.insert(d.entity);
     else emittingEntities_.erase(d.entity);
     if (const auto old = voxelBoxes_.find(d.entity); old != voxelBoxes_.end()) {
-      staleBoxes_.push_back(old->second);
+      if (!staleEverywhere_) staleBoxes_.push_back(old->second);
       voxelBoxes_.erase(old);
     }
     const scene::Aabb bounds = snapshot.assets->mesh(d.mesh).bounds.transformed(toVoxel * d.model);
@@ -322,7 +322,7 @@ void VoxelScene::prepare(render::VulkanContext&, const render::RenderSnapshot& s
     if (bounds.valid() && !glm::any(glm::greaterThan(lo, glm::vec3(top))) && !glm::any(glm::lessThan(hi, glm::vec3(0.0f)))) {
       const VoxelBox box{glm::uvec3(glm::clamp(lo, 0.0f, top)), glm::uvec3(glm::clamp(hi, 0.0f, top))};
       voxelBoxes_[d.entity] = box;
-      freshBoxes_.push_back(box);
+      if (!staleEverywhere_) freshBoxes_.push_back(box);
     }
     const FragmentRanges::Estimate estimate = FragmentRanges::estimate(snapshot.assets->mesh(d.mesh), toVoxel * d.model, volume_.resolution);
     // Committed at once: the growth below keeps the slots under the last frame's high water, which

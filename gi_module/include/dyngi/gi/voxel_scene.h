@@ -171,6 +171,7 @@ class VoxelScene final : public render::RenderFeature {
   bool staleEverywhere() const { return staleEverywhere_; }
   // The boxes the entities voxelized this frame cover now (bounds and a voxel of margin): with the stale
   // boxes, everywhere a voxel may have been filled, emptied or given new attributes by this frame's build.
+  // Both lists are empty when staleEverywhere(): every voxel may have changed.
   const std::vector<VoxelBox>& freshBoxes() const { return freshBoxes_; }
   // Some stored fragment emits (an entity voxelized with an emissive material): the passes over the
   // leaf attributes leave emission out otherwise.
