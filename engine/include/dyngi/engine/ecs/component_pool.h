@@ -24,7 +24,9 @@ namespace dyngi::ecs {
 struct ChangeRecord {
   Entity entity;
   Tick tick;
-  uint64_t seq = 0;  // unique per record: the component's latest record is the one whose seq it holds
+  // The component's latest record is the one whose seq it holds. 32 bits wrap, but only between records
+  // 2^32 apart, and a record still in a log has fewer behind it (they would take 64 GB).
+  uint32_t seq = 0;
 };
 
 class ComponentPoolBase {
@@ -182,9 +184,9 @@ class ComponentPool final : public ComponentPoolBase {
   std::vector<T> dense_;
   std::vector<Entity> entities_;
   std::vector<Tick> changedTick_;
-  std::vector<uint64_t> lastSeq_;
+  std::vector<uint32_t> lastSeq_;
   std::vector<ChangeRecord> changeLog_;
-  uint64_t seq_ = 0;
+  uint32_t seq_ = 0;
   std::vector<ChangeRecord> removedLog_;
   Tick logFloor_ = 0;  // the logs hold every record newer than this
   std::optional<Tick> unloggedTick_;  // the tick of a reserved bulk load
