@@ -118,19 +118,39 @@ void SvoBuilder::plan(const FragmentRanges& ranges, uint64_t frame, const std::v
   }
   // One chunk per mark workgroup (64 invocations x DYNGI_SVO_ITEMS_PER_INVOCATION slots), cut from the
   // ranges: the static entities' first (only when the static pyramid is rebuilt), then the moving ones'.
+  // A range of over half a chunk is cut alone, its chunks' ends from its counter; smaller ranges that
+  // follow each other in the storage share one (200,000 small instances: 200,000 workgroups of six
+  // fragments each otherwise).
   const uint64_t chunkSlots = 64 * DYNGI_SVO_ITEMS_PER_INVOCATION;
   std::vector<glm::uvec4> chunks;  // DYNGI_SVO_CHUNK
   stats.slotsMarked = 0;
   stats.staticEntities = uint32_t(staticEntities_.size());
+  std::vector<const FragmentRange*> small;
   auto cut = [&](bool wantStatic) {
-    uint32_t n = 0;
+    const size_t before = chunks.size();
+    small.clear();
     for (const auto& [e, r] : ranges.all()) {
       if (staticEntities_.count(e) != size_t(wantStatic)) continue;
       stats.slotsMarked += r.capacity;
-      for (uint64_t a = r.first; a < r.first + r.capacity; a += chunkSlots, ++n)
+      if (2 * r.capacity <= chunkSlots) {
+        small.push_back(&r);
+        continue;
+      }
+      for (uint64_t a = r.first; a < r.first + r.capacity; a += chunkSlots)
         chunks.push_back(glm::uvec4(uint32_t(a), uint32_t(std::min(a + chunkSlots, r.first + r.capacity)), uint32_t(r.first), r.counter));
     }
-    return n;
+    std::sort(small.begin(), small.end(), [](const FragmentRange* a, const FragmentRange* b) { return a->first < b->first; });
+    bool open = false;
+    for (const FragmentRange* r : small) {
+      if (open && chunks.back().y == r->first && r->first + r->capacity - chunks.back().x <= chunkSlots) {
+        chunks.back().y = uint32_t(r->first + r->capacity);
+        chunks.back().w = DYNGI_SVO_CHUNK_NO_COUNTER;  // several ranges: their empty slots are skipped instead
+        continue;
+      }
+      chunks.push_back(glm::uvec4(uint32_t(r->first), uint32_t(r->first + r->capacity), uint32_t(r->first), r->counter));
+      open = true;
+    }
+    return uint32_t(chunks.size() - before);
   };
   staticChunks_ = rebuildStaticOccupancy_ ? cut(true) : 0;
   const uint64_t slotsBeforeMoving = stats.slotsMarked;

@@ -649,8 +649,8 @@ TEST_F(VoxelTest, NodePoolGrowsWhenTheSceneNeedsMore) {
 // Many small instances: more fragments than the first storage holds, so it grows in the first frame,
 // the leaf attributes and the first node pool sized by the bounds the voxel boxes give instead of two
 // slots a fragment and the full tree. The bounds hold (the SVO fits them: no overflow), every leaf's
-// attributes match its fragments (truth: the fragments averaged on the CPU), and the next frame finds
-// nothing to grow.
+// attributes match its fragments (truth: the fragments averaged on the CPU), the leaves are the cells
+// with fragments, and the next frame finds nothing to grow.
 TEST_F(VoxelTest, ManySmallInstancesGetLeafAttributesSizedByTheirBoxes) {
   const scene::MeshId box = assets.addMesh(scene::makeBox(glm::vec3(0.01f)));
   std::mt19937 rng(11);
@@ -667,6 +667,9 @@ TEST_F(VoxelTest, ManySmallInstancesGetLeafAttributesSizedByTheirBoxes) {
   EXPECT_LE(probe.nodeGroupCapacity(), 2 * probe.nodeGroupBound()) << "the bound, not the full tree";
   EXPECT_GE(probe.attributeLeaves(), s.leafSlots) << "every leaf slot has its sums";
   EXPECT_LT(probe.attributeLeaves(), std::min<uint64_t>(2 * s.fragmentCapacity, 1u << 20) / 2) << "the bound, not two slots a fragment";
+  // Their ranges are small and neighbours: chunks of several ranges mark them.
+  const GridDiff cells = diff(probe.readbackLeafCells(), probe.readbackFragmentGrid());
+  EXPECT_EQ(cells.missing + cells.extra, 0u) << "the leaves are the voxelized cells";
   const gi::VoxelProbe::LeafAttributesCheck check = probe.checkLeafAttributes();
   EXPECT_GT(check.leaves, 3000u);
   EXPECT_EQ(check.wrongCount + check.wrongAlbedo + check.wrongNormal, 0u);

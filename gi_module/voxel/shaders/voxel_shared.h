@@ -152,8 +152,12 @@ struct SvoCounters {
 // cuts them from the entity ranges), a uvec4: x its first slot, y its end, z the first slot of its
 // entity's range, w that range's fragment counter (the voxelizer's). The voxelizer appends, so a range's
 // fragments are its first counters[w] slots: the chunk's fragments end at DYNGI_SVO_CHUNK_END. A moving
-// range holds slack for its count to grow (about twice it), slots every pass over them paid for.
-#define DYNGI_SVO_CHUNK_END(chunk, counters) min((chunk).y, (chunk).z + (counters)[(chunk).w])
+// range holds slack for its count to grow (about twice it), slots every pass over them paid for. A chunk
+// of several small neighbouring ranges has w DYNGI_SVO_CHUNK_NO_COUNTER and ends at y: the slots past a
+// range's fragments are empty (DYNGI_VOXEL_EMPTY, filled before each voxelization), and are skipped.
+#define DYNGI_SVO_CHUNK_NO_COUNTER 0xFFFFFFFFu
+#define DYNGI_SVO_CHUNK_END(chunk, counters) \
+  ((chunk).w == DYNGI_SVO_CHUNK_NO_COUNTER ? (chunk).y : min((chunk).y, (chunk).z + (counters)[(chunk).w]))
 // voxel_debug
 #define DYNGI_VOXEL_DEBUG_BINDING_FRAME 0
 #define DYNGI_VOXEL_DEBUG_BINDING_NODES 1
