@@ -236,10 +236,13 @@ const BvhStats& EmbreeScene::sync(const ecs::World& world, const scene::AssetSto
   im.removeGone(pass, changes);
   im.refitDeformed(pass);
   // A first sync adds every instance (a new one is both moved and mesh-written): room for them at once.
-  const size_t mayAdd = std::max(changes.moved.size(), changes.meshWritten.size());
-  im.instances.reserve(im.instances.size() + mayAdd);
-  im.byGeomId.reserve(im.byGeomId.size() + mayAdd);
-  im.meshByGeomId.reserve(im.meshByGeomId.size() + mayAdd);
+  // Only then: an exact reserve on a later sync would copy every instance each time the moved count grew.
+  if (im.instances.empty()) {
+    const size_t mayAdd = std::max(changes.moved.size(), changes.meshWritten.size());
+    im.instances.reserve(mayAdd);
+    im.byGeomId.reserve(im.byGeomId.size() + mayAdd);
+    im.meshByGeomId.reserve(im.meshByGeomId.size() + mayAdd);
+  }
   for (ecs::Entity e : changes.moved) im.upsert(pass, e);
   for (ecs::Entity e : changes.meshWritten) im.upsert(pass, e);
   // Entities whose mesh was unusable come back as soon as it is usable again, changed or not.
