@@ -17,6 +17,7 @@ const OptionTable<VctOptions>& VctOptions::table() {
           .add(DYNGI_OPTION(VctOptions, diffuseCones), "diffuse cones per pixel (cosine-spread over the hemisphere)", 1, 32)
           .add(DYNGI_OPTION(VctOptions, coneInterleave), "rows of traced pixels take turns over the diffuse cones, each marching every Nth (with --diffuse-filter-radius 0: 1)", 1, 4)
           .add(DYNGI_OPTION(VctOptions, bounces), "light bounces (each past the first: a cone pass over the occupied voxels)", 1, 3)
+          .add(DYNGI_OPTION(VctOptions, bounceFrames), "frames over which every occupied voxel updates the bounce light it carries, which adds a bounce each turn (0: off)", 0, 64)
           .add(DYNGI_OPTION(VctOptions, traceScale), "trace one pixel in NxN and upsample (1: every pixel; 0: at most 192^2 traced)", 0, 8)
           .add(DYNGI_OPTION(VctOptions, traceFrames), "frames over which each traced pixel is traced once, the rest reprojected (1, 2 or 4)", 1, 4)
           .add(DYNGI_OPTION(VctOptions, radianceFrames), "frames over which the voxels' radiance update is spread, a part of the voxels each", 1, 4)
@@ -83,6 +84,7 @@ class VctTechnique final : public Technique {
     for (scene::Entity e : frame.changes.removed) places_.erase(e);
     if (drop) {
       feature_.dropTraceHistory();
+      feature_.refreshCarriedLight();
       ++historyDrops_;
     }
     lights_ = std::move(lights);
@@ -91,7 +93,8 @@ class VctTechnique final : public Technique {
   // traceFrames times the trace: a GI budget leaves it out. Under a budget there is none: such a frame
   // traces its share too (spreadOneOffWork).
   bool lastFrameWasOneOff() const override {
-    return feature_.stats().tracedFraction == 1.0 && feature_.settings().traceFrames > 1;
+    const VctFrameStats& s = feature_.stats();
+    return (s.tracedFraction == 1.0 && feature_.settings().traceFrames > 1) || (s.carriedUpdated == 1.0 && feature_.settings().bounceFrames > 1);
   }
   void spreadOneOffWork(bool spread) override { feature_.setSpreadTraceWithoutHistory(spread); }
   std::vector<OptionRef> options() override { return bindOptions(feature_.settings()); }
@@ -130,7 +133,8 @@ class VctTechnique final : public Technique {
               {"cleared_voxels", double(s.clearedVoxels)},
               {"voxel_update_fraction", 1.0 / double(voxels_.updateInterval())},
               {"radiance_update_fraction", 1.0 / double(feature_.radianceParts())},
-              {"radiance_updated_this_frame", s.radianceUpdated}}}};
+              {"radiance_updated_this_frame", s.radianceUpdated},
+              {"carried_updated_this_frame", s.carriedUpdated}}}};
   }
 
  private:

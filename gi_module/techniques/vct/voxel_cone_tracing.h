@@ -26,6 +26,7 @@ struct VctFrameStats {
   double tracedFraction = 1.0;  // of those, the share traced this frame (the rest reprojected)
   uint64_t volumeBytes = 0;  // radiance volumes, all levels
   bool specularCones = false;  // some draw is smoother than VctOptions::specularConeBelow: the trace marches specular cones
+  double carriedUpdated = 0.0;  // the share of the voxels whose carried bounce light was updated this frame
 };
 
 class VoxelConeTracing final : public render::RenderFeature {
@@ -54,6 +55,11 @@ class VoxelConeTracing final : public render::RenderFeature {
   // what it traces, every pixel. For changes that make them wrong at once: a light switched, an emission
   // changed, a jump (VctTechnique::update decides).
   void dropTraceHistory() { traceHistory_ = false; }
+  // The bounce light the voxels carry (VctOptions::bounceFrames) is cleared before the next injection and
+  // that frame's pass updates every voxel, not its part: after a light switched or jumped none of the old
+  // light stays, and the new light's first bounce is there at once. Under a GI budget
+  // (setSpreadTraceWithoutHistory) the pass keeps to its part: the bounce light comes back part by part.
+  void refreshCarriedLight() { carriedWhole_ = true; }
   // While a GI budget holds: a frame without trace history (the first, after a drop, new trace targets)
   // traces its share of the pixels as any other, and the upsample fills the rest from the pixels traced
   // (every 2 x 2 window holds one); the others get theirs over the next traceFrames - 1 frames.
@@ -70,10 +76,11 @@ class VoxelConeTracing final : public render::RenderFeature {
   static constexpr uint32_t kAutoTracePixels = 192 * 192;  // traceScale 0: the most pixels traced
 
   // For tests and tools: level 0 with its isotropic mip chain, the six-direction atlas (anisotropic),
-  // this frame's injected direct radiance. Valid after the first frame.
+  // this frame's injected direct radiance, the carried bounce light. Valid after the first frame.
   render::Image& radianceVolume() { return radiance_; }
   render::Image& anisotropicVolume() { return aniso_; }
   render::Image& directVolume() { return direct_; }
+  render::Image& carriedVolume() { return carried_; }  // VctOptions::bounceFrames over 0
   // Marches one cone per ray (voxel units: origin, direction) through the volume as it stands, on the
   // GPU (vct_cone_probe.comp): rgb radiance, a opacity. Synchronous.
   std::vector<glm::vec4> probeCones(const std::vector<std::pair<glm::vec3, glm::vec3>>& rays, float tanHalf);
@@ -169,6 +176,9 @@ class VoxelConeTracing final : public render::RenderFeature {
   render::Image aniso_;        // 6 (res/2) x res/2 x res/2, mips (anisotropic only)
   render::Image direct_;       // res^3: the injected radiance, blended in place with last frame's (temporal blending); alpha: which cones see the voxel (vct_seen.glsl)
   render::Image bounced_;      // res^3: a bounce's output before it is committed to radiance_ level 0
+  render::Image carried_;      // res^3: the bounce light each voxel carries (VctOptions::bounceFrames)
+  uint64_t carriedFrame_ = 0;  // carried-light passes so far: the next part
+  bool carriedWhole_ = false;  // refreshCarriedLight
   render::Buffer staleRuns_;   // this frame's runs of cells vct_clear_stale.comp visits (recordClearStale)
   render::Buffer changedBoxes_;  // kMaxChangedBoxes (min, max) uvec4 pairs: planRadianceUpdate
   TracedPixels traced_[2];
@@ -182,7 +192,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   glm::mat4 previousViewProj_{1.0f};
   VkSampler sampler_ = VK_NULL_HANDLE;
   render::Pipeline inject_, clearStale_, commit_, reproject_, filter_;
-  render::LazyPipeline mips_[uint32_t(MipsVariant::Count)], bounce_[4], probe_[4], trace_[8];  // by MipsVariant, ConeVariant, TraceVariant
+  render::LazyPipeline mips_[uint32_t(MipsVariant::Count)], bounce_[4], carry_[4], probe_[4], trace_[8];  // by MipsVariant, ConeVariant, TraceVariant
   render::LazyPipeline upsample_[2], debug_[2];  // [specular image written], [anisotropic]
   VctFrameStats stats_;
 };

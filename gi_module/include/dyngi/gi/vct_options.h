@@ -20,6 +20,11 @@ struct VctOptions {
   uint32_t coneInterleave = 2;
   // 1: direct light injected and gathered by the screen's cones; each more a cone pass over the voxels.
   uint32_t bounces = 1;
+  // The occupied voxels also carry the light that reaches them through the volume, each updated once in
+  // this many frames by a cone pass over a part of them (0: off). Injection adds it to their direct light,
+  // so each turn adds a bounce: over frames the voxels converge towards every bounce, at 1/N of a bounce
+  // pass a frame; a change in the light reaches the carried light N frames a bounce later.
+  uint32_t bounceFrames = 0;
   // One pixel in traceScale^2 is traced, then upsampled by depth and normal (1: every pixel; 0: the
   // smallest power of two tracing at most 192^2 pixels). Diffuse light is smooth and the trace is most
   // of the cost. A GI budget raises it further.

@@ -3,10 +3,14 @@
 // normal over the radiance volume as it stands (direct light, or the bounce before), reflected by its
 // albedo and added to its own direct radiance: OUT = DIRECT + albedo E / pi. vct_commit.comp then copies
 // OUT into level 0 of the radiance volume (a pass apart: the cones read that level while this one runs).
+// kCarried: the voxels' carried bounce light instead (VctOptions::bounceFrames), OUT = albedo E / pi over
+// this frame's part of them; the radiance it reads holds what they carried before, so the light gains a
+// bounce each time a voxel's turn comes round.
 #extension GL_GOOGLE_include_directive : require
 #include "vct_shared.h"
 layout(local_size_x = 64) in;
 layout(constant_id = 0) const bool kAnisotropic = false;
+layout(constant_id = 1) const bool kCarried = false;
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST) readonly buffer LeafList { uvec4 header; uvec2 entries[]; } leafList;
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES, rgba32ui) uniform readonly uimage3D voxelAttributes;
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_DIRECT, rgba16f) uniform readonly image3D direct;
@@ -16,12 +20,14 @@ layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_OUT, rgba16f) uniform writeon
 layout(push_constant) uniform Push { DYNGI_VCT_BOUNCE_PUSH };
 #include "vct_cone.glsl"
 #include "vct_leaves.glsl"
+#define DYNGI_VCT_PARTS_WITHOUT_BOXES
+#include "vct_parts.glsl"
 
 void bounce(uint i) {
   VctLeaf leaf;
   if (!vctLeaf(i, leaf)) return;
   float nLen = length(leaf.normalSum);
-  vec3 L = imageLoad(direct, leaf.voxel).rgb;
+  vec3 L = kCarried ? vec3(0.0) : imageLoad(direct, leaf.voxel).rgb;
   if (nLen > 0.3) {  // a voxel whose fragments face both ways keeps its direct light only
     float ao;
     // From the voxel's centre: its surface is within half a voxel of it.
@@ -32,5 +38,12 @@ void bounce(uint i) {
 }
 
 void main() {
-  VCT_FOR_EACH_LEAF(i) bounce(i);
+  if (!kCarried) {
+    VCT_FOR_EACH_LEAF(i) bounce(i);
+    return;
+  }
+  uvec2 range = vctPartRange(part, parts);
+  uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+  uint i = range.x + gl_GlobalInvocationID.x;
+  for (uint round = 0u; round < DYNGI_SVO_ITEMS_PER_INVOCATION && i < range.y; ++round, i += stride) bounce(i);
 }

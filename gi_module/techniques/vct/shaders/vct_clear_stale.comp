@@ -1,9 +1,9 @@
 #version 460
 // The per-voxel state of the cells that emptied with the last SVO build, zeroed: set in the build
-// before's occupancy pyramid, clear in the last one's. Radiance level 0 and the direct radiance at
-// emptied leaves, the anisotropic atlas' level-0 and level-1 texels (all six slabs) at emptied nodes of
-// the two levels above; the passes after only write occupied voxels and texels, so what emptied would
-// stay behind. (The atlas' coarser levels are cleared whole: the mips write every occupied texel.)
+// before's occupancy pyramid, clear in the last one's. Radiance level 0, the direct radiance and the
+// carried bounce light at emptied leaves, the anisotropic atlas' level-0 and level-1 texels (all six
+// slabs) at emptied nodes of the two levels above; the passes after only write occupied voxels and
+// texels, so what emptied would stay behind. (The atlas' coarser levels are cleared whole: the mips write every occupied texel.)
 // Visits runs of 32 cells (consecutive Morton codes: a 4 x 4 x 2 brick) covering the boxes where
 // voxels may have emptied (VoxelScene::staleBoxes; VoxelConeTracing lists the runs): a moving object's
 // box holds ten times the cells it left, and zeroing whole boxes by copies ran on one thread.
@@ -18,6 +18,7 @@ layout(set = 0, binding = DYNGI_VCT_CLEAR_BINDING_RADIANCE, rgba16f) uniform wri
 layout(set = 0, binding = DYNGI_VCT_CLEAR_BINDING_DIRECT, rgba16f) uniform writeonly image3D direct;
 layout(set = 0, binding = DYNGI_VCT_CLEAR_BINDING_ATLAS, rgba16f) uniform writeonly image3D atlas;
 layout(set = 0, binding = DYNGI_VCT_CLEAR_BINDING_ATLAS_1, rgba16f) uniform writeonly image3D atlas1;
+layout(set = 0, binding = DYNGI_VCT_CLEAR_BINDING_CARRIED, rgba16f) uniform writeonly image3D carried;
 layout(push_constant) uniform Push { DYNGI_VCT_CLEAR_PUSH };
 
 // The 32 bits from bit `first` of a pyramid (levels do not start at word boundaries).
@@ -46,6 +47,7 @@ void main() {
     if (leaves) {
       imageStore(radiance, cell, vec4(0.0));
       imageStore(direct, cell, vec4(0.0));
+      imageStore(carried, cell, vec4(0.0));
     } else if (atlas0) {
       for (uint s = 0u; s < DYNGI_VCT_SLABS; ++s) imageStore(atlas, cell + ivec3(int(s * atlasSlabWidth), 0, 0), vec4(0.0));
     } else {

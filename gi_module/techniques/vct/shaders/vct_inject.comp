@@ -4,7 +4,8 @@
 // opacity 1. Blended per voxel with the previous frame's radiance (temporalBlend), except where it
 // changed by more than temporalResponse (relative), so a light switched off leaves no trail. Written to
 // DIRECT (the frame's history, what bounces add to; its alpha says which cones see the voxel, for the
-// anisotropic atlas: vct_seen.glsl) and to level 0 of the radiance volume (opacity 1 in alpha).
+// anisotropic atlas: vct_seen.glsl) and to level 0 of the radiance volume (opacity 1 in alpha), there with
+// the bounce light the voxel carries when it carries one.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 #include "vct_shared.h"
@@ -19,6 +20,7 @@ layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_SHADOW_MAPS, r32f) uniform re
 // every voxel is read and written by its own invocation alone.
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_DIRECT, rgba16f) uniform image3D direct;
 layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_RADIANCE, rgba16f) uniform writeonly image3D radiance;
+layout(set = 0, binding = DYNGI_VCT_INJECT_BINDING_CARRIED, rgba16f) uniform readonly image3D carriedLight;
 layout(push_constant) uniform Push { DYNGI_VCT_INJECT_PUSH };
 #include "shared/shadows.glsl"
 #include "vct_leaves.glsl"
@@ -67,6 +69,7 @@ void inject(uint i) {
     }
   }
   imageStore(direct, leaf.voxel, vec4(L, vctSeenCode(n, twoSided)));
+  if (carried != 0u) L += imageLoad(carriedLight, leaf.voxel).rgb;
   imageStore(radiance, leaf.voxel, vec4(L, 1.0));
 }
 

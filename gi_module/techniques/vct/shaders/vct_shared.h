@@ -17,6 +17,7 @@ DYNGI_GPU_NAMESPACE_BEGIN
 #define DYNGI_VCT_INJECT_BINDING_DIRECT 5  /* read (last frame's, the temporal blend's history) and written in place */
 #define DYNGI_VCT_INJECT_BINDING_RADIANCE 6
 #define DYNGI_VCT_INJECT_BINDING_CHANGED_BOXES 7  /* vct_parts.glsl */
+#define DYNGI_VCT_INJECT_BINDING_CARRIED 8  /* the bounce light the voxels carry (VctOptions::bounceFrames), added to level 0 */
 // vct_clear_stale: the per-voxel state of the cells that emptied since the last SVO build, zeroed
 #define DYNGI_VCT_CLEAR_BINDING_RUNS 0              /* uvec2 (SVO level, first Morton code) per run of 32 cells */
 #define DYNGI_VCT_CLEAR_BINDING_PREVIOUS_OCCUPANCY 1  /* the build before's pyramid */
@@ -25,7 +26,9 @@ DYNGI_GPU_NAMESPACE_BEGIN
 #define DYNGI_VCT_CLEAR_BINDING_DIRECT 4
 #define DYNGI_VCT_CLEAR_BINDING_ATLAS 5               /* the anisotropic atlas' level 0 (anisotropic only) */
 #define DYNGI_VCT_CLEAR_BINDING_ATLAS_1 6             /* its level 1 */
-// vct_bounce: one more bounce per occupied voxel (cones over the radiance volume), then vct_commit
+#define DYNGI_VCT_CLEAR_BINDING_CARRIED 7             /* the carried bounce light (the direct radiance again when there is none) */
+// vct_bounce: one more bounce per occupied voxel (cones over the radiance volume), then vct_commit; or
+// the carried bounce light of this frame's part of the voxels (OUT: the carried light, DIRECT unused)
 #define DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST 0  /* the SVO's compacted leaf list */
 #define DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES 1
 #define DYNGI_VCT_BOUNCE_BINDING_DIRECT 2
@@ -121,10 +124,11 @@ DYNGI_GPU_NAMESPACE_BEGIN
   uint history;      /* 1: DIRECT holds last frame's radiance */                  \
   float temporalBlend;                                                             \
   float temporalResponse;                                                          \
-  DYNGI_VCT_PART_PUSH
+  DYNGI_VCT_PART_PUSH                                                              \
+  uint carried;      /* 1: level 0 is the direct radiance plus CARRIED */
 #define DYNGI_VCT_CLEAR_PUSH uint runCount; uint depth; /* the SVO's: its leaves are level-0 voxels, level depth - 1 the atlas' level-0 texels */ \
   uint atlasSlabWidth; /* texels; 0: isotropic, no atlas */
-#define DYNGI_VCT_BOUNCE_PUSH DYNGI_VCT_CONE_PARAMS uint commit; /* 0 trace, 1 copy OUT to RADIANCE */
+#define DYNGI_VCT_BOUNCE_PUSH DYNGI_VCT_CONE_PARAMS uint part; uint parts; /* the carried light's part this frame (vct_parts.glsl) */
 #define DYNGI_VCT_MIPS_PUSH uint destSlabWidth; /* texels; the isotropic chain has one slab */ uint sourceSlabWidth; /* 0: one source slab */ \
   uint nodeLevel; /* anisotropic: the SVO level whose cells are this atlas level's texels */ \
   uint leafShift; /* 3 x the SVO levels from this level's texels down to the leaves */ DYNGI_VCT_PART_PUSH
@@ -160,10 +164,10 @@ struct VctFilterPush { DYNGI_VCT_FILTER_PUSH };
 struct VctDebugPush { DYNGI_VCT_DEBUG_PUSH };
 struct VctProbePush { DYNGI_VCT_PROBE_PUSH };
 
-static_assert(sizeof(VctInjectPush) == 44 && offsetof(VctInjectPush, temporalResponse) == 28 && offsetof(VctInjectPush, boxCount) == 40);
+static_assert(sizeof(VctInjectPush) == 48 && offsetof(VctInjectPush, temporalResponse) == 28 && offsetof(VctInjectPush, carried) == 44);
 static_assert(sizeof(VctMipsPush) == 28 && offsetof(VctMipsPush, boxCount) == 24);
 static_assert(sizeof(VctClearPush) == 12 && sizeof(VctUpsamplePush) == 8 && sizeof(VctFilterPush) == 16);
-static_assert(sizeof(VctBouncePush) == 48 && offsetof(VctBouncePush, coneStep) == 32 && offsetof(VctBouncePush, commit) == 44);
+static_assert(sizeof(VctBouncePush) == 52 && offsetof(VctBouncePush, coneStep) == 32 && offsetof(VctBouncePush, parts) == 48);
 static_assert(sizeof(VctTracePush) == 76 && offsetof(VctTracePush, traceScale) == 44 && offsetof(VctTracePush, coneInterleave) == 68);
 static_assert(sizeof(VctReprojectPush) == 84 && offsetof(VctReprojectPush, traceScale) == 64 && offsetof(VctReprojectPush, maxAge) == 80);
 static_assert(sizeof(VctDebugPush) == 52 && offsetof(VctDebugPush, mip) == 48);
