@@ -818,7 +818,9 @@ TEST_F(RenderTest, VctVolumesAfterMotionHoldExactlyTheVoxelsOfAFreshBuild) {
     run.world.write<scene::Transform>(run.named("short_box")).translation = {0.35f, 0.3f, 0.3f - 0.02f * float(step)};
   };
   gi::GiSettings settings = vctSettings();
-  settings.vct.bounceFrames = 1;  // every voxel's carried bounce light updated each frame: the same voxels hold it in both runs
+  // The carried bounce light: the fresh run's first frame updates every voxel's, the moving run each
+  // frame a quarter of them and every voxel in the boxes the build changed.
+  settings.vct.bounceFrames = 4;
   GiRun moving(context(), settings, "cornell", kSize, kSize);
   moving.step(2);
   constexpr int kSteps = 6;

@@ -1,6 +1,7 @@
 #include "techniques/vct/voxel_cone_tracing.h"
 
 #include <algorithm>
+#include <optional>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -124,7 +125,8 @@ void VoxelConeTracing::createLeafPipelines() {
   const Binding bounceB[] = {{DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST, kSSBO, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES, kStorageImage, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_DIRECT, kStorageImage, kCS}, {DYNGI_VCT_BOUNCE_BINDING_RADIANCE, kSampled, kCS},
-                             {DYNGI_VCT_BOUNCE_BINDING_ANISO, kSampled, kCS},    {DYNGI_VCT_BOUNCE_BINDING_OUT, kStorageImage, kCS}};
+                             {DYNGI_VCT_BOUNCE_BINDING_ANISO, kSampled, kCS},    {DYNGI_VCT_BOUNCE_BINDING_OUT, kStorageImage, kCS},
+                             {DYNGI_VCT_BOUNCE_BINDING_CHANGED_BOXES, kSSBO, kCS}};
   const Binding commitB[] = {{DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST, kSSBO, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES, kStorageImage, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_DIRECT, kStorageImage, kCS},
@@ -436,7 +438,8 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   stats_.radianceUpdated = 0.0;
   stats_.carriedUpdated = 0.0;
   if (frames_ == 0 || voxels_.updatesThisFrame() || voxels_.stats().rebuilt) {
-    const RadiancePart part = planRadianceUpdate(clearsEverything());
+    const bool clearAll = clearsEverything();
+    const RadiancePart part = planRadianceUpdate(clearAll);
     if (carriedWhole_ && carried_.valid()) {  // a light switched or jumped: what the voxels carried is the old light's
       carried_.transition(frame.cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
       clearLevel(frame.cmd, carried_, 0);
@@ -447,7 +450,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
       render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "mips");
       recordMips(frame.cmd, /*levelZeroIsDirect=*/!carried_.valid(), part);  // carried light is in level 0, not in the direct radiance
     }
-    recordBounces(frame);
+    recordBounces(frame, clearAll);
     stats_.radianceUpdated = 1.0 / double(part.parts);
   }
   const TraceFrame trace = beginTrace(frame);
@@ -494,15 +497,22 @@ VoxelConeTracing::RadiancePart VoxelConeTracing::planRadianceUpdate(bool clearAl
   if (!voxels_.stats().rebuilt) return {uint32_t(partFrame_++ % parts), parts, 0};
   // A rebuilt SVO: this frame's part and the boxes where the build changed voxels, whose new voxels would
   // otherwise have no light (and the old ones' emptied mips none) until their part's turn.
+  const std::optional<uint32_t> boxes = uploadChangedBoxes();
+  if (!boxes) return {};
+  return {uint32_t(partFrame_++ % parts), parts, *boxes};
+}
+
+std::optional<uint32_t> VoxelConeTracing::uploadChangedBoxes() {
+  if (!voxels_.stats().rebuilt) return 0u;
   std::vector<glm::uvec4> boxes;
   for (const std::vector<VoxelBox>* list : {&voxels_.staleBoxes(), &voxels_.freshBoxes()})
     for (const VoxelBox& b : *list) {
       boxes.push_back(glm::uvec4(b.min, 0u));
       boxes.push_back(glm::uvec4(b.max, 0u));
     }
-  if (boxes.size() > 2 * kMaxChangedBoxes) return {};
+  if (boxes.size() > 2 * kMaxChangedBoxes) return std::nullopt;
   if (!boxes.empty()) changedBoxes_.upload(boxes.data(), boxes.size() * sizeof(glm::uvec4));
-  return {uint32_t(partFrame_++ % parts), parts, uint32_t(boxes.size() / 2)};
+  return uint32_t(boxes.size() / 2);
 }
 
 // "inject": what emptied is cleared, then each occupied voxel's direct light and emission.
@@ -544,7 +554,7 @@ void VoxelConeTracing::recordInject(render::FrameContext& frame, RadiancePart pa
 // "bounce": each bounce after the first cone-traces over the occupied voxels, commits to level 0 and
 // rebuilds the mips; then this frame's part of the voxels updates the bounce light it carries, which
 // next frame's injection adds.
-void VoxelConeTracing::recordBounces(render::FrameContext& frame) {
+void VoxelConeTracing::recordBounces(render::FrameContext& frame, bool clearAll) {
   VkCommandBuffer cmd = frame.cmd;
   render::ScopedPass scope(ctx_, frame.timer, cmd, "bounce");
   gpu::VctBouncePush pc{};
@@ -560,7 +570,8 @@ void VoxelConeTracing::recordBounces(render::FrameContext& frame) {
     w.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, direct_.view())
         .sampledImage(DYNGI_VCT_BOUNCE_BINDING_RADIANCE, radiance_.view(), sampler_)
         .sampledImage(DYNGI_VCT_BOUNCE_BINDING_ANISO, anisoView(), sampler_)
-        .storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, bounced_.view());
+        .storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, bounced_.view())
+        .storageBuffer(DYNGI_VCT_BOUNCE_BINDING_CHANGED_BOXES, changedBoxes_.handle());  // bound either way
     recordLeafPass(cmd, bounce_[coneVariant().index()].get(), &pc, sizeof(pc), w);
     DescriptorWrites c;
     c.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, bounced_.view()).storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, radiance_.mipView(0));
@@ -568,20 +579,26 @@ void VoxelConeTracing::recordBounces(render::FrameContext& frame) {
     recordMips(cmd, /*levelZeroIsDirect=*/false, RadiancePart{});  // the same occupied set as this frame's first chain; level 0 now has the bounce
   }
   if (!carried_.valid()) return;
-  const bool whole = carriedWhole_ && !spreadWithoutHistory_;
+  // Every voxel after a light switched or jumped (unless a budget spreads it) and when the volume was
+  // cleared; else this frame's part and whatever lies in the boxes where the SVO build changed voxels,
+  // so a moved object carries its light from the first frame.
+  const std::optional<uint32_t> boxes = clearAll ? std::optional<uint32_t>(0u) : uploadChangedBoxes();
+  const bool whole = (carriedWhole_ && !spreadWithoutHistory_) || clearAll || !boxes;
   carriedWhole_ = false;
   pc.parts = whole ? 1u : options_.bounceFrames;
+  pc.part = whole ? 0u : uint32_t(carriedFrame_++ % pc.parts);
+  pc.boxCount = whole ? 0u : *boxes;
   // Narrowed far samples, unlike the bounce passes': what a wide footprint brings through a thin wall
   // would be carried again each turn (two-rooms: 5.5 percent of the doorway's light leaks into the closed
   // room without, 3.4 with), and the light lost between the cones stays under 3 percent.
   pc.farNarrowing = options_.farNarrowing;
-  pc.part = whole ? 0u : uint32_t(carriedFrame_++ % pc.parts);
   stats_.carriedUpdated = 1.0 / double(pc.parts);
   DescriptorWrites w;
   w.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, direct_.view())  // unread
       .sampledImage(DYNGI_VCT_BOUNCE_BINDING_RADIANCE, radiance_.view(), sampler_)
       .sampledImage(DYNGI_VCT_BOUNCE_BINDING_ANISO, anisoView(), sampler_)
-      .storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, carried_.view());
+      .storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, carried_.view())
+      .storageBuffer(DYNGI_VCT_BOUNCE_BINDING_CHANGED_BOXES, changedBoxes_.handle());
   recordLeafPass(cmd, carry_[coneVariant().index()].get(), &pc, sizeof(pc), w);
 }
 

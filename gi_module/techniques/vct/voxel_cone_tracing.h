@@ -9,6 +9,7 @@
 // Stages: inject, mips, bounce, trace (with reproject), filter, upsample (plus the voxel scene's
 // voxelize and svo_build).
 #include <algorithm>
+#include <optional>
 #include <vector>
 
 #include "dyngi/engine/render/pipeline.h"
@@ -134,7 +135,10 @@ class VoxelConeTracing final : public render::RenderFeature {
   bool clearsEverything() const;
   void prepareFrame(render::FrameContext& frame);
   void recordInject(render::FrameContext& frame, RadiancePart part);
-  void recordBounces(render::FrameContext& frame);
+  void recordBounces(render::FrameContext& frame, bool clearAll);
+  // The boxes where this frame's SVO build changed voxels into changedBoxes_: their count (0 without a
+  // build), none when there are more than kMaxChangedBoxes.
+  std::optional<uint32_t> uploadChangedBoxes();
   TraceFrame beginTrace(const render::FrameContext& frame);
   void recordTrace(render::FrameContext& frame, const TraceFrame& trace);
   void recordReproject(render::FrameContext& frame, const TraceFrame& trace);
@@ -180,7 +184,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   uint64_t carriedFrame_ = 0;  // carried-light passes so far: the next part
   bool carriedWhole_ = false;  // refreshCarriedLight
   render::Buffer staleRuns_;   // this frame's runs of cells vct_clear_stale.comp visits (recordClearStale)
-  render::Buffer changedBoxes_;  // kMaxChangedBoxes (min, max) uvec4 pairs: planRadianceUpdate
+  render::Buffer changedBoxes_;  // kMaxChangedBoxes (min, max) uvec4 pairs: uploadChangedBoxes
   TracedPixels traced_[2];
   render::Image filterAlongX_;     // the diffuse filter's first pass (along x)
   render::Image filteredDiffuse_;  // its second: what the upsample reads

@@ -20,7 +20,7 @@ layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_OUT, rgba16f) uniform writeon
 layout(push_constant) uniform Push { DYNGI_VCT_BOUNCE_PUSH };
 #include "vct_cone.glsl"
 #include "vct_leaves.glsl"
-#define DYNGI_VCT_PARTS_WITHOUT_BOXES
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_CHANGED_BOXES) readonly buffer ChangedBoxes { uvec4 changedBoxes[]; };
 #include "vct_parts.glsl"
 
 void bounce(uint i) {
@@ -42,8 +42,16 @@ void main() {
     VCT_FOR_EACH_LEAF(i) bounce(i);
     return;
   }
-  uvec2 range = vctPartRange(part, parts);
+  // As vct_inject.comp: this frame's run of the leaves, and with changed boxes every leaf in them.
+  uvec2 own = vctPartRange(part, parts);
+  uvec2 range = boxCount > 0u ? uvec2(0u, leafList.header.w) : own;
   uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
   uint i = range.x + gl_GlobalInvocationID.x;
-  for (uint round = 0u; round < DYNGI_SVO_ITEMS_PER_INVOCATION && i < range.y; ++round, i += stride) bounce(i);
+  for (uint round = 0u; round < DYNGI_SVO_ITEMS_PER_INVOCATION && i < range.y; ++round, i += stride) {
+    if (i < own.x || i >= own.y) {
+      uvec3 v = uvec3(svoCellOfMortonCode(leafList.entries[i].y));
+      if (!vctInChangedBox(v, v, boxCount)) continue;
+    }
+    bounce(i);
+  }
 }

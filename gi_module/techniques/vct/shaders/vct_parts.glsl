@@ -9,8 +9,7 @@
 // A frame whose SVO build changed voxels (a moved object) also updates whatever lies in the changed
 // boxes, so an object is never seen without its light.
 // The includer declares `leafList` ({ uvec4 header; uvec2 entries[]; }: .w the leaf count, entries' .y
-// their Morton codes) and, unless it defines DYNGI_VCT_PARTS_WITHOUT_BOXES, `changedBoxes` (uvec4 pairs:
-// min, max voxel, inclusive).
+// their Morton codes) and `changedBoxes` (uvec4 pairs: min, max voxel, inclusive).
 #ifndef DYNGI_VCT_PARTS_GLSL
 #define DYNGI_VCT_PARTS_GLSL
 
@@ -35,13 +34,11 @@ bool vctCellInPart(uint lastCode, uint part, uint parts) {
   return lastCode >= codes.x && (part + 1u >= parts || lastCode < codes.y);
 }
 
-#ifndef DYNGI_VCT_PARTS_WITHOUT_BOXES
 // Whether the voxels [lo, hi] (inclusive) meet one of the first `count` changed boxes.
 bool vctInChangedBox(uvec3 lo, uvec3 hi, uint count) {
   for (uint b = 0u; b < count; ++b)
     if (all(lessThanEqual(lo, changedBoxes[2u * b + 1u].xyz)) && all(greaterThanEqual(hi, changedBoxes[2u * b].xyz))) return true;
   return false;
 }
-#endif
 
 #endif

@@ -35,6 +35,7 @@ DYNGI_GPU_NAMESPACE_BEGIN
 #define DYNGI_VCT_BOUNCE_BINDING_RADIANCE 3
 #define DYNGI_VCT_BOUNCE_BINDING_ANISO 4
 #define DYNGI_VCT_BOUNCE_BINDING_OUT 5
+#define DYNGI_VCT_BOUNCE_BINDING_CHANGED_BOXES 6  /* the carried light's: vct_parts.glsl */
 // vct_mips: one level of the radiance mip chain (isotropic) or of the six-direction atlas
 #define DYNGI_VCT_MIPS_BINDING_SOURCE 0
 #define DYNGI_VCT_MIPS_BINDING_DEST 1
@@ -128,7 +129,7 @@ DYNGI_GPU_NAMESPACE_BEGIN
   uint carried;      /* 1: level 0 is the direct radiance plus CARRIED */
 #define DYNGI_VCT_CLEAR_PUSH uint runCount; uint depth; /* the SVO's: its leaves are level-0 voxels, level depth - 1 the atlas' level-0 texels */ \
   uint atlasSlabWidth; /* texels; 0: isotropic, no atlas */
-#define DYNGI_VCT_BOUNCE_PUSH DYNGI_VCT_CONE_PARAMS uint part; uint parts; /* the carried light's part this frame (vct_parts.glsl) */
+#define DYNGI_VCT_BOUNCE_PUSH DYNGI_VCT_CONE_PARAMS DYNGI_VCT_PART_PUSH /* the carried light's part and changed boxes this frame */
 #define DYNGI_VCT_MIPS_PUSH uint destSlabWidth; /* texels; the isotropic chain has one slab */ uint sourceSlabWidth; /* 0: one source slab */ \
   uint nodeLevel; /* anisotropic: the SVO level whose cells are this atlas level's texels */ \
   uint leafShift; /* 3 x the SVO levels from this level's texels down to the leaves */ DYNGI_VCT_PART_PUSH
@@ -167,7 +168,7 @@ struct VctProbePush { DYNGI_VCT_PROBE_PUSH };
 static_assert(sizeof(VctInjectPush) == 48 && offsetof(VctInjectPush, temporalResponse) == 28 && offsetof(VctInjectPush, carried) == 44);
 static_assert(sizeof(VctMipsPush) == 28 && offsetof(VctMipsPush, boxCount) == 24);
 static_assert(sizeof(VctClearPush) == 12 && sizeof(VctUpsamplePush) == 8 && sizeof(VctFilterPush) == 16);
-static_assert(sizeof(VctBouncePush) == 52 && offsetof(VctBouncePush, coneStep) == 32 && offsetof(VctBouncePush, parts) == 48);
+static_assert(sizeof(VctBouncePush) == 56 && offsetof(VctBouncePush, coneStep) == 32 && offsetof(VctBouncePush, boxCount) == 52);
 static_assert(sizeof(VctTracePush) == 76 && offsetof(VctTracePush, traceScale) == 44 && offsetof(VctTracePush, coneInterleave) == 68);
 static_assert(sizeof(VctReprojectPush) == 84 && offsetof(VctReprojectPush, traceScale) == 64 && offsetof(VctReprojectPush, maxAge) == 80);
 static_assert(sizeof(VctDebugPush) == 52 && offsetof(VctDebugPush, mip) == 48);
