@@ -7,13 +7,15 @@
 # GI's median and p95 after the warm-up (the controller's descent left out), what the budget read
 # (timestamps or fenced frames) and the knobs at the end, and a verdict: the median within 15 percent
 # of the budget. Not in CI (timing; ~6 minutes here); docs/QUALITY.md keeps its last result.
-#   scripts/budget_reach.sh [TECHNIQUE...]     env: ANIMATE (rotating-object), SIZE (256x256), FRAMES (200), WARMUP (60)
+#   scripts/budget_reach.sh [TECHNIQUE...]     env: ANIMATE (rotating-object), SIZE (256x256), FRAMES (200), WARMUP (60),
+#                                              EXTRA (more options for every run, e.g. "--bounce-frames 4")
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ANIMATE="${ANIMATE:-rotating-object}"
 SIZE="${SIZE:-256x256}"
 FRAMES="${FRAMES:-200}"
 WARMUP="${WARMUP:-60}"
+read -r -a EXTRA_ARGS <<< "${EXTRA:-}"
 TECHNIQUES=("$@")
 [ ${#TECHNIQUES[@]} -gt 0 ] || TECHNIQUES=(temporal many-lights vct)
 BIN=build/bin/dyngi_sample
@@ -29,7 +31,7 @@ echo "| --- | --- | --- | --- | --- | --- | --- |"
 for gi in "${TECHNIQUES[@]}"; do
   run() {  # run BUDGET_MS NAME
     $BIN --headless --scene cornell --animate "$ANIMATE" --gi "$gi" --size "$SIZE" --frames "$FRAMES" --warmup "$WARMUP" \
-      --gi-budget-ms "$1" --stats "$out/$gi-$2.json" >/dev/null 2>&1
+      --gi-budget-ms "$1" --stats "$out/$gi-$2.json" "${EXTRA_ARGS[@]}" >/dev/null 2>&1
   }
   run 10000 none
   full=$(field "$out/$gi-none.json" "d['gi_ms']['median']")

@@ -115,11 +115,19 @@ class VctTechnique final : public Technique {
   // while the light holds still and makes a change take that many frames to reach every voxel. Not the
   // voxel updates' fraction of frames (VoxelScene::updateFractionKnob): with geometry moving, updating
   // the voxels one frame in N makes the frames' cost bimodal (docs/QUALITY.md, "The GI budget").
+  // With the carried bounce light on, its update rate comes first (1, 1/2, 1/4 of the voxels'
+  // --bounce-frames rate; under 1 a moved object's new voxels wait for their turn too): in a still scene
+  // it loses nothing, only the carried light's response to a change slows by as much.
   std::vector<QualityKnob> qualityKnobs() override {
-    return {{"trace_fraction", {1.0, 0.25, 0.0625},
-             [this](double v) { feature_.setBudgetScaleFactor(uint32_t(std::lround(1.0 / std::sqrt(std::max(v, 1e-6))))); }},
-            {"radiance_update_fraction", {1.0, 1.0 / 2, 1.0 / 3, 1.0 / 4},
-             [this](double v) { feature_.setBudgetRadianceParts(uint32_t(std::lround(1.0 / std::max(v, 1e-6)))); }}};
+    std::vector<QualityKnob> knobs;
+    if (feature_.settings().bounceFrames > 0)
+      knobs.push_back({"carried_update_fraction", {1.0, 0.5, 0.25},
+                       [this](double v) { feature_.setBudgetCarriedSlowdown(uint32_t(std::lround(1.0 / std::max(v, 1e-6)))); }});
+    knobs.push_back({"trace_fraction", {1.0, 0.25, 0.0625},
+                     [this](double v) { feature_.setBudgetScaleFactor(uint32_t(std::lround(1.0 / std::sqrt(std::max(v, 1e-6))))); }});
+    knobs.push_back({"radiance_update_fraction", {1.0, 1.0 / 2, 1.0 / 3, 1.0 / 4},
+                     [this](double v) { feature_.setBudgetRadianceParts(uint32_t(std::lround(1.0 / std::max(v, 1e-6)))); }});
+    return knobs;
   }
   std::map<std::string, std::map<std::string, double>> statsSections() const override {
     const VctFrameStats& s = feature_.stats();
@@ -134,6 +142,7 @@ class VctTechnique final : public Technique {
               {"voxel_update_fraction", 1.0 / double(voxels_.updateInterval())},
               {"radiance_update_fraction", 1.0 / double(feature_.radianceParts())},
               {"radiance_updated_this_frame", s.radianceUpdated},
+              {"carried_update_fraction", 1.0 / double(feature_.budgetCarriedSlowdown())},
               {"carried_updated_this_frame", s.carriedUpdated}}}};
   }
 

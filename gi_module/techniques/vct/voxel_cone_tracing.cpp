@@ -126,7 +126,7 @@ void VoxelConeTracing::createLeafPipelines() {
                              {DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES, kStorageImage, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_DIRECT, kStorageImage, kCS}, {DYNGI_VCT_BOUNCE_BINDING_RADIANCE, kSampled, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_ANISO, kSampled, kCS},    {DYNGI_VCT_BOUNCE_BINDING_OUT, kStorageImage, kCS},
-                             {DYNGI_VCT_BOUNCE_BINDING_CHANGED_BOXES, kSSBO, kCS}};
+                             {DYNGI_VCT_BOUNCE_BINDING_CHANGED_BOXES, kSSBO, kCS}, {DYNGI_VCT_BOUNCE_BINDING_PREVIOUS_OCCUPANCY, kSSBO, kCS}};
   const Binding commitB[] = {{DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST, kSSBO, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES, kStorageImage, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_DIRECT, kStorageImage, kCS},
@@ -571,7 +571,8 @@ void VoxelConeTracing::recordBounces(render::FrameContext& frame, bool clearAll)
         .sampledImage(DYNGI_VCT_BOUNCE_BINDING_RADIANCE, radiance_.view(), sampler_)
         .sampledImage(DYNGI_VCT_BOUNCE_BINDING_ANISO, anisoView(), sampler_)
         .storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, bounced_.view())
-        .storageBuffer(DYNGI_VCT_BOUNCE_BINDING_CHANGED_BOXES, changedBoxes_.handle());  // bound either way
+        .storageBuffer(DYNGI_VCT_BOUNCE_BINDING_CHANGED_BOXES, changedBoxes_.handle())  // bound either way
+        .storageBuffer(DYNGI_VCT_BOUNCE_BINDING_PREVIOUS_OCCUPANCY, voxels_.previousOccupancy().handle());
     recordLeafPass(cmd, bounce_[coneVariant().index()].get(), &pc, sizeof(pc), w);
     DescriptorWrites c;
     c.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, bounced_.view()).storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, radiance_.mipView(0));
@@ -580,14 +581,14 @@ void VoxelConeTracing::recordBounces(render::FrameContext& frame, bool clearAll)
   }
   if (!carried_.valid()) return;
   // Every voxel after a light switched or jumped (unless a budget spreads it) and when the volume was
-  // cleared; else this frame's part and whatever lies in the boxes where the SVO build changed voxels,
-  // so a moved object carries its light from the first frame.
+  // cleared; else this frame's part and the voxels this frame's SVO build added (in the boxes where it
+  // changed voxels), so a moved object carries its light from its first frame.
   const std::optional<uint32_t> boxes = clearAll ? std::optional<uint32_t>(0u) : uploadChangedBoxes();
   const bool whole = (carriedWhole_ && !spreadWithoutHistory_) || clearAll || !boxes;
   carriedWhole_ = false;
-  pc.parts = whole ? 1u : options_.bounceFrames;
+  pc.parts = whole ? 1u : options_.bounceFrames * budgetCarriedSlowdown_;
   pc.part = whole ? 0u : uint32_t(carriedFrame_++ % pc.parts);
-  pc.boxCount = whole ? 0u : *boxes;
+  pc.boxCount = whole || budgetCarriedSlowdown_ > 1 ? 0u : *boxes;  // a budget's slowdown leaves new voxels to their turn
   // Narrowed far samples, unlike the bounce passes': what a wide footprint brings through a thin wall
   // would be carried again each turn (two-rooms: 5.5 percent of the doorway's light leaks into the closed
   // room without, 3.4 with), and the light lost between the cones stays under 3 percent.
@@ -598,7 +599,8 @@ void VoxelConeTracing::recordBounces(render::FrameContext& frame, bool clearAll)
       .sampledImage(DYNGI_VCT_BOUNCE_BINDING_RADIANCE, radiance_.view(), sampler_)
       .sampledImage(DYNGI_VCT_BOUNCE_BINDING_ANISO, anisoView(), sampler_)
       .storageImage(DYNGI_VCT_BOUNCE_BINDING_OUT, carried_.view())
-      .storageBuffer(DYNGI_VCT_BOUNCE_BINDING_CHANGED_BOXES, changedBoxes_.handle());
+      .storageBuffer(DYNGI_VCT_BOUNCE_BINDING_CHANGED_BOXES, changedBoxes_.handle())
+      .storageBuffer(DYNGI_VCT_BOUNCE_BINDING_PREVIOUS_OCCUPANCY, voxels_.previousOccupancy().handle());
   recordLeafPass(cmd, carry_[coneVariant().index()].get(), &pc, sizeof(pc), w);
 }
 

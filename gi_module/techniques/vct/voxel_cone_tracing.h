@@ -61,6 +61,11 @@ class VoxelConeTracing final : public render::RenderFeature {
   // light stays, and the new light's first bounce is there at once. Under a GI budget
   // (setSpreadTraceWithoutHistory) the pass keeps to its part: the bounce light comes back part by part.
   void refreshCarriedLight() { carriedWhole_ = true; }
+  // A GI budget's slowdown of the carried light's update: each voxel's turn comes every bounceFrames x
+  // this frames, and from 2 a moved object's new voxels wait for theirs (their update each frame is most
+  // of the pass while something moves).
+  void setBudgetCarriedSlowdown(uint32_t factor) { budgetCarriedSlowdown_ = std::max(factor, 1u); }
+  uint32_t budgetCarriedSlowdown() const { return budgetCarriedSlowdown_; }
   // While a GI budget holds: a frame without trace history (the first, after a drop, new trace targets)
   // traces its share of the pixels as any other, and the upsample fills the rest from the pixels traced
   // (every 2 x 2 window holds one); the others get theirs over the next traceFrames - 1 frames.
@@ -183,6 +188,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   render::Image carried_;      // res^3: the bounce light each voxel carries (VctOptions::bounceFrames)
   uint64_t carriedFrame_ = 0;  // carried-light passes so far: the next part
   bool carriedWhole_ = false;  // refreshCarriedLight
+  uint32_t budgetCarriedSlowdown_ = 1;
   render::Buffer staleRuns_;   // this frame's runs of cells vct_clear_stale.comp visits (recordClearStale)
   render::Buffer changedBoxes_;  // kMaxChangedBoxes (min, max) uvec4 pairs: uploadChangedBoxes
   TracedPixels traced_[2];

@@ -21,6 +21,7 @@ layout(push_constant) uniform Push { DYNGI_VCT_BOUNCE_PUSH };
 #include "vct_cone.glsl"
 #include "vct_leaves.glsl"
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_CHANGED_BOXES) readonly buffer ChangedBoxes { uvec4 changedBoxes[]; };
+layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_PREVIOUS_OCCUPANCY) readonly buffer Previous { uint previousOccupancy[]; };
 #include "vct_parts.glsl"
 
 void bounce(uint i) {
@@ -42,15 +43,18 @@ void main() {
     VCT_FOR_EACH_LEAF(i) bounce(i);
     return;
   }
-  // As vct_inject.comp: this frame's run of the leaves, and with changed boxes every leaf in them.
+  // This frame's run of the leaves and, with changed boxes, the leaves in them that the build before did
+  // not have: a moved object's new voxels. (The others keep their carried light until their turn.)
   uvec2 own = vctPartRange(part, parts);
+  uint leafBase = DYNGI_SVO_LEVEL_BASE(uint(findMSB(uint(res))));  // the leaves' level: res = 2^depth
   uvec2 range = boxCount > 0u ? uvec2(0u, leafList.header.w) : own;
   uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
   uint i = range.x + gl_GlobalInvocationID.x;
   for (uint round = 0u; round < DYNGI_SVO_ITEMS_PER_INVOCATION && i < range.y; ++round, i += stride) {
     if (i < own.x || i >= own.y) {
-      uvec3 v = uvec3(svoCellOfMortonCode(leafList.entries[i].y));
-      if (!vctInChangedBox(v, v, boxCount)) continue;
+      uint code = leafList.entries[i].y, bit = leafBase + code;
+      uvec3 v = uvec3(svoCellOfMortonCode(code));
+      if (!vctInChangedBox(v, v, boxCount) || (previousOccupancy[bit >> 5u] & (1u << (bit & 31u))) != 0u) continue;
     }
     bounce(i);
   }

@@ -36,6 +36,7 @@ DYNGI_GPU_NAMESPACE_BEGIN
 #define DYNGI_VCT_BOUNCE_BINDING_ANISO 4
 #define DYNGI_VCT_BOUNCE_BINDING_OUT 5
 #define DYNGI_VCT_BOUNCE_BINDING_CHANGED_BOXES 6  /* the carried light's: vct_parts.glsl */
+#define DYNGI_VCT_BOUNCE_BINDING_PREVIOUS_OCCUPANCY 7  /* the build before's pyramid: which leaves in the boxes are new */
 // vct_mips: one level of the radiance mip chain (isotropic) or of the six-direction atlas
 #define DYNGI_VCT_MIPS_BINDING_SOURCE 0
 #define DYNGI_VCT_MIPS_BINDING_DEST 1
