@@ -1,11 +1,11 @@
 #include "techniques/vct/voxel_cone_tracing.h"
 
 #include <algorithm>
-#include <optional>
 #include <array>
 #include <bit>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 
 #include "dyngi/engine/render/gpu_timer.h"
 #include "gpu_aliases.h"

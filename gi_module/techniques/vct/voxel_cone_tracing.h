@@ -2,7 +2,8 @@
 // Voxel cone tracing (after Crassin et al. 2011, "Interactive Indirect Illumination Using Voxel Cone
 // Tracing"): the voxel scene's occupied voxels get the direct light they reflect and their emission
 // (radiance injection, shadowed through the renderer's shadow maps), a 3D mip chain filters it
-// (isotropic, or per direction), optional extra bounces cone-trace over the occupied voxels, and the
+// (isotropic, or per direction), optional extra bounces cone-trace over the occupied voxels (each frame,
+// or a part of them a frame, carried across frames: VctOptions::bounceFrames), and the
 // screen traces diffuse cones (indirect light and ambient occlusion) and a specular cone per pixel,
 // upsampled with a depth- and normal-aware filter. The trace may be spread over 2 or 4 frames, the pixels
 // not traced in a frame reprojected from the last. Writes targets.indirect and targets.specular.

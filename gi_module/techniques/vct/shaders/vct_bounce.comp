@@ -4,8 +4,8 @@
 // albedo and added to its own direct radiance: OUT = DIRECT + albedo E / pi. vct_commit.comp then copies
 // OUT into level 0 of the radiance volume (a pass apart: the cones read that level while this one runs).
 // kCarried: the voxels' carried bounce light instead (VctOptions::bounceFrames), OUT = albedo E / pi over
-// this frame's part of them; the radiance it reads holds what they carried before, so the light gains a
-// bounce each time a voxel's turn comes round.
+// this frame's part of them and the voxels the SVO build added; the radiance it reads holds what they
+// carried before, so the light gains a bounce each time a voxel's turn comes round.
 #extension GL_GOOGLE_include_directive : require
 #include "vct_shared.h"
 layout(local_size_x = 64) in;

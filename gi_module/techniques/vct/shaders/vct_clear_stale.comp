@@ -3,7 +3,8 @@
 // before's occupancy pyramid, clear in the last one's. Radiance level 0, the direct radiance and the
 // carried bounce light at emptied leaves, the anisotropic atlas' level-0 and level-1 texels (all six
 // slabs) at emptied nodes of the two levels above; the passes after only write occupied voxels and
-// texels, so what emptied would stay behind. (The atlas' coarser levels are cleared whole: the mips write every occupied texel.)
+// texels, so what emptied would stay behind. (The atlas' coarser levels are cleared whole: the mips
+// write every occupied texel.)
 // Visits runs of 32 cells (consecutive Morton codes: a 4 x 4 x 2 brick) covering the boxes where
 // voxels may have emptied (VoxelScene::staleBoxes; VoxelConeTracing lists the runs): a moving object's
 // box holds ten times the cells it left, and zeroing whole boxes by copies ran on one thread.
