@@ -953,6 +953,28 @@ TEST_F(RenderTest, VctSecondBounceApproachesThePathTracer) {
   EXPECT_NEAR(mean[2], 1.0, 0.1);
 }
 
+// Under a GI budget the carried light's passes over every voxel (the first frame, a light switched) keep to
+// their part as any other frame's; the switched light's carried light is gone at once either way.
+TEST_F(RenderTest, VctBudgetSpreadsTheCarriedLightsWholePasses) {
+  gi::GiSettings s = vctSettings();
+  s.vct.bounceFrames = 4;
+  GiRun full(context(), s, "cornell", kSize, kSize), spread(context(), s, "cornell", kSize, kSize);
+  spread.gi->technique().spreadOneOffWork(true);
+  for (GiRun* run : {&full, &spread}) run->step();
+  EXPECT_DOUBLE_EQ(vctOf(full).stats().carriedUpdated, 1.0) << "the first frame updates every voxel";
+  EXPECT_DOUBLE_EQ(vctOf(spread).stats().carriedUpdated, 0.25);
+  for (GiRun* run : {&full, &spread}) run->step(8);
+  EXPECT_DOUBLE_EQ(vctOf(full).stats().carriedUpdated, 0.25);
+  const double lit = lum(render::meanOver(spread.indirect()));
+  for (GiRun* run : {&full, &spread}) {
+    run->world.write<scene::Light>(run->named("spot")).enabled = false;
+    run->step();
+  }
+  EXPECT_DOUBLE_EQ(vctOf(full).stats().carriedUpdated, 1.0) << "unbudgeted, a switched light updates every voxel";
+  EXPECT_DOUBLE_EQ(vctOf(spread).stats().carriedUpdated, 0.25);
+  EXPECT_LT(lum(render::meanOver(spread.indirect())), 0.01 * lit) << "the old light's carried light is cleared under a budget too";
+}
+
 // The bounce light the voxels carry (VctOptions::bounceFrames) adds a bounce each turn: converged, it
 // comes closer to the path tracer's full transport (8 bounces) than one or two bounces do, on the whole
 // image and on the tail of per-pixel error. A light switched off leaves none of it the frame after; switched

@@ -580,15 +580,16 @@ void VoxelConeTracing::recordBounces(render::FrameContext& frame, bool clearAll)
     recordMips(cmd, /*levelZeroIsDirect=*/false, RadiancePart{});  // the same occupied set as this frame's first chain; level 0 now has the bounce
   }
   if (!carried_.valid()) return;
-  // Every voxel after a light switched or jumped (unless a budget spreads it) and when the volume was
-  // cleared; else this frame's part and the voxels this frame's SVO build added (in the boxes where it
-  // changed voxels), so a moved object carries its light from its first frame.
+  // Every voxel after a light switched or jumped, when the volume was cleared (the first frame, a move)
+  // or too many boxes changed, unless a GI budget spreads one-off work; else this frame's part and the
+  // voxels this frame's SVO build added (in the boxes where it changed voxels), so a moved object
+  // carries its light from its first frame.
   const std::optional<uint32_t> boxes = clearAll ? std::optional<uint32_t>(0u) : uploadChangedBoxes();
-  const bool whole = (carriedWhole_ && !spreadWithoutHistory_) || clearAll || !boxes;
+  const bool whole = (carriedWhole_ || clearAll || !boxes) && !spreadWithoutHistory_;
   carriedWhole_ = false;
   pc.parts = whole ? 1u : options_.bounceFrames * budgetCarriedSlowdown_;
   pc.part = whole ? 0u : uint32_t(carriedFrame_++ % pc.parts);
-  pc.boxCount = whole || budgetCarriedSlowdown_ > 1 ? 0u : *boxes;  // a budget's slowdown leaves new voxels to their turn
+  pc.boxCount = whole || budgetCarriedSlowdown_ > 1 || !boxes ? 0u : *boxes;  // a budget's slowdown leaves new voxels to their turn
   // Narrowed far samples, unlike the bounce passes': what a wide footprint brings through a thin wall
   // would be carried again each turn (two-rooms: 5.5 percent of the doorway's light leaks into the closed
   // room without, 3.4 with), and the light lost between the cones stays under 3 percent.
