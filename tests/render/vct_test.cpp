@@ -953,6 +953,31 @@ TEST_F(RenderTest, VctSecondBounceApproachesThePathTracer) {
   EXPECT_NEAR(mean[2], 1.0, 0.1);
 }
 
+// The carried light turned on and off while a run goes on (the panel's --bounce-frames): on, it converges
+// to what a run with it from the start converges to; off again, the run is a run without it.
+TEST_F(RenderTest, VctCarriedLightTurnsOnAndOffWhileRunning) {
+  constexpr int kConverged = 3 + 8 * 4;  // eight turns of 4 frames
+  gi::GiSettings withCarried = vctSettings();
+  withCarried.vct.bounceFrames = 4;
+  GiRun run(context(), vctSettings(), "cornell", kSize, kSize), on(context(), withCarried, "cornell", kSize, kSize),
+      off(context(), vctSettings(), "cornell", kSize, kSize);
+  run.step(3);
+  const std::optional<gi::OptionRef> option = gi::findOption(run.gi->technique().options(), "bounce-frames");
+  ASSERT_TRUE(option.has_value());
+  option->set(4);
+  run.step(kConverged);
+  on.step(kConverged);
+  const double onError = render::relativeMse(run.indirect(), on.indirect());
+  option->set(0);
+  run.step(8);  // every traced pixel's turn twice over
+  off.step(8);
+  const double offError = render::relativeMse(run.indirect(), off.indirect());
+  dyngi::test::report("turned on: relMSE %.2e against a run with it from the start; off again: %.2e against one without\n", onError, offError);
+  EXPECT_LT(onError, 1e-4);
+  EXPECT_LT(offError, 1e-6);
+  EXPECT_EQ(vctOf(run).stats().carriedUpdated, 0.0);
+}
+
 // Under a GI budget the carried light's passes over every voxel (the first frame, a light switched) keep to
 // their part as any other frame's; the switched light's carried light is gone at once either way.
 TEST_F(RenderTest, VctBudgetSpreadsTheCarriedLightsWholePasses) {
