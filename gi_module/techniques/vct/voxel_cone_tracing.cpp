@@ -445,7 +445,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
       clearLevel(frame.cmd, carried_, 0);
       carried_.transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, kComputeAndTransfer, kReadWrite);
     }
-    recordInject(frame, part);
+    recordInject(frame, part, clearAll);
     {
       render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "mips");
       recordMips(frame.cmd, /*levelZeroIsDirect=*/!carried_.valid(), part);  // carried light is in level 0, not in the direct radiance
@@ -516,7 +516,7 @@ std::optional<uint32_t> VoxelConeTracing::uploadChangedBoxes() {
 }
 
 // "inject": what emptied is cleared, then each occupied voxel's direct light and emission.
-void VoxelConeTracing::recordInject(render::FrameContext& frame, RadiancePart part) {
+void VoxelConeTracing::recordInject(render::FrameContext& frame, RadiancePart part, bool clearAll) {
   VkCommandBuffer cmd = frame.cmd;
   const VoxelVolume& vol = voxels_.volume();
   // Voxels an object left must be empty: the passes below write occupied voxels and texels only. Where
@@ -524,7 +524,6 @@ void VoxelConeTracing::recordInject(render::FrameContext& frame, RadiancePart pa
   // occupancy, not this one's) are zeroed within the boxes where they may be (VoxelScene::staleBoxes);
   // the first frame, a new volume or boxes holding half of it clear everything. The rest holds the same
   // occupied voxels as before, every one written again below.
-  const bool clearAll = clearsEverything();
   const StaleVoxels stale{clearAll, voxels_.stats().rebuilt ? voxels_.staleBoxes() : std::vector<VoxelBox>{}};
   render::ScopedPass scope(ctx_, frame.timer, cmd, "inject");
   stats_.clearedVoxels = recordClearStale(cmd, stale);

@@ -140,7 +140,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   RadiancePart planRadianceUpdate(bool clearAll);
   bool clearsEverything() const;
   void prepareFrame(render::FrameContext& frame);
-  void recordInject(render::FrameContext& frame, RadiancePart part);
+  void recordInject(render::FrameContext& frame, RadiancePart part, bool clearAll);
   void recordBounces(render::FrameContext& frame, bool clearAll);
   // The boxes where this frame's SVO build changed voxels into changedBoxes_: their count (0 without a
   // build), none when there are more than kMaxChangedBoxes.

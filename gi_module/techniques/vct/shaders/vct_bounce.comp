@@ -38,6 +38,12 @@ void bounce(uint i) {
   imageStore(outRadiance, leaf.voxel, vec4(L, 1.0));
 }
 
+// Whether leaf-list entry i is a voxel the build before did not have.
+bool isNewLeaf(uint i) {
+  uint bit = DYNGI_SVO_LEVEL_BASE(uint(findMSB(uint(res)))) + leafList.entries[i].y;  // the leaves' level: res = 2^depth
+  return (previousOccupancy[bit >> 5u] & (1u << (bit & 31u))) == 0u;
+}
+
 void main() {
   if (!kCarried) {
     VCT_FOR_EACH_LEAF(i) bounce(i);
@@ -46,16 +52,7 @@ void main() {
   // This frame's run of the leaves and, with changed boxes, the leaves in them that the build before did
   // not have: a moved object's new voxels. (The others keep their carried light until their turn.)
   uvec2 own = vctPartRange(part, parts);
-  uint leafBase = DYNGI_SVO_LEVEL_BASE(uint(findMSB(uint(res))));  // the leaves' level: res = 2^depth
-  uvec2 range = boxCount > 0u ? uvec2(0u, leafList.header.w) : own;
-  uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
-  uint i = range.x + gl_GlobalInvocationID.x;
-  for (uint round = 0u; round < DYNGI_SVO_ITEMS_PER_INVOCATION && i < range.y; ++round, i += stride) {
-    if (i < own.x || i >= own.y) {
-      uint code = leafList.entries[i].y, bit = leafBase + code;
-      uvec3 v = uvec3(svoCellOfMortonCode(code));
-      if (!vctInChangedBox(v, v, boxCount) || (previousOccupancy[bit >> 5u] & (1u << (bit & 31u))) != 0u) continue;
-    }
-    bounce(i);
+  VCT_FOR_EACH_PART_LEAF(i, own, boxCount) {
+    if (vctInRun(i, own) || (vctLeafInChangedBox(i, boxCount) && isNewLeaf(i))) bounce(i);
   }
 }

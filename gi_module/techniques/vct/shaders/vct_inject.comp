@@ -74,18 +74,10 @@ void inject(uint i) {
 }
 
 void main() {
-  // This frame's run of the leaves (all of them unless the update is spread over frames), in the same
-  // grid-stride rounds as VCT_FOR_EACH_LEAF: a run is at most the whole list. With changed boxes every
-  // leaf is visited, those outside the run and the boxes skipped.
+  // This frame's run of the leaves (all of them unless the update is spread over frames) and, with
+  // changed boxes, the leaves in them.
   uvec2 own = vctPartRange(part, parts);
-  uvec2 range = boxCount > 0u ? uvec2(0u, leafList.header.w) : own;
-  uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
-  uint i = range.x + gl_GlobalInvocationID.x;
-  for (uint round = 0u; round < DYNGI_SVO_ITEMS_PER_INVOCATION && i < range.y; ++round, i += stride) {
-    if (i < own.x || i >= own.y) {
-      uvec3 v = uvec3(svoCellOfMortonCode(leafList.entries[i].y));
-      if (!vctInChangedBox(v, v, boxCount)) continue;
-    }
-    inject(i);
+  VCT_FOR_EACH_PART_LEAF(i, own, boxCount) {
+    if (vctInRun(i, own) || vctLeafInChangedBox(i, boxCount)) inject(i);
   }
 }

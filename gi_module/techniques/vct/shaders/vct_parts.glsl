@@ -41,4 +41,21 @@ bool vctInChangedBox(uvec3 lo, uvec3 hi, uint count) {
   return false;
 }
 
+// Whether leaf-list entry i lies in one of the first `count` changed boxes.
+bool vctLeafInChangedBox(uint i, uint count) {
+  uvec3 v = uvec3(svoCellOfMortonCode(leafList.entries[i].y));
+  return vctInChangedBox(v, v, count);
+}
+
+// Grid-stride rounds (as VCT_FOR_EACH_LEAF) over the run `own` of the leaf list (vctPartRange) or, when
+// `boxCount` boxes changed, over the whole list: the body skips what is neither in the run nor in a box.
+// A run is at most the whole list, so the rounds cover it.
+#define VCT_FOR_EACH_PART_LEAF(i, own, boxCount)                                                         \
+  for (uint vctRound = 0u, vctStride = gl_NumWorkGroups.x * gl_WorkGroupSize.x,                          \
+            vctEnd = (boxCount) > 0u ? leafList.header.w : (own).y,                                      \
+            i = ((boxCount) > 0u ? 0u : (own).x) + gl_GlobalInvocationID.x;                              \
+       vctRound < DYNGI_SVO_ITEMS_PER_INVOCATION && i < vctEnd; ++vctRound, i += vctStride)
+
+bool vctInRun(uint i, uvec2 run) { return i >= run.x && i < run.y; }
+
 #endif
