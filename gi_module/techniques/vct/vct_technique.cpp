@@ -6,6 +6,9 @@
 
 #include "dyngi/engine/ecs/entity_map.h"
 #include "dyngi/gi/gi_settings.h"
+#include "gpu_aliases.h"
+#include "indirect/emitters.h"
+#include "techniques/vct/shaders/vct_shared.h"
 #include "techniques/vct/voxel_cone_tracing.h"
 #include "techniques/registry_entries.h"
 
@@ -18,6 +21,8 @@ const OptionTable<VctOptions>& VctOptions::table() {
           .add(DYNGI_OPTION(VctOptions, coneInterleave), "rows of traced pixels take turns over the diffuse cones, each marching every Nth (with --diffuse-filter-radius 0: 1)", 1, 4)
           .add(DYNGI_OPTION(VctOptions, bounces), "light bounces (each past the first: a cone pass over the occupied voxels)", 1, 3)
           .add(DYNGI_OPTION(VctOptions, bounceFrames), "frames over which every occupied voxel updates the bounce light it carries, which adds a bounce each turn (0: off)", 0, 64)
+          .add(DYNGI_OPTION(VctOptions, emitterSamples), "points on the emissive surfaces whose shadowed light each voxel takes, without --bounce-frames (0: off; 1, 2 or 4)", 0, DYNGI_VCT_EMITTER_MAX_SAMPLES)
+          .add(DYNGI_OPTION(VctOptions, emitterFrames), "frames over which every voxel's emitter light is updated once", 1, 64)
           .add(DYNGI_OPTION(VctOptions, traceScale), "trace one pixel in NxN and upsample (1: every pixel; 0: at most 192^2 traced)", 0, 8)
           .add(DYNGI_OPTION(VctOptions, traceFrames), "frames over which each traced pixel is traced once, the rest reprojected (1, 2 or 4)", 1, 4)
           .add(DYNGI_OPTION(VctOptions, radianceFrames), "frames over which the voxels' radiance update is spread, a part of the voxels each", 1, 4)
@@ -41,7 +46,8 @@ namespace {
 
 class VctTechnique final : public Technique {
  public:
-  VctTechnique(const TechniqueServices& services, const VctOptions& options) : voxels_(*services.voxels), feature_(services.ctx, *services.voxels, options) {}
+  VctTechnique(const TechniqueServices& services, const VctOptions& options)
+      : assets_(services.assets), voxels_(*services.voxels), feature_(services.ctx, *services.voxels, options) {}
   std::vector<render::RenderFeature*> features() override { return {&feature_}; }
   // The traced pixels kept from earlier frames (trace-frames > 1) lag a change by up to that many frames:
   // fine for things that move a little each frame, not for light that appears, goes or jumps at once.
@@ -88,13 +94,14 @@ class VctTechnique final : public Technique {
       ++historyDrops_;
     }
     lights_ = std::move(lights);
+    sampleEmitters(frame);
   }
   // A frame that traced every pixel although the trace is spread (the first, or after a drop) costs
   // traceFrames times the trace: a GI budget leaves it out. Under a budget there is none: such a frame
   // traces its share too (spreadOneOffWork).
   bool lastFrameWasOneOff() const override {
     const VctFrameStats& s = feature_.stats();
-    return (s.tracedFraction == 1.0 && feature_.settings().traceFrames > 1) || (s.carriedUpdated == 1.0 && feature_.settings().bounceFrames > 1);
+    return (s.tracedFraction == 1.0 && feature_.settings().traceFrames > 1) || (s.carriedUpdated == 1.0 && feature_.carriedFrames() > 1);
   }
   void spreadOneOffWork(bool spread) override { feature_.setSpreadTraceWithoutHistory(spread); }
   std::vector<OptionRef> options() override { return bindOptions(feature_.settings()); }
@@ -143,11 +150,38 @@ class VctTechnique final : public Technique {
               {"radiance_update_fraction", 1.0 / double(feature_.radianceParts())},
               {"radiance_updated_this_frame", s.radianceUpdated},
               {"carried_update_fraction", 1.0 / double(feature_.budgetCarriedSlowdown())},
-              {"carried_updated_this_frame", s.carriedUpdated}}}};
+              {"carried_updated_this_frame", s.carriedUpdated},
+              {"emitter_light", feature_.carriesEmitterLight() ? 1.0 : 0.0}}}};
   }
 
  private:
   static constexpr float kJumpFraction = 0.05f, kJumpRadians = 0.1f;
+  // The points on the emitters the voxels' emitter light is estimated from (VctOptions::emitterSamples):
+  // the same stratified draw each time, so a still scene gives the same points and the voxels no flicker;
+  // drawn again only when a mesh or a material changed (or the options turned it on or off).
+  void sampleEmitters(const TechniqueFrame& frame) {
+    const ChangeSet& c = frame.changes;
+    const bool want = feature_.settings().emitterSamples > 0 && feature_.settings().bounceFrames == 0;
+    if (want == sampledEmitters_ && c.moved.empty() && c.deformed.empty() && c.meshWritten.empty() && c.removed.empty() && c.materials.empty())
+      return;
+    sampledEmitters_ = want;
+    std::vector<gpu::VctEmitterPoint> points;
+    if (want) {
+      const EmitterSet emitters(frame.snapshot, assets_);
+      if (!emitters.empty()) {
+        points.resize(DYNGI_VCT_EMITTER_POINTS);
+        for (uint32_t k = 0; k < DYNGI_VCT_EMITTER_POINTS; ++k) {
+          // Stratified over the power; the point in the triangle from the R2 sequence.
+          const float u1 = std::fmod(0.5f + 0.7548776662f * float(k), 1.0f), u2 = std::fmod(0.5f + 0.5698402910f * float(k), 1.0f);
+          const EmitterSample e = emitters.sample((float(k) + 0.5f) / float(DYNGI_VCT_EMITTER_POINTS), u1, u2, 0.0f);
+          points[k] = {glm::vec4(e.position, e.pdfArea), glm::vec4(e.faceNormal, 0.0f), glm::vec4(e.radiance, 0.0f)};
+        }
+      }
+    }
+    feature_.setEmitterPoints(points);
+  }
+  const scene::AssetStore& assets_;
+  bool sampledEmitters_ = false;  // the points were drawn for the options as they stand
   struct LightState {
     scene::Entity entity;
     glm::vec3 radiance;  // colour x intensity, 0 when disabled

@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <optional>
 
 #include "dyngi/engine/render/gpu_timer.h"
@@ -15,6 +16,7 @@
 #include "spirv/vct_commit.comp.spv.h"
 #include "spirv/vct_cone_probe.comp.spv.h"
 #include "spirv/vct_debug.comp.spv.h"
+#include "spirv/vct_emitter_light.comp.spv.h"
 #include "spirv/vct_filter.comp.spv.h"
 #include "spirv/vct_inject.comp.spv.h"
 #include "spirv/vct_mips.comp.spv.h"
@@ -92,6 +94,8 @@ VctOptions VoxelConeTracing::validated(VctOptions o) {
   // Without the filter nothing brings the rows' cone sets together: every pixel marches all of them.
   o.coneInterleave = o.diffuseFilterRadius > 0 ? std::clamp(o.coneInterleave, 1u, o.diffuseCones) : 1u;
   o.temporalResponse = std::max(o.temporalResponse, 1e-3f);
+  o.emitterSamples = o.emitterSamples > 0 ? std::bit_floor(std::min(o.emitterSamples, uint32_t(DYNGI_VCT_EMITTER_MAX_SAMPLES))) : 0u;
+  o.emitterFrames = std::clamp(o.emitterFrames, 1u, 64u);
   return o;
 }
 
@@ -103,6 +107,7 @@ VoxelConeTracing::VoxelConeTracing(render::VulkanContext& ctx, VoxelScene& voxel
   createScreenPipelines();
   createSampler();
   changedBoxes_ = Buffer(ctx_, 2 * kMaxChangedBoxes * sizeof(glm::uvec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "vct changed boxes");
+  emitterPoints_ = Buffer(ctx_, DYNGI_VCT_EMITTER_POINTS * sizeof(gpu::VctEmitterPoint), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "vct emitter points");
 }
 
 // The passes over the occupied voxels: injection, clearing what emptied, the bounce and its commit.
@@ -132,6 +137,11 @@ void VoxelConeTracing::createLeafPipelines() {
                              {DYNGI_VCT_BOUNCE_BINDING_DIRECT, kStorageImage, kCS},
                              {DYNGI_VCT_BOUNCE_BINDING_OUT, kStorageImage, kCS}};
   commit_ = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_commit_comp), commitB, sizeof(gpu::VctBouncePush), "vct_commit");
+  const Binding emitterB[] = {{DYNGI_VCT_EMITTER_BINDING_LEAF_LIST, kSSBO, kCS},     {DYNGI_VCT_EMITTER_BINDING_VOXEL_ATTRIBUTES, kStorageImage, kCS},
+                              {DYNGI_VCT_EMITTER_BINDING_OUT, kStorageImage, kCS},   {DYNGI_VCT_EMITTER_BINDING_CHANGED_BOXES, kSSBO, kCS},
+                              {DYNGI_VCT_EMITTER_BINDING_PREVIOUS_OCCUPANCY, kSSBO, kCS}, {DYNGI_VCT_EMITTER_BINDING_SVO_NODES, kSSBO, kCS},
+                              {DYNGI_VCT_EMITTER_BINDING_POINTS, kSSBO, kCS}};
+  emitterLight_ = Pipeline::compute(ctx_, DYNGI_SHADER(spv_vct_emitter_light_comp), emitterB, sizeof(gpu::VctEmitterPush), "vct_emitter_light");
   const Binding probeB[] = {{DYNGI_VCT_PROBE_BINDING_RAYS, kSSBO, kCS},
                             {DYNGI_VCT_PROBE_BINDING_RADIANCE, kSampled, kCS},
                             {DYNGI_VCT_PROBE_BINDING_ANISO, kSampled, kCS},
@@ -226,7 +236,8 @@ VoxelConeTracing::~VoxelConeTracing() {
 
 void VoxelConeTracing::ensureVolumes(uint32_t res) {
   const bool wantAniso = options_.anisotropic;
-  const bool wantBounce = options_.bounces > 1, wantCarried = options_.bounceFrames > 0;
+  // Kept once emitters were seen, so an emission switched on and off does not remake the volumes.
+  const bool wantBounce = options_.bounces > 1, wantCarried = options_.bounceFrames > 0 || (options_.emitterSamples > 0 && emittersSeen_);
   if (res == res_ && aniso_.valid() == wantAniso && bounced_.valid() == wantBounce && carried_.valid() == wantCarried) return;
   vkDeviceWaitIdle(ctx_.device());
   const uint32_t levels = uint32_t(std::bit_width(res));  // res, res/2, ..., 1
@@ -238,7 +249,7 @@ void VoxelConeTracing::ensureVolumes(uint32_t res) {
   const uint32_t half = std::max(res / 2, 1u);
   aniso_ = wantAniso ? makeVolume(ctx_, DYNGI_VCT_SLABS * half, half, half, uint32_t(std::bit_width(half)), "vct anisotropic atlas") : Image();
   bounced_ = wantBounce ? makeVolume(ctx_, res, res, res, 1, "vct bounced radiance") : Image();
-  carried_ = wantCarried ? makeVolume(ctx_, res, res, res, 1, "vct carried bounce light") : Image();
+  carried_ = wantCarried ? makeVolume(ctx_, res, res, res, 1, "vct carried light") : Image();
   res_ = res;
   frames_ = 0;  // the volumes are new: nothing of theirs to keep
   ctx_.immediate([&](VkCommandBuffer cmd) {
@@ -319,7 +330,9 @@ void VoxelConeTracing::recordLeafPass(VkCommandBuffer cmd, const Pipeline& pipel
   render::computeWriteBarrier(cmd);
 }
 static_assert(DYNGI_VCT_INJECT_BINDING_LEAF_LIST == DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST &&
-                  DYNGI_VCT_INJECT_BINDING_VOXEL_ATTRIBUTES == DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES,
+                  DYNGI_VCT_INJECT_BINDING_VOXEL_ATTRIBUTES == DYNGI_VCT_BOUNCE_BINDING_VOXEL_ATTRIBUTES &&
+                  DYNGI_VCT_INJECT_BINDING_LEAF_LIST == DYNGI_VCT_EMITTER_BINDING_LEAF_LIST &&
+                  DYNGI_VCT_INJECT_BINDING_VOXEL_ATTRIBUTES == DYNGI_VCT_EMITTER_BINDING_VOXEL_ATTRIBUTES,
               "the passes over leaves share their first two bindings (recordLeafPass)");
 
 uint64_t VoxelConeTracing::recordClearStale(VkCommandBuffer cmd, const StaleVoxels& stale) {
@@ -444,6 +457,7 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
       carried_.transition(frame.cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
       clearLevel(frame.cmd, carried_, 0);
       carried_.transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, kComputeAndTransfer, kReadWrite);
+      if (options_.bounceFrames == 0 && !carriesEmitterLight()) carriedWhole_ = false;  // the emitters went: nothing to update
     }
     recordInject(frame, part, clearAll);
     {
@@ -528,6 +542,7 @@ void VoxelConeTracing::recordInject(render::FrameContext& frame, RadiancePart pa
   render::ScopedPass scope(ctx_, frame.timer, cmd, "inject");
   stats_.clearedVoxels = recordClearStale(cmd, stale);
   render::computeWriteBarrier(cmd);
+  if (carriesEmitterLight()) recordEmitterLight(cmd, planCarriedUpdate(clearAll));  // before injection, which adds it
   gpu::VctInjectPush pc{};
   pc.volume = glm::vec4(vol.origin, vol.voxelSize);
   pc.lightCount = frame.lights.count;
@@ -578,22 +593,15 @@ void VoxelConeTracing::recordBounces(render::FrameContext& frame, bool clearAll)
     recordLeafPass(cmd, commit_, &pc, sizeof(pc), c);
     recordMips(cmd, /*levelZeroIsDirect=*/false, RadiancePart{});  // the same occupied set as this frame's first chain; level 0 now has the bounce
   }
-  if (!carried_.valid()) return;
-  // Every voxel after a light switched or jumped, when the volume was cleared (the first frame, a move)
-  // or too many boxes changed, unless a GI budget spreads one-off work; else this frame's part and the
-  // voxels this frame's SVO build added (in the boxes where it changed voxels), so a moved object
-  // carries its light from its first frame.
-  const std::optional<uint32_t> boxes = clearAll ? std::optional<uint32_t>(0u) : uploadChangedBoxes();
-  const bool whole = (carriedWhole_ || clearAll || !boxes) && !spreadWithoutHistory_;
-  carriedWhole_ = false;
-  pc.parts = whole ? 1u : options_.bounceFrames * budgetCarriedSlowdown_;
-  pc.part = whole ? 0u : uint32_t(carriedFrame_++ % pc.parts);
-  pc.boxCount = whole || budgetCarriedSlowdown_ > 1 || !boxes ? 0u : *boxes;  // a budget's slowdown leaves new voxels to their turn
+  if (!carried_.valid() || options_.bounceFrames == 0) return;
+  const RadiancePart part = planCarriedUpdate(clearAll);
+  pc.part = part.part;
+  pc.parts = part.parts;
+  pc.boxCount = part.boxCount;
   // Narrowed far samples, unlike the bounce passes': what a wide footprint brings through a thin wall
   // would be carried again each turn (two-rooms: 5.5 percent of the doorway's light leaks into the closed
   // room without, 3.4 with), and the light lost between the cones stays under 3 percent.
   pc.farNarrowing = options_.farNarrowing;
-  stats_.carriedUpdated = 1.0 / double(pc.parts);
   DescriptorWrites w;
   w.storageImage(DYNGI_VCT_BOUNCE_BINDING_DIRECT, direct_.view())  // unread
       .sampledImage(DYNGI_VCT_BOUNCE_BINDING_RADIANCE, radiance_.view(), sampler_)
@@ -602,6 +610,54 @@ void VoxelConeTracing::recordBounces(render::FrameContext& frame, bool clearAll)
       .storageBuffer(DYNGI_VCT_BOUNCE_BINDING_CHANGED_BOXES, changedBoxes_.handle())
       .storageBuffer(DYNGI_VCT_BOUNCE_BINDING_PREVIOUS_OCCUPANCY, voxels_.previousOccupancy().handle());
   recordLeafPass(cmd, carry_[coneVariant().index()].get(), &pc, sizeof(pc), w);
+}
+
+// Every voxel after a refresh (a light switched or jumped, other emitter points), when the volume was
+// cleared (the first frame, a move) or too many boxes changed, unless a GI budget spreads one-off work;
+// else this frame's part and the voxels this frame's SVO build added (in the boxes where it changed
+// voxels), so a moved object carries its light from its first frame.
+VoxelConeTracing::RadiancePart VoxelConeTracing::planCarriedUpdate(bool clearAll) {
+  const std::optional<uint32_t> boxes = clearAll ? std::optional<uint32_t>(0u) : uploadChangedBoxes();
+  const bool whole = (carriedWhole_ || clearAll || !boxes) && !spreadWithoutHistory_;
+  carriedWhole_ = false;
+  RadiancePart p;
+  p.parts = whole ? 1u : carriedFrames() * budgetCarriedSlowdown_;
+  p.part = whole ? 0u : uint32_t(carriedFrame_++ % p.parts);
+  p.boxCount = whole || budgetCarriedSlowdown_ > 1 || !boxes ? 0u : *boxes;  // a budget's slowdown leaves new voxels to their turn
+  stats_.carriedUpdated = 1.0 / double(p.parts);
+  return p;
+}
+
+void VoxelConeTracing::setEmitterPoints(const std::vector<gpu::VctEmitterPoint>& points) {
+  static_assert(sizeof(gpu::VctEmitterPoint) == 3 * sizeof(glm::vec4));
+  std::vector<glm::vec4> packed(3 * points.size());
+  if (!points.empty()) std::memcpy(packed.data(), points.data(), points.size() * sizeof(gpu::VctEmitterPoint));
+  hasEmitterPoints_ = !points.empty();
+  emittersSeen_ = emittersSeen_ || hasEmitterPoints_;
+  if (packed == lastEmitterPoints_) return;
+  if (hasEmitterPoints_) emitterPoints_.upload(points.data(), points.size() * sizeof(gpu::VctEmitterPoint));
+  lastEmitterPoints_ = std::move(packed);
+  carriedWhole_ = true;
+}
+
+// Part of "inject": the emitters' light on this frame's part of the voxels, into the carried image.
+void VoxelConeTracing::recordEmitterLight(VkCommandBuffer cmd, RadiancePart part) {
+  const VoxelVolume& vol = voxels_.volume();
+  gpu::VctEmitterPush pc{};
+  pc.volume = glm::vec4(vol.origin, vol.voxelSize);
+  pc.res = float(vol.resolution);
+  pc.svoDepth = vol.depth();
+  pc.samples = options_.emitterSamples;
+  pc.part = part.part;
+  pc.parts = part.parts;
+  pc.boxCount = part.boxCount;
+  DescriptorWrites w;
+  w.storageImage(DYNGI_VCT_EMITTER_BINDING_OUT, carried_.view())
+      .storageBuffer(DYNGI_VCT_EMITTER_BINDING_CHANGED_BOXES, changedBoxes_.handle())
+      .storageBuffer(DYNGI_VCT_EMITTER_BINDING_PREVIOUS_OCCUPANCY, voxels_.previousOccupancy().handle())
+      .storageBuffer(DYNGI_VCT_EMITTER_BINDING_SVO_NODES, voxels_.nodes().handle())
+      .storageBuffer(DYNGI_VCT_EMITTER_BINDING_POINTS, emitterPoints_.handle());
+  recordLeafPass(cmd, emitterLight_, &pc, sizeof(pc), w);
 }
 
 VoxelConeTracing::TraceFrame VoxelConeTracing::beginTrace(const render::FrameContext& frame) {

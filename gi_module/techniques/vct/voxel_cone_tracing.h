@@ -1,7 +1,8 @@
 #pragma once
 // Voxel cone tracing (after Crassin et al. 2011, "Interactive Indirect Illumination Using Voxel Cone
 // Tracing"): the voxel scene's occupied voxels get the direct light they reflect and their emission
-// (radiance injection, shadowed through the renderer's shadow maps), a 3D mip chain filters it
+// (radiance injection, shadowed through the renderer's shadow maps; emissive surfaces' light from points
+// sampled on them, shadowed through the SVO: VctOptions::emitterSamples), a 3D mip chain filters it
 // (isotropic, or per direction), optional extra bounces cone-trace over the occupied voxels (each frame,
 // or a part of them a frame, carried across frames: VctOptions::bounceFrames), and the
 // screen traces diffuse cones (indirect light and ambient occlusion) and a specular cone per pixel,
@@ -18,6 +19,10 @@
 #include "dyngi/gi/vct_options.h"
 #include "dyngi/gi/voxel_scene.h"
 
+namespace dyngi::gi::gpu {
+struct VctEmitterPoint;
+}
+
 namespace dyngi::gi {
 
 struct VctFrameStats {
@@ -28,7 +33,7 @@ struct VctFrameStats {
   double tracedFraction = 1.0;  // of those, the share traced this frame (the rest reprojected)
   uint64_t volumeBytes = 0;  // radiance volumes, all levels
   bool specularCones = false;  // some draw is smoother than VctOptions::specularConeBelow: the trace marches specular cones
-  double carriedUpdated = 0.0;  // the share of the voxels whose carried bounce light was updated this frame
+  double carriedUpdated = 0.0;  // the share of the voxels whose carried light (bounce or emitter light) was updated this frame
 };
 
 class VoxelConeTracing final : public render::RenderFeature {
@@ -62,6 +67,15 @@ class VoxelConeTracing final : public render::RenderFeature {
   // light stays, and the new light's first bounce is there at once. Under a GI budget
   // (setSpreadTraceWithoutHistory) the pass keeps to its part: the bounce light comes back part by part.
   void refreshCarriedLight() { carriedWhole_ = true; }
+  // The points on the emissive surfaces (DYNGI_VCT_EMITTER_POINTS, or none) whose light the voxels take
+  // (VctOptions::emitterSamples, without carried bounce light). Other points than last frame's (an
+  // emitter moved, switched or recoloured) update every voxel's emitter light at once.
+  void setEmitterPoints(const std::vector<gpu::VctEmitterPoint>& points);
+  // The voxels' carried light is the emitters' (not the cones' bounce light).
+  bool carriesEmitterLight() const { return options_.bounceFrames == 0 && options_.emitterSamples > 0 && hasEmitterPoints_; }
+  // Frames over which every voxel's carried light is updated once: bounceFrames, or emitterFrames for
+  // the emitters' light.
+  uint32_t carriedFrames() const { return options_.bounceFrames > 0 ? options_.bounceFrames : options_.emitterFrames; }
   // A GI budget's slowdown of the carried light's update: each voxel's turn comes every bounceFrames x
   // this frames, and from 2 a moved object's new voxels wait for theirs (their update each frame is most
   // of the pass while something moves).
@@ -87,7 +101,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   render::Image& radianceVolume() { return radiance_; }
   render::Image& anisotropicVolume() { return aniso_; }
   render::Image& directVolume() { return direct_; }
-  render::Image& carriedVolume() { return carried_; }  // VctOptions::bounceFrames over 0
+  render::Image& carriedVolume() { return carried_; }  // VctOptions::bounceFrames over 0, or emitter light
   // Marches one cone per ray (voxel units: origin, direction) through the volume as it stands, on the
   // GPU (vct_cone_probe.comp): rgb radiance, a opacity. Synchronous.
   std::vector<glm::vec4> probeCones(const std::vector<std::pair<glm::vec3, glm::vec3>>& rays, float tanHalf);
@@ -142,6 +156,10 @@ class VoxelConeTracing final : public render::RenderFeature {
   void prepareFrame(render::FrameContext& frame);
   void recordInject(render::FrameContext& frame, RadiancePart part, bool clearAll);
   void recordBounces(render::FrameContext& frame, bool clearAll);
+  // This frame's part of the carried light's update (carriedFrames), or every voxel after a refresh or
+  // when the volume was cleared; with the voxels the SVO build added unless a budget slows it.
+  RadiancePart planCarriedUpdate(bool clearAll);
+  void recordEmitterLight(VkCommandBuffer cmd, RadiancePart part);
   // The boxes where this frame's SVO build changed voxels into changedBoxes_: their count (0 without a
   // build), none when there are more than kMaxChangedBoxes.
   std::optional<uint32_t> uploadChangedBoxes();
@@ -186,7 +204,11 @@ class VoxelConeTracing final : public render::RenderFeature {
   render::Image aniso_;        // 6 (res/2) x res/2 x res/2, mips (anisotropic only)
   render::Image direct_;       // res^3: the injected radiance, blended in place with last frame's (temporal blending); alpha: which cones see the voxel (vct_seen.glsl)
   render::Image bounced_;      // res^3: a bounce's output before it is committed to radiance_ level 0
-  render::Image carried_;      // res^3: the bounce light each voxel carries (VctOptions::bounceFrames)
+  render::Image carried_;      // res^3: the bounce light each voxel carries (VctOptions::bounceFrames), or its emitter light
+  render::Buffer emitterPoints_;  // gpu::VctEmitterPoint[DYNGI_VCT_EMITTER_POINTS]: setEmitterPoints
+  std::vector<glm::vec4> lastEmitterPoints_;  // the points as uploaded, three vec4 each
+  bool hasEmitterPoints_ = false;
+  bool emittersSeen_ = false;  // some frame had emitter points: carried_ stays allocated
   uint64_t carriedFrame_ = 0;  // carried-light passes so far: the next part
   bool carriedWhole_ = false;  // refreshCarriedLight
   uint32_t budgetCarriedSlowdown_ = 1;
@@ -202,7 +224,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   bool spreadWithoutHistory_ = false;  // setSpreadTraceWithoutHistory
   glm::mat4 previousViewProj_{1.0f};
   VkSampler sampler_ = VK_NULL_HANDLE;
-  render::Pipeline inject_, clearStale_, commit_, reproject_, filter_;
+  render::Pipeline inject_, clearStale_, commit_, reproject_, filter_, emitterLight_;
   render::LazyPipeline mips_[uint32_t(MipsVariant::Count)], bounce_[4], carry_[4], probe_[4], trace_[8];  // by MipsVariant, ConeVariant, TraceVariant
   render::LazyPipeline upsample_[2], debug_[2];  // [specular image written], [anisotropic]
   VctFrameStats stats_;

@@ -25,6 +25,15 @@ struct VctOptions {
   // so each turn adds a bounce: over frames the voxels converge towards every bounce, at 1/N of a bounce
   // pass a frame; a change in the light reaches the carried light N frames a bounce later.
   uint32_t bounceFrames = 0;
+  // Without carried bounce light, each occupied voxel also takes the light of emissive surfaces: this
+  // many points on them (by power), each shadowed through the SVO, estimate it, and injection adds it, so
+  // the surfaces an emitter lights pass its light on as the ones a light lights do (0: off, the cones
+  // then see the emitters alone). 1, 2 or 4: the cones' mips average many voxels' few points.
+  uint32_t emitterSamples = 2;
+  // Frames over which every voxel's emitter light is updated once, a part of the voxels each: an
+  // occluder moving in front of an emitter moves its shadow in the voxels that many frames later. A
+  // changed emitter, a moved object's new voxels and the first frame are updated at once.
+  uint32_t emitterFrames = 8;
   // One pixel in traceScale^2 is traced, then upsampled by depth and normal (1: every pixel; 0: the
   // smallest power of two tracing at most 192^2 pixels). Diffuse light is smooth and the trace is most
   // of the cost. A GI budget raises it further.

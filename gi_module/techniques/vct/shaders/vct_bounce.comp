@@ -23,6 +23,7 @@ layout(push_constant) uniform Push { DYNGI_VCT_BOUNCE_PUSH };
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_CHANGED_BOXES) readonly buffer ChangedBoxes { uvec4 changedBoxes[]; };
 layout(set = 0, binding = DYNGI_VCT_BOUNCE_BINDING_PREVIOUS_OCCUPANCY) readonly buffer Previous { uint previousOccupancy[]; };
 #include "vct_parts.glsl"
+#include "vct_new_leaf.glsl"
 
 void bounce(uint i) {
   VctLeaf leaf;
@@ -38,12 +39,6 @@ void bounce(uint i) {
   imageStore(outRadiance, leaf.voxel, vec4(L, 1.0));
 }
 
-// Whether leaf-list entry i is a voxel the build before did not have.
-bool isNewLeaf(uint i) {
-  uint bit = DYNGI_SVO_LEVEL_BASE(uint(findMSB(uint(res)))) + leafList.entries[i].y;  // the leaves' level: res = 2^depth
-  return (previousOccupancy[bit >> 5u] & (1u << (bit & 31u))) == 0u;
-}
-
 void main() {
   if (!kCarried) {
     VCT_FOR_EACH_LEAF(i) bounce(i);
@@ -53,6 +48,6 @@ void main() {
   // not have: a moved object's new voxels. (The others keep their carried light until their turn.)
   uvec2 own = vctPartRange(part, parts);
   VCT_FOR_EACH_PART_LEAF(i, own, boxCount) {
-    if (vctInRun(i, own) || (vctLeafInChangedBox(i, boxCount) && isNewLeaf(i))) bounce(i);
+    if (vctInRun(i, own) || (vctLeafInChangedBox(i, boxCount) && vctIsNewLeaf(i, res))) bounce(i);
   }
 }

@@ -5,7 +5,8 @@
 // changed by more than temporalResponse (relative), so a light switched off leaves no trail. Written to
 // DIRECT (the frame's history, what bounces add to; its alpha says which cones see the voxel, for the
 // anisotropic atlas: vct_seen.glsl) and to level 0 of the radiance volume (opacity 1 in alpha), there with
-// the bounce light the voxel carries when it carries one.
+// the light the voxel carries when it carries some (its bounce light, or its emitters' light:
+// vct_emitter_light.comp).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gpu_types.h"
 #include "vct_shared.h"

@@ -17,7 +17,22 @@ DYNGI_GPU_NAMESPACE_BEGIN
 #define DYNGI_VCT_INJECT_BINDING_DIRECT 5  /* read (last frame's, the temporal blend's history) and written in place */
 #define DYNGI_VCT_INJECT_BINDING_RADIANCE 6
 #define DYNGI_VCT_INJECT_BINDING_CHANGED_BOXES 7  /* vct_parts.glsl */
-#define DYNGI_VCT_INJECT_BINDING_CARRIED 8  /* the bounce light the voxels carry (VctOptions::bounceFrames), added to level 0 */
+#define DYNGI_VCT_INJECT_BINDING_CARRIED 8  /* the light the voxels carry (bounce light: VctOptions::bounceFrames; or the emitters'), added to level 0 */
+// vct_emitter_light: per occupied voxel, the light emissive surfaces send it, sampled with SVO visibility,
+// into the carried image (when no bounce light is carried: VctOptions::emitterSamples)
+#define DYNGI_VCT_EMITTER_BINDING_LEAF_LIST 0
+#define DYNGI_VCT_EMITTER_BINDING_VOXEL_ATTRIBUTES 1
+#define DYNGI_VCT_EMITTER_BINDING_OUT 2
+#define DYNGI_VCT_EMITTER_BINDING_CHANGED_BOXES 3
+#define DYNGI_VCT_EMITTER_BINDING_PREVIOUS_OCCUPANCY 4
+#define DYNGI_VCT_EMITTER_BINDING_SVO_NODES 5
+#define DYNGI_VCT_EMITTER_BINDING_POINTS 6  /* VctEmitterPoint[DYNGI_VCT_EMITTER_POINTS] */
+// The points sampled on the emitters each frame (by power); each voxel takes an evenly spaced subset.
+#define DYNGI_VCT_EMITTER_POINTS 256
+// Points a voxel takes at most: an invocation's 16 leaves (DYNGI_SVO_ITEMS_PER_INVOCATION) then march 64
+// SVO segments, what the gather allows a pixel (DYNGI_GATHER_MAX_VPLS_PER_PIXEL), under lavapipe's shared
+// loop-iteration limit; past it the marches stop part way and report points hidden that are not.
+#define DYNGI_VCT_EMITTER_MAX_SAMPLES 4
 // vct_clear_stale: the per-voxel state of the cells that emptied since the last SVO build, zeroed
 #define DYNGI_VCT_CLEAR_BINDING_RUNS 0              /* uvec2 (SVO level, first Morton code) per run of 32 cells */
 #define DYNGI_VCT_CLEAR_BINDING_PREVIOUS_OCCUPANCY 1  /* the build before's pyramid */
@@ -26,7 +41,7 @@ DYNGI_GPU_NAMESPACE_BEGIN
 #define DYNGI_VCT_CLEAR_BINDING_DIRECT 4
 #define DYNGI_VCT_CLEAR_BINDING_ATLAS 5               /* the anisotropic atlas' level 0 (anisotropic only) */
 #define DYNGI_VCT_CLEAR_BINDING_ATLAS_1 6             /* its level 1 */
-#define DYNGI_VCT_CLEAR_BINDING_CARRIED 7             /* the carried bounce light (the direct radiance again when there is none) */
+#define DYNGI_VCT_CLEAR_BINDING_CARRIED 7             /* the carried light (the direct radiance again when there is none) */
 // vct_bounce: one more bounce per occupied voxel (cones over the radiance volume), then vct_commit; or
 // the carried bounce light of this frame's part of the voxels (OUT: the carried light, DIRECT unused)
 #define DYNGI_VCT_BOUNCE_BINDING_LEAF_LIST 0  /* the SVO's compacted leaf list */
@@ -128,6 +143,12 @@ DYNGI_GPU_NAMESPACE_BEGIN
   float temporalResponse;                                                          \
   DYNGI_VCT_PART_PUSH                                                              \
   uint carried;      /* 1: level 0 is the direct radiance plus CARRIED */
+#define DYNGI_VCT_EMITTER_PUSH                                                       \
+  vec4 volume;       /* xyz world origin, w voxel size */                          \
+  float res;         /* voxels per side */                                         \
+  uint svoDepth;                                                                   \
+  uint samples;      /* of the points, per voxel: a power of two up to DYNGI_VCT_EMITTER_MAX_SAMPLES */ \
+  DYNGI_VCT_PART_PUSH
 #define DYNGI_VCT_CLEAR_PUSH uint runCount; uint depth; /* the SVO's: its leaves are level-0 voxels, level depth - 1 the atlas' level-0 texels */ \
   uint atlasSlabWidth; /* texels; 0: isotropic, no atlas */
 #define DYNGI_VCT_BOUNCE_PUSH DYNGI_VCT_CONE_PARAMS DYNGI_VCT_PART_PUSH /* the carried light's part and changed boxes this frame */
@@ -154,8 +175,20 @@ DYNGI_GPU_NAMESPACE_BEGIN
 #define DYNGI_VCT_DEBUG_PUSH DYNGI_VCT_CONE_PARAMS uint mode; float mip;
 #define DYNGI_VCT_PROBE_PUSH DYNGI_VCT_CONE_PARAMS uint count; float tanHalf;
 
+// A point on an emitter, sampled by power (EmitterSet): Le / pdf(x) x |cos| G is its irradiance estimate.
+#ifdef __cplusplus
+struct alignas(16) VctEmitterPoint {
+#else
+struct VctEmitterPoint {
+#endif
+  vec4 position;  // xyz world, w the density per unit area it was drawn with (0: none)
+  vec4 normal;    // xyz the triangle's unit normal (it emits from both sides)
+  vec4 radiance;  // rgb Le
+};
+
 #ifdef __cplusplus
 struct VctInjectPush { DYNGI_VCT_INJECT_PUSH };
+struct VctEmitterPush { DYNGI_VCT_EMITTER_PUSH };
 struct VctClearPush { DYNGI_VCT_CLEAR_PUSH };
 struct VctBouncePush { DYNGI_VCT_BOUNCE_PUSH };
 struct VctMipsPush { DYNGI_VCT_MIPS_PUSH };
@@ -167,6 +200,7 @@ struct VctDebugPush { DYNGI_VCT_DEBUG_PUSH };
 struct VctProbePush { DYNGI_VCT_PROBE_PUSH };
 
 static_assert(sizeof(VctInjectPush) == 48 && offsetof(VctInjectPush, temporalResponse) == 28 && offsetof(VctInjectPush, carried) == 44);
+static_assert(sizeof(VctEmitterPush) == 40 && offsetof(VctEmitterPush, boxCount) == 36 && sizeof(VctEmitterPoint) == 48);
 static_assert(sizeof(VctMipsPush) == 28 && offsetof(VctMipsPush, boxCount) == 24);
 static_assert(sizeof(VctClearPush) == 12 && sizeof(VctUpsamplePush) == 8 && sizeof(VctFilterPush) == 16);
 static_assert(sizeof(VctBouncePush) == 56 && offsetof(VctBouncePush, coneStep) == 32 && offsetof(VctBouncePush, boxCount) == 52);
