@@ -1172,8 +1172,8 @@ std::pair<double, double> floorEmitterLight(render::VulkanContext& ctx, GiRun& r
 // The emitters' light on the voxels (VctOptions::emitterSamples) against brute-force quadrature of the
 // panel: under it, with the most samples and with the default few (each voxel's few points differ, so
 // a patch's mean still converges); in the umbra of an occluder, none; once the occluder has moved away,
-// the unshadowed light again, within the emitterFrames it takes every voxel's turn to come round; a
-// brighter panel at once, and none once it is switched off.
+// the unshadowed light again, within the emitterFrames it takes every voxel's turn to come round, and
+// kept without a pass while nothing moves; a brighter panel at once, and none once it is switched off.
 TEST_F(RenderTest, VctEmitterLightMatchesQuadratureAndFollowsItsShadow) {
   for (uint32_t samples : {uint32_t(DYNGI_VCT_EMITTER_MAX_SAMPLES), gi::VctOptions{}.emitterSamples}) {
     gi::GiSettings s = vctSettings();
@@ -1194,6 +1194,9 @@ TEST_F(RenderTest, VctEmitterLightMatchesQuadratureAndFollowsItsShadow) {
     const auto [lit, litWant] = floorEmitterLight(context(), run, kUmbraPoint, 0.12f);
     dyngi::test::report("occluder moved away: %.4f after %u frames (quadrature %.4f, ratio %.3f)\n", lit, turn + 1, litWant, lit / litWant);
     EXPECT_NEAR(lit / litWant, 1.0, 0.08) << samples;
+    run.step();  // the turn is over and nothing moved: the pass is left out, the light kept
+    EXPECT_EQ(vctOf(run).stats().carriedUpdated, 0.0) << samples;
+    EXPECT_EQ(floorEmitterLight(context(), run, kUmbraPoint, 0.12f).first, lit) << samples;
     // A brighter panel: every voxel's emitter light follows the next frame, not over the turn.
     run.world.write<scene::Material>(run.named("panel")).emissive = glm::vec3(2.0f * kPanelRadiance);
     run.step();

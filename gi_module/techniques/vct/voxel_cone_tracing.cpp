@@ -542,7 +542,7 @@ void VoxelConeTracing::recordInject(render::FrameContext& frame, RadiancePart pa
   render::ScopedPass scope(ctx_, frame.timer, cmd, "inject");
   stats_.clearedVoxels = recordClearStale(cmd, stale);
   render::computeWriteBarrier(cmd);
-  if (carriesEmitterLight()) recordEmitterLight(cmd, planCarriedUpdate(clearAll));  // before injection, which adds it
+  if (carriesEmitterLight()) recordEmitterLight(cmd, clearAll);  // before injection, which adds it
   gpu::VctInjectPush pc{};
   pc.volume = glm::vec4(vol.origin, vol.voxelSize);
   pc.lightCount = frame.lights.count;
@@ -640,8 +640,14 @@ void VoxelConeTracing::setEmitterPoints(const std::vector<gpu::VctEmitterPoint>&
   carriedWhole_ = true;
 }
 
-// Part of "inject": the emitters' light on this frame's part of the voxels, into the carried image.
-void VoxelConeTracing::recordEmitterLight(VkCommandBuffer cmd, RadiancePart part) {
+// Part of "inject": the emitters' light on this frame's part of the voxels, into the carried image. It
+// depends on the geometry and the points alone: a still scene keeps it, and after an SVO build one turn
+// of the parts brings every voxel up to date (an occluder's shadow moved, an albedo edited).
+void VoxelConeTracing::recordEmitterLight(VkCommandBuffer cmd, bool clearAll) {
+  const bool restart = voxels_.stats().rebuilt || clearAll || carriedWhole_;
+  if (!restart && emitterFramesLeft_ == 0) return;
+  const RadiancePart part = planCarriedUpdate(clearAll);
+  emitterFramesLeft_ = part.parts == 1 ? 0u : restart ? part.parts - 1 : emitterFramesLeft_ - 1;
   const VoxelVolume& vol = voxels_.volume();
   gpu::VctEmitterPush pc{};
   pc.volume = glm::vec4(vol.origin, vol.voxelSize);

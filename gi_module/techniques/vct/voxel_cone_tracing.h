@@ -159,7 +159,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   // This frame's part of the carried light's update (carriedFrames), or every voxel after a refresh or
   // when the volume was cleared; with the voxels the SVO build added unless a budget slows it.
   RadiancePart planCarriedUpdate(bool clearAll);
-  void recordEmitterLight(VkCommandBuffer cmd, RadiancePart part);
+  void recordEmitterLight(VkCommandBuffer cmd, bool clearAll);
   // The boxes where this frame's SVO build changed voxels into changedBoxes_: their count (0 without a
   // build), none when there are more than kMaxChangedBoxes.
   std::optional<uint32_t> uploadChangedBoxes();
@@ -209,6 +209,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   std::vector<glm::vec4> lastEmitterPoints_;  // the points as uploaded, three vec4 each
   bool hasEmitterPoints_ = false;
   bool emittersSeen_ = false;  // some frame had emitter points: carried_ stays allocated
+  uint32_t emitterFramesLeft_ = 0;  // frames of the emitter light's turn still to come (recordEmitterLight)
   uint64_t carriedFrame_ = 0;  // carried-light passes so far: the next part
   bool carriedWhole_ = false;  // refreshCarriedLight
   uint32_t budgetCarriedSlowdown_ = 1;
