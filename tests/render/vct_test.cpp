@@ -1123,6 +1123,12 @@ void floorUnderPanel(ecs::World& w, scene::AssetStore& a) {
                                                  glm::vec3(0.0f), {}, false, "panel");
   w.write<scene::Material>(panel).emissive = glm::vec3(kPanelRadiance);
   sample::addSceneMesh(w, a, scene::makeQuad({0.2f, 0.5f, 0.3f}, {0.6f, 0, 0}, {0, 0, -0.6f}), glm::vec3(0.5f), {}, true, "occluder");
+  const ecs::Entity bulb = w.create();  // a light besides: switching it leaves the emitter light alone
+  scene::Transform bt;
+  bt.translation = {-1.0f, 1.5f, 1.0f};
+  w.add(bulb, bt);
+  w.add(bulb, scene::Light{.type = scene::LightType::Point, .intensity = 0.5f});
+  w.add(bulb, scene::Name{"bulb"});
   scene::Transform cam;
   cam.translation = {0.0f, 2.0f, 3.0f};
   cam.rotation = glm::angleAxis(glm::radians(-30.0f), glm::vec3(1, 0, 0));
@@ -1173,7 +1179,8 @@ std::pair<double, double> floorEmitterLight(render::VulkanContext& ctx, GiRun& r
 // panel: under it, with the most samples and with the default few (each voxel's few points differ, so
 // a patch's mean still converges); in the umbra of an occluder, none; once the occluder has moved away,
 // the unshadowed light again, within the emitterFrames it takes every voxel's turn to come round, and
-// kept without a pass while nothing moves; a brighter panel at once, and none once it is switched off.
+// kept without a pass while no mesh moves (a light switched included); a brighter panel at once, and
+// none once it is switched off.
 TEST_F(RenderTest, VctEmitterLightMatchesQuadratureAndFollowsItsShadow) {
   for (uint32_t samples : {uint32_t(DYNGI_VCT_EMITTER_MAX_SAMPLES), gi::VctOptions{}.emitterSamples}) {
     gi::GiSettings s = vctSettings();
@@ -1194,7 +1201,8 @@ TEST_F(RenderTest, VctEmitterLightMatchesQuadratureAndFollowsItsShadow) {
     const auto [lit, litWant] = floorEmitterLight(context(), run, kUmbraPoint, 0.12f);
     dyngi::test::report("occluder moved away: %.4f after %u frames (quadrature %.4f, ratio %.3f)\n", lit, turn + 1, litWant, lit / litWant);
     EXPECT_NEAR(lit / litWant, 1.0, 0.08) << samples;
-    run.step();  // the turn is over and nothing moved: the pass is left out, the light kept
+    run.world.write<scene::Light>(run.named("bulb")).enabled = false;
+    run.step();  // the turn is over and no mesh moved: the pass is left out, the light kept
     EXPECT_EQ(vctOf(run).stats().carriedUpdated, 0.0) << samples;
     EXPECT_EQ(floorEmitterLight(context(), run, kUmbraPoint, 0.12f).first, lit) << samples;
     // A brighter panel: every voxel's emitter light follows the next frame, not over the turn.

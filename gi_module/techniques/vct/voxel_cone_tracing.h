@@ -66,7 +66,8 @@ class VoxelConeTracing final : public render::RenderFeature {
   // that frame's pass updates every voxel, not its part: after a light switched or jumped none of the old
   // light stays, and the new light's first bounce is there at once. Under a GI budget
   // (setSpreadTraceWithoutHistory) the pass keeps to its part: the bounce light comes back part by part.
-  void refreshCarriedLight() { carriedWhole_ = true; }
+  // The emitters' light (VctOptions::emitterSamples) does not depend on the lights: it is kept.
+  void refreshCarriedLight() { carriedWhole_ = carriedWhole_ || options_.bounceFrames > 0; }
   // The points on the emissive surfaces (DYNGI_VCT_EMITTER_POINTS, or none) whose light the voxels take
   // (VctOptions::emitterSamples, without carried bounce light). Other points than last frame's (an
   // emitter moved, switched or recoloured) update every voxel's emitter light at once.
