@@ -30,9 +30,10 @@ struct VctOptions {
   // the surfaces an emitter lights pass its light on as the ones a light lights do (0: off, the cones
   // then see the emitters alone). 1, 2 or 4: the cones' mips average many voxels' few points.
   uint32_t emitterSamples = 2;
-  // Frames over which every voxel's emitter light is updated once, a part of the voxels each: an
-  // occluder moving in front of an emitter moves its shadow in the voxels that many frames later. A
-  // changed emitter, a moved object's new voxels and the first frame are updated at once.
+  // Frames over which every voxel's emitter light is updated once after something moved, a part of the
+  // voxels each: an occluder moving in front of an emitter moves its shadow in the voxels that many
+  // frames later; a still scene keeps the light and skips the pass. A changed emitter, a moved object's
+  // new voxels and the first frame are updated at once.
   uint32_t emitterFrames = 8;
   // One pixel in traceScale^2 is traced, then upsampled by depth and normal (1: every pixel; 0: the
   // smallest power of two tracing at most 192^2 pixels). Diffuse light is smooth and the trace is most
