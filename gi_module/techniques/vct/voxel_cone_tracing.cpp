@@ -451,20 +451,20 @@ bool VoxelConeTracing::record(render::FrameContext& frame) {
   stats_.radianceUpdated = 0.0;
   stats_.carriedUpdated = 0.0;
   if (frames_ == 0 || voxels_.updatesThisFrame() || voxels_.stats().rebuilt) {
-    const bool clearAll = clearsEverything();
-    const RadiancePart part = planRadianceUpdate(clearAll);
+    const VolumeChange change = planVolumeChange();
+    const RadiancePart part = planRadianceUpdate(change);
     if (carriedWhole_ && carried_.valid()) {  // a light switched or jumped: what the voxels carried is the old light's
       carried_.transition(frame.cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
       clearLevel(frame.cmd, carried_, 0);
       carried_.transition(frame.cmd, VK_IMAGE_LAYOUT_GENERAL, kComputeAndTransfer, kReadWrite);
       if (options_.bounceFrames == 0 && !carriesEmitterLight()) carriedWhole_ = false;  // the emitters went: nothing to update
     }
-    recordInject(frame, part, clearAll);
+    recordInject(frame, part, change);
     {
       render::ScopedPass scope(ctx_, frame.timer, frame.cmd, "mips");
       recordMips(frame.cmd, /*levelZeroIsDirect=*/!carried_.valid(), part);  // carried light is in level 0, not in the direct radiance
     }
-    recordBounces(frame, clearAll);
+    recordBounces(frame, change);
     stats_.radianceUpdated = 1.0 / double(part.parts);
   }
   const TraceFrame trace = beginTrace(frame);
@@ -505,15 +505,19 @@ bool VoxelConeTracing::clearsEverything() const {
   return frames_ == 0 || voxels_.staleEverywhere() || boxVoxels * 2 > uint64_t(res_) * res_ * res_;
 }
 
-VoxelConeTracing::RadiancePart VoxelConeTracing::planRadianceUpdate(bool clearAll) {
+VoxelConeTracing::VolumeChange VoxelConeTracing::planVolumeChange() {
+  VolumeChange change;
+  change.clearAll = clearsEverything();
+  if (!change.clearAll) change.changedBoxes = uploadChangedBoxes();
+  return change;
+}
+
+VoxelConeTracing::RadiancePart VoxelConeTracing::planRadianceUpdate(const VolumeChange& change) {
   const uint32_t parts = radianceParts();
-  if (parts <= 1 || clearAll) return {};
-  if (!voxels_.stats().rebuilt) return {uint32_t(partFrame_++ % parts), parts, 0};
   // A rebuilt SVO: this frame's part and the boxes where the build changed voxels, whose new voxels would
   // otherwise have no light (and the old ones' emptied mips none) until their part's turn.
-  const std::optional<uint32_t> boxes = uploadChangedBoxes();
-  if (!boxes) return {};
-  return {uint32_t(partFrame_++ % parts), parts, *boxes};
+  if (parts <= 1 || change.clearAll || !change.changedBoxes) return {};
+  return {uint32_t(partFrame_++ % parts), parts, *change.changedBoxes};
 }
 
 std::optional<uint32_t> VoxelConeTracing::uploadChangedBoxes() {
@@ -530,7 +534,7 @@ std::optional<uint32_t> VoxelConeTracing::uploadChangedBoxes() {
 }
 
 // "inject": what emptied is cleared, then each occupied voxel's direct light and emission.
-void VoxelConeTracing::recordInject(render::FrameContext& frame, RadiancePart part, bool clearAll) {
+void VoxelConeTracing::recordInject(render::FrameContext& frame, RadiancePart part, const VolumeChange& change) {
   VkCommandBuffer cmd = frame.cmd;
   const VoxelVolume& vol = voxels_.volume();
   // Voxels an object left must be empty: the passes below write occupied voxels and texels only. Where
@@ -538,11 +542,11 @@ void VoxelConeTracing::recordInject(render::FrameContext& frame, RadiancePart pa
   // occupancy, not this one's) are zeroed within the boxes where they may be (VoxelScene::staleBoxes);
   // the first frame, a new volume or boxes holding half of it clear everything. The rest holds the same
   // occupied voxels as before, every one written again below.
-  const StaleVoxels stale{clearAll, voxels_.stats().rebuilt ? voxels_.staleBoxes() : std::vector<VoxelBox>{}};
+  const StaleVoxels stale{change.clearAll, voxels_.stats().rebuilt ? voxels_.staleBoxes() : std::vector<VoxelBox>{}};
   render::ScopedPass scope(ctx_, frame.timer, cmd, "inject");
   stats_.clearedVoxels = recordClearStale(cmd, stale);
   render::computeWriteBarrier(cmd);
-  if (carriesEmitterLight()) recordEmitterLight(cmd, clearAll);  // before injection, which adds it
+  if (carriesEmitterLight()) recordEmitterLight(cmd, change);  // before injection, which adds it
   gpu::VctInjectPush pc{};
   pc.volume = glm::vec4(vol.origin, vol.voxelSize);
   pc.lightCount = frame.lights.count;
@@ -568,7 +572,7 @@ void VoxelConeTracing::recordInject(render::FrameContext& frame, RadiancePart pa
 // "bounce": each bounce after the first cone-traces over the occupied voxels, commits to level 0 and
 // rebuilds the mips; then this frame's part of the voxels updates the bounce light it carries, which
 // next frame's injection adds.
-void VoxelConeTracing::recordBounces(render::FrameContext& frame, bool clearAll) {
+void VoxelConeTracing::recordBounces(render::FrameContext& frame, const VolumeChange& change) {
   VkCommandBuffer cmd = frame.cmd;
   render::ScopedPass scope(ctx_, frame.timer, cmd, "bounce");
   gpu::VctBouncePush pc{};
@@ -594,7 +598,7 @@ void VoxelConeTracing::recordBounces(render::FrameContext& frame, bool clearAll)
     recordMips(cmd, /*levelZeroIsDirect=*/false, RadiancePart{});  // the same occupied set as this frame's first chain; level 0 now has the bounce
   }
   if (!carried_.valid() || options_.bounceFrames == 0) return;
-  const RadiancePart part = planCarriedUpdate(clearAll);
+  const RadiancePart part = planCarriedUpdate(change);
   pc.part = part.part;
   pc.parts = part.parts;
   pc.boxCount = part.boxCount;
@@ -616,9 +620,9 @@ void VoxelConeTracing::recordBounces(render::FrameContext& frame, bool clearAll)
 // cleared (the first frame, a move) or too many boxes changed, unless a GI budget spreads one-off work;
 // else this frame's part and the voxels this frame's SVO build added (in the boxes where it changed
 // voxels), so a moved object carries its light from its first frame.
-VoxelConeTracing::RadiancePart VoxelConeTracing::planCarriedUpdate(bool clearAll) {
-  const std::optional<uint32_t> boxes = clearAll ? std::optional<uint32_t>(0u) : uploadChangedBoxes();
-  const bool whole = (carriedWhole_ || clearAll || !boxes) && !spreadWithoutHistory_;
+VoxelConeTracing::RadiancePart VoxelConeTracing::planCarriedUpdate(const VolumeChange& change) {
+  const std::optional<uint32_t> boxes = change.changedBoxes;
+  const bool whole = (carriedWhole_ || change.clearAll || !boxes) && !spreadWithoutHistory_;
   carriedWhole_ = false;
   RadiancePart p;
   p.parts = whole ? 1u : carriedFrames() * budgetCarriedSlowdown_;
@@ -632,10 +636,9 @@ void VoxelConeTracing::setEmitterPoints(const std::vector<gpu::VctEmitterPoint>&
   static_assert(sizeof(gpu::VctEmitterPoint) == 3 * sizeof(glm::vec4));
   std::vector<glm::vec4> packed(3 * points.size());
   if (!points.empty()) std::memcpy(packed.data(), points.data(), points.size() * sizeof(gpu::VctEmitterPoint));
-  hasEmitterPoints_ = !points.empty();
-  emittersSeen_ = emittersSeen_ || hasEmitterPoints_;
+  emittersSeen_ = emittersSeen_ || !points.empty();
   if (packed == lastEmitterPoints_) return;
-  if (hasEmitterPoints_) emitterPoints_.upload(points.data(), points.size() * sizeof(gpu::VctEmitterPoint));
+  if (!points.empty()) emitterPoints_.upload(points.data(), points.size() * sizeof(gpu::VctEmitterPoint));
   lastEmitterPoints_ = std::move(packed);
   carriedWhole_ = true;
 }
@@ -643,10 +646,10 @@ void VoxelConeTracing::setEmitterPoints(const std::vector<gpu::VctEmitterPoint>&
 // Part of "inject": the emitters' light on this frame's part of the voxels, into the carried image. It
 // depends on the geometry and the points alone: a still scene keeps it, and after an SVO build one turn
 // of the parts brings every voxel up to date (an occluder's shadow moved, an albedo edited).
-void VoxelConeTracing::recordEmitterLight(VkCommandBuffer cmd, bool clearAll) {
-  const bool restart = voxels_.stats().rebuilt || clearAll || carriedWhole_;
+void VoxelConeTracing::recordEmitterLight(VkCommandBuffer cmd, const VolumeChange& change) {
+  const bool restart = voxels_.stats().rebuilt || change.clearAll || carriedWhole_;
   if (!restart && emitterFramesLeft_ == 0) return;
-  const RadiancePart part = planCarriedUpdate(clearAll);
+  const RadiancePart part = planCarriedUpdate(change);
   emitterFramesLeft_ = part.parts == 1 ? 0u : restart ? part.parts - 1 : emitterFramesLeft_ - 1;
   const VoxelVolume& vol = voxels_.volume();
   gpu::VctEmitterPush pc{};

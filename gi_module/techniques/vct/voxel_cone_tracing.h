@@ -73,7 +73,7 @@ class VoxelConeTracing final : public render::RenderFeature {
   // emitter moved, switched or recoloured) update every voxel's emitter light at once.
   void setEmitterPoints(const std::vector<gpu::VctEmitterPoint>& points);
   // The voxels' carried light is the emitters' (not the cones' bounce light).
-  bool carriesEmitterLight() const { return options_.bounceFrames == 0 && options_.emitterSamples > 0 && hasEmitterPoints_; }
+  bool carriesEmitterLight() const { return options_.bounceFrames == 0 && options_.emitterSamples > 0 && !lastEmitterPoints_.empty(); }
   // Frames over which every voxel's carried light is updated once: bounceFrames, or emitterFrames for
   // the emitters' light.
   uint32_t carriedFrames() const { return options_.bounceFrames > 0 ? options_.bounceFrames : options_.emitterFrames; }
@@ -150,17 +150,24 @@ class VoxelConeTracing final : public render::RenderFeature {
     uint32_t part = 0, parts = 1, boxCount = 0;
   };
   static constexpr uint32_t kMaxChangedBoxes = 32;  // more: the frame updates everything
-  // This frame's part (everything unless spread), the changed boxes uploaded. `clearAll`: inject clears
-  // the whole volume first, so everything must be written.
-  RadiancePart planRadianceUpdate(bool clearAll);
+  // What a frame's radiance passes start from: `clearAll`, inject clears the whole volume first, so
+  // everything must be written; else the boxes where this frame's SVO build changed voxels, uploaded
+  // once to changedBoxes_ (uploadChangedBoxes).
+  struct VolumeChange {
+    bool clearAll = false;
+    std::optional<uint32_t> changedBoxes{0u};
+  };
+  VolumeChange planVolumeChange();
+  // This frame's part (everything unless spread), with the changed boxes.
+  RadiancePart planRadianceUpdate(const VolumeChange& change);
   bool clearsEverything() const;
   void prepareFrame(render::FrameContext& frame);
-  void recordInject(render::FrameContext& frame, RadiancePart part, bool clearAll);
-  void recordBounces(render::FrameContext& frame, bool clearAll);
+  void recordInject(render::FrameContext& frame, RadiancePart part, const VolumeChange& change);
+  void recordBounces(render::FrameContext& frame, const VolumeChange& change);
   // This frame's part of the carried light's update (carriedFrames), or every voxel after a refresh or
   // when the volume was cleared; with the voxels the SVO build added unless a budget slows it.
-  RadiancePart planCarriedUpdate(bool clearAll);
-  void recordEmitterLight(VkCommandBuffer cmd, bool clearAll);
+  RadiancePart planCarriedUpdate(const VolumeChange& change);
+  void recordEmitterLight(VkCommandBuffer cmd, const VolumeChange& change);
   // The boxes where this frame's SVO build changed voxels into changedBoxes_: their count (0 without a
   // build), none when there are more than kMaxChangedBoxes.
   std::optional<uint32_t> uploadChangedBoxes();
@@ -208,7 +215,6 @@ class VoxelConeTracing final : public render::RenderFeature {
   render::Image carried_;      // res^3: the bounce light each voxel carries (VctOptions::bounceFrames), or its emitter light
   render::Buffer emitterPoints_;  // gpu::VctEmitterPoint[DYNGI_VCT_EMITTER_POINTS]: setEmitterPoints
   std::vector<glm::vec4> lastEmitterPoints_;  // the points as uploaded, three vec4 each
-  bool hasEmitterPoints_ = false;
   bool emittersSeen_ = false;  // some frame had emitter points: carried_ stays allocated
   uint32_t emitterFramesLeft_ = 0;  // frames of the emitter light's turn still to come (recordEmitterLight)
   uint64_t carriedFrame_ = 0;  // carried-light passes so far: the next part
