@@ -54,10 +54,10 @@ vec2 clampSpreadAt(float eta, float c) {
 // not, and a VPL on the floor beside the box sits on its plane's extension, where the clamp dropped its
 // light on nothing: spread, that light smeared along the face's base. False only when the screen sees
 // past that point (the floor or a far wall beside the box); off screen or hidden, the plane is assumed.
-bool spreadPlaneShown(vec3 x, vec3 nx, vec3 y, vec3 ny) {
+bool spreadPlaneShown(vec3 x, vec3 nx, vec3 y, vec3 ny, float clampB) {
   vec3 along = ny - dot(ny, nx) * nx;
   float l2 = dot(along, along);
-  vec3 probe = y - dot(y - x, nx) * nx + (l2 > 1e-4 ? along * inversesqrt(l2) : vec3(0.0)) * (0.5 * sqrt(pc.distanceClamp));
+  vec3 probe = y - dot(y - x, nx) * nx + (l2 > 1e-4 ? along * inversesqrt(l2) : vec3(0.0)) * (0.5 * sqrt(clampB));
   vec4 clip = frame.viewProj * vec4(probe, 1.0);
   if (clip.w <= 0.0) return true;
   ivec2 size = ivec2(frame.sizeAndCount.xy);
@@ -65,7 +65,7 @@ bool spreadPlaneShown(vec3 x, vec3 nx, vec3 y, vec3 ny) {
   if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) return true;
   vec4 seen = imageLoad(gPosition, q);
   if (seen.w == 0.0) return false;  // background where the plane should be
-  float depth = viewDepthOf(probe), tolerance = max(0.25 * sqrt(pc.distanceClamp), 0.01 * depth);
+  float depth = viewDepthOf(probe), tolerance = max(0.25 * sqrt(clampB), 0.01 * depth);
   if (abs(dot(seen.xyz - x, nx)) < tolerance) return true;
   return viewDepthOf(seen.xyz) < depth - tolerance;  // something in front hides the point: cannot tell
 }
@@ -82,15 +82,16 @@ vec3 vplLight(uint i, uint m, vec3 x, vec3 nx, vec3 xv, float threshold, uint bi
   vec3 w = d * inversesqrt(d2);
   float cx = dot(nx, w), cy = -dot(v.normal.xyz, w);
   if (cx <= 0.0 || cy <= 0.0) return vec3(0.0);
-  float g = cx * cy / max(pc.distanceClamp, d2);
+  const float clampB = pc.tailBounce > 0u && v.position.w >= float(pc.tailBounce) ? pc.distanceClamp * DYNGI_TAIL_CLAMP_SCALE : pc.distanceClamp;
+  float g = cx * cy / max(clampB, d2);
   // The light the clamp drops, given back near where it lands (shared/clamp_spread.h).
   if (pc.clampSpread > 0.0) {  // the same for every lane
     float c = -dot(v.normal.xyz, nx), stretch = clampSpreadStretch(c, pc.clampSpread);
     vec3 t = cross(nx, v.normal.xyz);
     float along = dot(d, t), along2 = along * along / max(dot(t, t), 1e-8);
-    float bump = clampSpreadBump(d2, along2, pc.distanceClamp, stretch);
-    if (bump > 0.0 && spreadPlaneShown(x, nx, v.position.xyz, v.normal.xyz))  // few VPLs are within reach
-      g += clampSpreadG(clampSpreadAt(cx * sqrt(d2) * inversesqrt(pc.distanceClamp), c), bump, d2, cy, pc.distanceClamp, stretch);
+    float bump = clampSpreadBump(d2, along2, clampB, stretch);
+    if (bump > 0.0 && spreadPlaneShown(x, nx, v.position.xyz, v.normal.xyz, clampB))  // few VPLs are within reach
+      g += clampSpreadG(clampSpreadAt(cx * sqrt(d2) * inversesqrt(clampB), c), bump, d2, cy, clampB, stretch);
   }
   if (pc.visibility == DYNGI_VISIBILITY_BITS) {
     uint bit = bitBase + m;

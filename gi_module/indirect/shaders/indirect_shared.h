@@ -79,6 +79,12 @@ struct GpuVpl {
 #define DYNGI_VISIBILITY_NONE 1u  // V = 1
 #define DYNGI_VISIBILITY_BITS 2u  // precomputed bits (Embree on the CPU)
 
+// The bounce tail's probes stand for every bounce after the last, a smooth light; one landing by a
+// corner would light the next surface as a point (a bright blob under the ceiling) where the later
+// bounces light it evenly. Their clamp is this many times B: the blob's reach doubles and its peak is a
+// quarter, the light it drops given back by the clamp spread as any VPL's.
+#define DYNGI_TAIL_CLAMP_SCALE 4.0
+
 // Settings of the indirect gather (push constants).
 #ifdef __cplusplus
 struct alignas(16) GatherPush {
@@ -107,7 +113,9 @@ struct GatherPush {
   uint chunkBegin;
   uint chunkEnd;
   float clampSpread;    // the light the clamp drops is spread back, stretched this much along corners (shared/clamp_spread.h); 0: off
-  uint chunkPad1;
+  // VPLs of this bounce and later (the bounce tail's probes) are gathered with the clamp times
+  // DYNGI_TAIL_CLAMP_SCALE; 0: none.
+  uint tailBounce;
 };
 
 // VPLs one gather dispatch gives a pixel at most. lavapipe counts every loop iteration of a shader

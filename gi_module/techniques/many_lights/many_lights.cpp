@@ -350,6 +350,7 @@ void ManyLights::recordGatherAndFilter(render::FrameContext& frame) {
   pc.worldToVoxel = glm::vec4(vol.origin, 1.0f / vol.voxelSize);
   pc.distanceClamp = settings_.vpl.distanceClamp;
   pc.clampSpread = settings_.vpl.clampSpreadStretch();
+  pc.tailBounce = settings_.vpl.bounceTail ? settings_.vpl.bounces : 0u;  // the probes' bounce (recordVplBounces)
   pc.luminanceThreshold = settings_.vpl.luminanceThreshold;
   pc.liftVoxels = settings_.vpl.liftVoxels;
   pc.voxelResolution = float(vol.resolution);

@@ -294,6 +294,7 @@ void TemporalIndirect::recordScreen(render::FrameContext& frame) {
     }
     pc.distanceClamp = settings_.vpl.distanceClamp;
     pc.clampSpread = settings_.vpl.clampSpreadStretch();
+    pc.tailBounce = settings_.vpl.bounceTail ? paths_.bounces() : 0u;  // the probes' bounce (prepare)
     pc.luminanceThreshold = settings_.vpl.luminanceThreshold;
     pc.vplCount = slots_;
     // A subset of the set (setVplsPerFrame) stands for the whole set, its probes for all of the set's.
