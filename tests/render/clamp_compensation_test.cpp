@@ -28,6 +28,7 @@ gi::GiSettings vplSettings(const std::string& technique, uint32_t bounces, float
   gi::VplOptions& v = technique == "temporal" ? s.temporal.vpl : s.manyLights.vpl;
   v.vpls = 1024;
   v.bounces = bounces;
+  v.bounceTail = false;  // against the path tracer with as many bounces
   v.distanceClamp = clamp;
   v.clampCompensation = rays;
   v.clampSpread = spread;

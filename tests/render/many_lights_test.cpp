@@ -67,6 +67,7 @@ TEST_F(ManyLightsTest, MatchesPathTracerPerRegionWithColourBleeding) {
     gi::ManyLightsOptions s;
     s.vpl.vpls = 1024 * bounces;
     s.vpl.bounces = bounces;
+    s.vpl.bounceTail = false;  // against the path tracer with as many bounces
     Frame f = renderSvo(s);
     const render::ImageRgba& ref = reference(bounces);
     Regions regions = cornellRegions(f, assets, kSize);
@@ -210,6 +211,7 @@ TEST_F(RenderTest, ManyLightsSecondBounceAddsLightThroughTheGiSystem) {
     s.technique = "many-lights";
     s.manyLights.vpl.bounces = bounces;
     s.manyLights.vpl.vpls = 512 * bounces;
+    s.manyLights.vpl.bounceTail = false;  // which would carry the second bounce's light already
     GiRun run(context(), s, "cornell", 64, 64);
     run.step(2);
     mean[bounces] = luminance(render::meanOver(run.indirect()));

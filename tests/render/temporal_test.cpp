@@ -26,6 +26,9 @@ gi::GiSettings settings(uint32_t T, gi::VisibilityBackend vis = gi::VisibilityBa
   s.technique = "temporal";
   s.temporal.visibility = vis;
   s.temporal.vpl.vpls = 512;
+  // The sets' machinery against all VPLs at once, exact counts of what an edit recolours: one bounce
+  // without the tail's probes (bounce_tail_test.cpp has them), whose brighter samples only add noise here.
+  s.temporal.vpl.bounceTail = false;
   s.temporal.temporalSets = T;
   s.temporal.reshootBudget = 512;  // fill the pool in the first frame; the sets then take T frames to render,
   s.temporal.catchUpSets = 1;      // one a frame (the schedule these tests reason about; the catch-up has its own)

@@ -18,7 +18,7 @@ struct VplOptions {
   uint32_t bounces = 1;                // light bounces simulated by VPLs, 1..3
   // The light of the bounces after the last one simulated (shaders/shared/bounce_tail.h): both VPL
   // techniques gather one more bounce (each last-bounce VPL's probe), scaled to carry every later one.
-  bool bounceTail = false;
+  bool bounceTail = true;
   uint32_t interleave = 4;             // K: the G-buffer is split into K x K sub-images
   // The gather and the filter run on a screen gatherScale times smaller a side, and a depth- and
   // normal-aware upsample fills the rest (indirect/reduced_screen.h); a GI budget raises it further.
