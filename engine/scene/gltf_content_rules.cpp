@@ -81,6 +81,20 @@ bool writeFile(std::string* err, const std::string&, const std::vector<unsigned 
   return false;
 }
 
+// "" unless the image's bytes are not all there: a bufferView reaching past its buffer, or a length
+// tinygltf's int could not hold.
+std::string imageBytesMissing(const ReadRules& rules, const tinygltf::Image& image, int size) {
+  if (image.bufferView < 0 || !rules.loading) return size < 0 ? "is over 2 GiB" : "";
+  const auto& views = rules.loading->bufferViews;
+  const auto& buffers = rules.loading->buffers;
+  if (size_t(image.bufferView) >= views.size()) return "names a bufferView that does not exist";
+  const tinygltf::BufferView& view = views[size_t(image.bufferView)];
+  if (view.buffer < 0 || size_t(view.buffer) >= buffers.size()) return "names a buffer that does not exist";
+  const size_t have = buffers[size_t(view.buffer)].data.size();
+  if (view.byteOffset > have || view.byteLength > have - view.byteOffset) return "has a bufferView that lies outside its buffer";
+  return size < 0 ? "is over 2 GiB" : "";
+}
+
 enum class Format { Png, Jpeg, Other };
 
 Format sniff(const unsigned char* bytes, int size) {
@@ -228,15 +242,17 @@ tinygltf::FsCallbacks containedFiles(ReadRules& rules) { return {&fileExists, &e
 bool decodeImage(tinygltf::Image* image, int index, std::string* err, std::string*, int, int, const unsigned char* bytes, int size,
                  void* user) {
   ReadRules& rules = *static_cast<ReadRules*>(user);
-  const Format format = sniff(bytes, size);
   const std::string name = "image " + std::to_string(index);
-  std::string why;
-  if (format == Format::Other) {
-    why = "is neither PNG nor JPEG (the formats glTF allows)";
-  } else if (!image->mimeType.empty() && image->mimeType != (format == Format::Png ? "image/png" : "image/jpeg")) {
-    why = "is declared " + platform::oneLine(image->mimeType) + " but is " + (format == Format::Png ? "a PNG" : "a JPEG");
-  } else {
-    why = format == Format::Png ? decodePng(rules, bytes, size, *image) : decodeJpeg(rules, bytes, size, *image);
+  std::string why = imageBytesMissing(rules, *image, size);
+  if (why.empty()) {
+    const Format format = sniff(bytes, size);
+    if (format == Format::Other) {
+      why = "is neither PNG nor JPEG (the formats glTF allows)";
+    } else if (!image->mimeType.empty() && image->mimeType != (format == Format::Png ? "image/png" : "image/jpeg")) {
+      why = "is declared " + platform::oneLine(image->mimeType) + " but is " + (format == Format::Png ? "a PNG" : "a JPEG");
+    } else {
+      why = format == Format::Png ? decodePng(rules, bytes, size, *image) : decodeJpeg(rules, bytes, size, *image);
+    }
   }
   if (why.empty()) return true;
   image->image.clear();

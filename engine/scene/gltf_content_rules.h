@@ -22,12 +22,16 @@ struct ReadRules {
   uint32_t maxImageDimension = 0;
   uint64_t maxImageBytes = 0;  // decoded, all images of the file together
   uint64_t imageBytes = 0;     // decoded so far
+  // The model tinygltf is filling: its buffers and bufferViews are parsed before its images, and tinygltf
+  // hands an image's bufferView bytes over without checking that they lie inside the buffer.
+  const tinygltf::Model* loading = nullptr;
 };
 
 // tinygltf's file access: a path outside every allowed folder does not exist and is never opened.
 tinygltf::FsCallbacks containedFiles(ReadRules& rules);
-// tinygltf's image decoder (user pointer: the ReadRules): PNG or JPEG by signature, the size read from the
-// header and refused before decoding when over the rules' limits.
+// tinygltf's image decoder (user pointer: the ReadRules): an image's bufferView checked against its buffer,
+// PNG or JPEG by signature, the size read from the header and refused before decoding when over the
+// rules' limits.
 bool decodeImage(tinygltf::Image* image, int index, std::string* err, std::string* warn, int, int, const unsigned char* bytes,
                  int size, void* rules);
 

@@ -741,8 +741,9 @@ std::string importBytes(const uint8_t* data, size_t size, const std::string& nam
   }
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks(content::containedFiles(rules));
-  loader.SetImageLoader(&content::decodeImage, &rules);
   tinygltf::Model model;
+  rules.loading = &model;
+  loader.SetImageLoader(&content::decodeImage, &rules);
   std::string err, warn;
   bool ok = false;
   const unsigned length = unsigned(std::min<size_t>(size, 0xFFFFFFFFu));

@@ -100,6 +100,22 @@ TEST(HostileContent, ImagesAreDecodedOnlyAsPngOrJpegWithinTheirLimits) {
   EXPECT_EQ((std::vector<uint8_t>(t.rgba8.begin(), t.rgba8.begin() + 8)), (std::vector<uint8_t>{255, 0, 0, 255, 0, 255, 0, 255}));
 }
 
+TEST(HostileContent, AnImageBufferViewPastItsBufferIsRefusedBeforeDecoding) {
+  // tinygltf hands the decoder a bufferView's bytes without checking them against the buffer. In the
+  // buffer, the view's bytes (vertex positions) are read and found to be no PNG; pushed past it, refused.
+  for (bool past : {false, true}) {
+    GltfSpec s = test::texturedQuad();
+    s.imagesJson = {R"({"bufferView":0,"mimeType":"image/png"})"};
+    if (past) s.meshes[0][0].positionViewOffsetRaw = "1000000";
+    const std::string mentions = past ? "image 0 has a bufferView that lies outside its buffer" : "image 0 is neither PNG nor JPEG";
+    expectRefused(test::writeGltf(s), mentions);
+    TempDir dir;
+    auto l = load(dir.write("scene.glb", test::writeGlb(s)));
+    EXPECT_NE(l->error.find(mentions), std::string::npos) << l->error;
+    EXPECT_EQ(l->world.aliveCount(), 0u);
+  }
+}
+
 TEST(HostileContent, TheNodeGraphMustBeAForest) {
   const auto start = std::chrono::steady_clock::now();
   expectRefused(test::writeGltf(test::diamondGraph(60)), "has two parents");
