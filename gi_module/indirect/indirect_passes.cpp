@@ -206,4 +206,12 @@ void IndirectFilterPass::recordCompensation(render::FrameContext& frame, const V
   vkCmdDispatch(cmd, groupsX, groupsY, 1);
 }
 
+std::vector<QualityKnob> tailStrideKnob(const VplOptions& vpl, std::function<void(uint32_t)> setStride) {
+  if (!vpl.bounceTail) return {};
+  const uint32_t from = std::clamp(vpl.bounceTailStride, 1u, 4u), to = std::min(4u, 2u * from);
+  std::vector<double> levels = {double(from)};
+  if (to > from) levels.push_back(double(to));
+  return {{"tail_stride", levels, [set = std::move(setStride)](double v) { set(uint32_t(v)); }}};
+}
+
 }  // namespace dyngi::gi

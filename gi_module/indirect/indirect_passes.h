@@ -9,6 +9,7 @@
 
 #include "dyngi/engine/render/frame_context.h"
 #include "dyngi/engine/render/pipeline.h"
+#include "dyngi/gi/budget_controller.h"
 #include "indirect/shaders/indirect_shared.h"
 
 namespace dyngi::gi {
@@ -68,5 +69,10 @@ class IndirectFilterPass {
   render::Image rowsResult_;   // rgba32ui packed as the input (filter_input.glsl), the frame's size
   render::Image traced_, compensation_;  // one texel per DYNGI_COMPENSATE_SCALE^2 pixels, packed likewise: traced, blurred
 };
+
+// The VPL techniques' budget knob over the bounce tail's probes: the stride (VplOptions::bounceTailStride)
+// from the user's to twice it, at most 4 (past that a few probes carry so much light that they show as
+// hot spots). None with the tail off.
+std::vector<QualityKnob> tailStrideKnob(const VplOptions& vpl, std::function<void(uint32_t)> setStride);
 
 }  // namespace dyngi::gi

@@ -8,6 +8,7 @@ const OptionTable<VplOptions>& VplOptions::table() {
           .add(DYNGI_OPTION(VplOptions, vpls), "VPLs over all bounces (rounded down to a multiple of the bounces)", 16, 65536)
           .add(DYNGI_OPTION(VplOptions, bounces), "light bounces carried by VPLs", 1, 3)
           .add(DYNGI_OPTION(VplOptions, bounceTail), "the light of every bounce after the last (one probe ray per last-bounce VPL, gathered as one more bounce scaled by the ratio the probes measure)", 0, 1)
+          .add(DYNGI_OPTION(VplOptions, bounceTailStride), "the bounce tail gathers one probe in this many, each carrying the light of all of them (a GI budget doubles it)", 1, 4)
           .add(DYNGI_OPTION(VplOptions, interleave), "K: the gather splits the image into K x K sub-images", 1, 8)
           .add(DYNGI_OPTION(VplOptions, gatherScale), "the gather and filter run on a screen s times smaller a side (1.5: 4 pixels in 9), upsampled to the rest with depth and normal weights", 1, 4)
           .add(DYNGI_OPTION(VplOptions, directionalReach), "metres around the camera over which directional lights shoot their VPLs when the scene is wider (0: the whole scene)", 0, 100000)

@@ -262,7 +262,7 @@ double VoxelProbe::dispatchMarch(const render::Pipeline& pipeline, const std::ve
 std::vector<VplReadback> readbackVpls(ManyLights& ml, bool withProbes) {
   std::vector<VplReadback> out;
   if (!ml.vpls_.valid()) return out;
-  const uint32_t n = ml.perBounce_ * (ml.settings_.vpl.bounces + (withProbes && ml.settings_.vpl.bounceTail ? 1 : 0));
+  const uint32_t n = ml.perBounce_ * ml.settings_.vpl.bounces + (withProbes ? ml.tailProbeCount() : 0u);
   for (const gpu::GpuVpl& v : render::readbackBuffer<gpu::GpuVpl>(ml.ctx_, ml.vpls_.handle(), n))
     out.push_back({glm::vec3(v.position), v.position.w < 0 ? -1 : int(v.position.w + 0.5f), glm::vec3(v.normal), glm::vec3(v.flux)});
   return out;

@@ -17,8 +17,10 @@
 
 #ifdef __cplusplus
 #include <glm/glm.hpp>
+#include <cstdint>
 namespace dyngi::gi::gpu {
 using glm::vec3;
+using uint = uint32_t;
 #define DYNGI_SHARED_FN inline
 #else
 #define DYNGI_SHARED_FN
@@ -33,6 +35,22 @@ DYNGI_SHARED_FN vec3 bounceTailScale(vec3 lastFlux, vec3 nextFlux) {
   vec3 r = nextFlux / max(lastFlux, vec3(1e-30f));
   r = clamp(r, vec3(0.0f), vec3(DYNGI_BOUNCE_TAIL_MAX_RATIO));
   return vec3(1.0f) / (vec3(1.0f) - r);
+}
+
+// A stride s (VplOptions::bounceTailStride) gathers one probe in each run of s consecutive last-bounce
+// VPLs of `count`, its flux x the run's length: the choice within a run is a hash of the run, not its
+// first, because the VPLs follow low-discrepancy sequences whose even points lie in one half of the domain.
+DYNGI_SHARED_FN uint bounceTailRunLength(uint run, uint stride, uint count) {
+  return count - run * stride < stride ? count - run * stride : stride;
+}
+DYNGI_SHARED_FN uint bounceTailChosenInRun(uint run, uint stride, uint count) {
+  uint x = run * 0x9E3779B9u + 0x7F4A7C15u;
+  x ^= x >> 16u;
+  x *= 0x7feb352du;
+  x ^= x >> 15u;
+  x *= 0x846ca68bu;
+  x ^= x >> 16u;
+  return run * stride + x % bounceTailRunLength(run, stride, count);
 }
 
 #ifdef __cplusplus

@@ -30,6 +30,7 @@ ManyLights::ManyLights(render::VulkanContext& ctx, VoxelScene& voxels, const Man
   // The values used from here on (Technique::options() reports them): bounces and K clamped, the VPL
   // count rounded to a multiple of the bounces.
   settings_.vpl.bounces = std::clamp(settings_.vpl.bounces, 1u, 3u);
+  tailStride_ = std::clamp(settings_.vpl.bounceTailStride, 1u, 4u);
   // Bounced VPLs (and the bounce tail's probes) take the albedo and normal of the voxel they land on.
   if (settings_.vpl.bounces > 1 || settings_.vpl.bounceTail) voxels_.enableLeafAttributes();
   settings_.vpl.interleave = std::clamp(settings_.vpl.interleave, 1u, 8u);
@@ -308,12 +309,14 @@ void ManyLights::recordVplGeneration(render::FrameContext& frame) {
 
 // "vpl_bounce": each further bounce through the voxel scene, then the bounce tail's probes.
 void ManyLights::recordVplBounces(render::FrameContext& frame) {
-  const uint32_t bounceLevels = gatheredVplCount() / perBounce_;  // with the tail, its probes: one more
-  if (bounceLevels <= 1) return;
+  const uint32_t bounces = settings_.vpl.bounces;
+  if (bounces <= 1 && !settings_.vpl.bounceTail) return;
   VkCommandBuffer cmd = frame.cmd;
   const VoxelVolume& vol = voxels_.volume();
   render::ScopedPass scope(ctx_, frame.timer, cmd, "vpl_bounce");
-  for (uint32_t b = 1; b < bounceLevels; ++b) {
+  // Bounces 2..B, then with the tail its probes as bounce B + 1 (one parent per run of tailStride_).
+  for (uint32_t b = 1; b < bounces + (settings_.vpl.bounceTail ? 1u : 0u); ++b) {
+    const uint32_t stride = b == bounces ? tailStride_ : 1u;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bounce_.handle());
     DescriptorWrites()
         .storageBuffer(DYNGI_VPL_BOUNCE_BINDING_VPLS, vpls_.handle())
@@ -322,15 +325,15 @@ void ManyLights::recordVplBounces(render::FrameContext& frame) {
         .storageImage(DYNGI_VPL_BOUNCE_BINDING_VOXEL_ATTRIBUTES, voxels_.voxelAttributes().view())
         .push(ctx_, cmd, bounce_);
     const gpu::VplBouncePush pc{glm::vec4(vol.origin, 1.0f / vol.voxelSize), (b - 1) * perBounce_, perBounce_, b, vol.depth(),
-                                float(vol.resolution), settings_.vpl.liftVoxels, settings_.vpl.seed};
+                                float(vol.resolution), settings_.vpl.liftVoxels, settings_.vpl.seed, stride};
     vkCmdPushConstants(cmd, bounce_.layout(), kCS, 0, sizeof(pc), &pc);
-    vkCmdDispatch(cmd, dispatchGroups(perBounce_, 64), 1, 1);
+    vkCmdDispatch(cmd, dispatchGroups((perBounce_ + stride - 1) / stride, 64), 1, 1);
     render::computeWriteBarrier(cmd);
   }
   if (settings_.vpl.bounceTail) {  // the probes' bounce, gathered, carries every later one (vpl_tail.comp)
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tail_.handle());
     DescriptorWrites().storageBuffer(DYNGI_VPL_TAIL_BINDING_VPLS, vpls_.handle()).push(ctx_, cmd, tail_);
-    const gpu::VplTailPush tp{(settings_.vpl.bounces - 1) * perBounce_, perBounce_};
+    const gpu::VplTailPush tp{(bounces - 1) * perBounce_, perBounce_, tailProbeCount()};
     vkCmdPushConstants(cmd, tail_.layout(), kCS, 0, sizeof(tp), &tp);
     vkCmdDispatch(cmd, 1, 1, 1);
     render::computeWriteBarrier(cmd);

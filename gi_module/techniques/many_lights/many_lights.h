@@ -43,6 +43,9 @@ class ManyLights final : public render::RenderFeature {
   float gatherScale() const { return std::clamp(settings_.vpl.gatherScale * budgetGatherScale_, 1.0f, 8.0f); }
   void setBudgetGatherScale(float factor) { budgetGatherScale_ = std::max(1.0f, factor); }
   float budgetGatherScale() const { return budgetGatherScale_; }
+  // The bounce tail gathers one probe in this many (VplOptions::bounceTailStride until a GI budget moves it).
+  uint32_t tailStride() const { return tailStride_; }
+  void setTailStride(uint32_t stride) { tailStride_ = std::max(1u, stride); }
   // Whether the screen passes run on a smaller screen (then "reduce" and "upsample" are timed).
   bool screenReduced() const;
   // Emissive surfaces as VPL sources (vpl/emitters.h), before prepare(): the first bounce's VPLs are
@@ -59,8 +62,10 @@ class ManyLights final : public render::RenderFeature {
   void recordVplGeneration(render::FrameContext& frame);
   void recordVplBounces(render::FrameContext& frame);
   void recordGatherAndFilter(render::FrameContext& frame);
-  // The VPLs a frame gathers: every simulated bounce's, and with the bounce tail its probes' bounce.
-  uint32_t gatheredVplCount() const { return perBounce_ * (settings_.vpl.bounces + (settings_.vpl.bounceTail ? 1u : 0u)); }
+  // The VPLs a frame gathers: every simulated bounce's, and with the bounce tail its probes (one per run
+  // of tailStride last-bounce VPLs).
+  uint32_t tailProbeCount() const { return settings_.vpl.bounceTail ? (perBounce_ + tailStride_ - 1) / tailStride_ : 0u; }
+  uint32_t gatheredVplCount() const { return perBounce_ * settings_.vpl.bounces + tailProbeCount(); }
 
   render::VulkanContext& ctx_;
   VoxelScene& voxels_;
@@ -68,6 +73,7 @@ class ManyLights final : public render::RenderFeature {
   uint32_t rsmLayers_ = 0, rsmLayersUsed_ = 0, perBounce_ = 0;
   uint32_t perFrame_ = 0;  // a GI budget's VPL count (0: the options')
   float budgetGatherScale_ = 1.0f;
+  uint32_t tailStride_ = 1;
   uint32_t width_ = 0, height_ = 0;  // the frame's (resize)
   render::Image rsmPosition_, rsmNormal_, rsmFlux_, rsmDepth_;
   render::Buffer layers_, lights_, rowPrefix_, rowCdf_, vpls_;

@@ -42,18 +42,22 @@ class ManyLightsTechnique final : public Technique {
   }
   // First the fraction of pixels the gather and the filter run on (ReducedScreen): per millisecond
   // saved it loses the least (docs/QUALITY.md, "The GI budget"). Then the VPLs per frame: cost
-  // proportional to them in every stage after the RSMs. Last the fraction of frames that update the
+  // proportional to them in every stage after the RSMs. Then the bounce tail's probes gathered
+  // (tailStrideKnob): they lower the floor the tail raises. Last the fraction of frames that update the
   // voxels (their cost is lag).
   std::vector<QualityKnob> qualityKnobs() override {
     const uint32_t bounces = feature_.settings().vpl.bounces;
-    return {gatherFractionKnob([this](float factor) { feature_.setBudgetGatherScale(factor); }),
-            {"vpls_per_frame", geometricLevels(feature_.vplCount(), kBudgetFloorFraction, kBudgetStepRatio, bounces),
-             [this](double v) { feature_.setVplsPerFrame(uint32_t(v)); }},
-            voxels_.updateFractionKnob()};
+    std::vector<QualityKnob> knobs = {gatherFractionKnob([this](float factor) { feature_.setBudgetGatherScale(factor); }),
+                                      {"vpls_per_frame", geometricLevels(feature_.vplCount(), kBudgetFloorFraction, kBudgetStepRatio, bounces),
+                                       [this](double v) { feature_.setVplsPerFrame(uint32_t(v)); }}};
+    for (QualityKnob& k : tailStrideKnob(feature_.settings().vpl, [this](uint32_t s) { feature_.setTailStride(s); })) knobs.push_back(std::move(k));
+    knobs.push_back(voxels_.updateFractionKnob());
+    return knobs;
   }
   std::map<std::string, std::map<std::string, double>> statsSections() const override {
     return {{"vpl", {{"count", feature_.vplCount()}, {"gather_scale", feature_.gatherScale()},
                      {"gather_fraction", 1.0 / (double(feature_.budgetGatherScale()) * feature_.budgetGatherScale())},
+                     {"tail_stride", feature_.tailStride()},
                      {"voxel_update_fraction", 1.0 / double(voxels_.updateInterval())}}}};
   }
   ManyLights& feature() { return feature_; }

@@ -12,6 +12,7 @@
 #include "spirv/temporal_gather.comp.spv.h"
 
 #include "gpu_aliases.h"
+#include "shaders/shared/bounce_tail.h"
 
 namespace dyngi::gi {
 
@@ -23,6 +24,7 @@ TemporalIndirect::TemporalIndirect(render::VulkanContext& ctx, VplPaths& paths, 
   sets_ = std::min(paths.settings().temporalSets, uint32_t(DYNGI_MAX_TEMPORAL_SETS));
   perSet_ = (paths.settings().vpl.vpls + sets_ - 1) / sets_;
   gathered_ = perSet_;
+  tailStride_ = std::clamp(settings.vpl.bounceTailStride, 1u, 4u);
   lastRendered_.assign(sets_, -1);
   const Binding accumulate[] = {{DYNGI_TEMPORAL_GATHER_BINDING_SET_SAMPLES, kStorageImage, kCS},
                                 {DYNGI_TEMPORAL_GATHER_BINDING_SUMS, kStorageImage, kCS},
@@ -127,13 +129,17 @@ void TemporalIndirect::prepare(render::VulkanContext& ctx, const render::RenderS
   const double stride = double(perSet_) / double(gathered_);
   auto poolIndex = [&](uint32_t j, uint32_t set) { return std::min(perSet_ - 1, uint32_t(double(j) * stride)) * sets_ + set; };
   const bool probes = settings_.vpl.bounceTail;
+  // With a tail stride, one path in each run of that many gathers its probe, standing for the run.
+  const uint32_t paths = uint32_t(all.size() / B), tailStride = std::max(1u, tailStride_);
+  auto probeWeight = [&](uint32_t index) -> uint32_t {
+    if (!probes || index >= all.size() || index % B != B - 1) return 0;
+    const uint32_t path = index / B, run = path / tailStride;
+    return gpu::bounceTailChosenInRun(run, tailStride, paths) == path ? gpu::bounceTailRunLength(run, tailStride, paths) : 0;
+  };
   uint32_t probeSlots = 0;
   for (uint32_t set = 0; probes && set < sets_; ++set) {
     uint32_t n = 0;
-    for (uint32_t j = 0; j < gathered_; ++j) {
-      const uint32_t index = poolIndex(j, set);
-      n += index < all.size() && index % B == B - 1;
-    }
+    for (uint32_t j = 0; j < gathered_; ++j) n += probeWeight(poolIndex(j, set)) > 0;
     probeSlots = std::max(probeSlots, n);
   }
   slots_ = gathered_ + probeSlots;
@@ -155,7 +161,8 @@ void TemporalIndirect::prepare(render::VulkanContext& ctx, const render::RenderS
       const PathVpl& v = all[index];
       const uint32_t bounce = index % B, path = index / B;
       put(k * slots_ + j, v.position, v.normal, v.flux, bounce, path);
-      if (probes && bounce + 1 == B && !v.probeSurface.isNull()) put(probe++, v.probePosition, v.probeNormal, v.flux * v.probeAlbedo * tail, B, path);
+      if (const uint32_t weight = probeWeight(index); weight > 0 && !v.probeSurface.isNull())
+        put(probe++, v.probePosition, v.probeNormal, v.flux * v.probeAlbedo * tail * float(weight), B, path);
     }
   }
   dropTrappedVpls(gpuVpls);

@@ -64,6 +64,9 @@ class TemporalIndirect final : public render::RenderFeature {
   float gatherScale() const { return std::clamp(settings_.vpl.gatherScale * budgetGatherScale_, 1.0f, 8.0f); }
   void setBudgetGatherScale(float factor) { budgetGatherScale_ = std::max(1.0f, factor); }
   float budgetGatherScale() const { return budgetGatherScale_; }
+  // The bounce tail gathers one probe in this many (VplOptions::bounceTailStride until a GI budget moves it).
+  uint32_t tailStride() const { return tailStride_; }
+  void setTailStride(uint32_t stride) { tailStride_ = std::max(1u, stride); }
   // Whether the screen passes run on a smaller screen (then "reduce" and "upsample" are timed).
   bool screenReduced() const;
   uint32_t setsRendered() const;  // sets rendered at least once
@@ -110,6 +113,7 @@ class TemporalIndirect final : public render::RenderFeature {
   std::unique_ptr<class IndirectFilterPass> filterPass_;
   std::unique_ptr<class ReducedScreen> reduced_;
   float budgetGatherScale_ = 1.0f;
+  uint32_t tailStride_ = 1;
   uint32_t width_ = 0, height_ = 0;  // the frame's (resize); the images are at the reduced size
   double bvhMs_ = 0.0;
   uint32_t trappedVpls_ = 0;

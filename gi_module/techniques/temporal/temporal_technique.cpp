@@ -76,12 +76,14 @@ class TemporalTechnique final : public Technique {
               {"vpls_per_frame", feature_.vplsPerFrame()},
               {"gather_scale", feature_.gatherScale()},
               {"gather_fraction", 1.0 / (double(feature_.budgetGatherScale()) * feature_.budgetGatherScale())},
+              {"tail_stride", feature_.tailStride()},
               {"voxel_update_fraction", voxels_ ? 1.0 / double(voxels_->updateInterval()) : 1.0},
               {"trapped_last_frame", feature_.lastTrappedVpls()}}}};
   }
   // First the fraction of pixels the gather, the reprojection and the filter run on (ReducedScreen):
   // per millisecond saved it loses the least (docs/QUALITY.md, "The GI budget"). Then the VPLs gathered
-  // per frame (an evenly spread subset of the set): the gather's cost is proportional to them. Last,
+  // per frame (an evenly spread subset of the set): the gather's cost is proportional to them. Then the
+  // bounce tail's probes gathered (tailStrideKnob): they lower the floor the tail raises. Last,
   // with SVO visibility, the fraction of frames that update the voxels (their cost is lag). Not the interleave K: K = 8 saves 37 ms of gather and adds 22 ms of filter at 768^2 (the
   // filter's window is K x K). Not the reshoot budget: its cost is CPU path tracing (0.02 ms here) and
   // lowering it is exactly what slows the reaction to a change.
@@ -93,6 +95,7 @@ class TemporalTechnique final : public Technique {
     std::vector<QualityKnob> knobs = {gatherFractionKnob([this](float factor) { feature_.setBudgetGatherScale(factor); }),
                                       {"vpls_per_frame", geometricLevels(set, floorFraction, kBudgetStepRatio),
                                        [this](double v) { feature_.setVplsPerFrame(uint32_t(v)); }}};
+    for (QualityKnob& k : tailStrideKnob(feature_.settings().vpl, [this](uint32_t s) { feature_.setTailStride(s); })) knobs.push_back(std::move(k));
     if (voxels_) knobs.push_back(voxels_->updateFractionKnob());  // SVO visibility
     return knobs;
   }

@@ -19,6 +19,9 @@ struct VplOptions {
   // The light of the bounces after the last one simulated (shaders/shared/bounce_tail.h): both VPL
   // techniques gather one more bounce (each last-bounce VPL's probe), scaled to carry every later one.
   bool bounceTail = true;
+  // The tail gathers the probes of one last-bounce VPL in this many (a fixed, evenly spread choice), each
+  // carrying the light of all of them: its gather costs less, its noise grows. A GI budget doubles it.
+  uint32_t bounceTailStride = 1;
   uint32_t interleave = 4;             // K: the G-buffer is split into K x K sub-images
   // The gather and the filter run on a screen gatherScale times smaller a side, and a depth- and
   // normal-aware upsample fills the rest (indirect/reduced_screen.h); a GI budget raises it further.

@@ -72,10 +72,12 @@ struct RsmLayer {
   uint depth;                                                                      \
   float res;                                                                       \
   float lift;        /* voxel units the ray starts off its surface */ \
-  uint seed;         /* VplOptions::seed: turns every bounce's Halton points (Cranley-Patterson) */
+  uint seed;         /* VplOptions::seed: turns every bounce's Halton points (Cranley-Patterson) */ \
+  uint parentStride; /* one parent in each run of this many (the tail's probes, bounce_tail.h); else 1 */
 #define DYNGI_VPL_TAIL_PUSH                                                          \
   uint lastFirst;    /* first VPL of the last gathered bounce; its probes follow it */ \
-  uint count;        /* VPLs per bounce */
+  uint count;        /* VPLs per bounce */ \
+  uint probes;       /* the probes after them (one per run of VplOptions::bounceTailStride) */
 #define DYNGI_MANY_LIGHTS_DEBUG_PUSH uint mode; uint K; uint vplCount;
 
 #ifdef __cplusplus
@@ -90,8 +92,8 @@ static_assert(sizeof(RsmLayer) == 96 && offsetof(RsmLayer, axis) == 64 && offset
 struct RsmPush { DYNGI_RSM_PUSH };
 static_assert(sizeof(RsmPush) == 4);
 static_assert(sizeof(VplCdfRowsPush) == 8 && sizeof(VplCdfTotalPush) == 4 && sizeof(VplSamplePush) == 16);
-static_assert(sizeof(VplBouncePush) == 44 && offsetof(VplBouncePush, parentFirst) == 16 && offsetof(VplBouncePush, seed) == 40);
-static_assert(sizeof(VplTailPush) == 8 && sizeof(ManyLightsDebugPush) == 12);
+static_assert(sizeof(VplBouncePush) == 48 && offsetof(VplBouncePush, parentFirst) == 16 && offsetof(VplBouncePush, seed) == 40);
+static_assert(sizeof(VplTailPush) == 12 && sizeof(ManyLightsDebugPush) == 12);
 #endif
 
 DYNGI_GPU_NAMESPACE_END

@@ -1,8 +1,10 @@
 #version 460
 // Multi-bounce VPLs: each VPL of bounce b-1 shoots one cosine-distributed (Halton) direction through the
-// voxel scene; where it lands, a VPL of bounce b reflects parent flux x the voxel's albedo.
+// voxel scene; where it lands, a VPL of bounce b reflects parent flux x the voxel's albedo. The bounce
+// tail's probes, with a stride, come from one parent in each run of that many, standing for the run.
 #extension GL_GOOGLE_include_directive : require
 #include "many_lights_shared.h"
+#include "shared/bounce_tail.h"
 layout(local_size_x = 64) in;
 layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_VPLS) buffer Vpls { GpuVpl vpls[]; };
 layout(set = 0, binding = DYNGI_VPL_BOUNCE_BINDING_NODES) readonly buffer Nodes { uint nodes[]; };
@@ -28,8 +30,9 @@ float rotation(uint s, uint d) {
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= count) return;
-  GpuVpl parent = vpls[parentFirst + i];
+  if (i >= (count + parentStride - 1u) / parentStride) return;
+  GpuVpl parent = vpls[parentFirst + bounceTailChosenInRun(i, parentStride, count)];
+  float runLength = float(bounceTailRunLength(i, parentStride, count));
   GpuVpl child;
   child.position = vec4(0.0, 0.0, 0.0, -1.0);
   child.normal = vec4(0.0, 1.0, 0.0, parent.normal.w);
@@ -65,7 +68,8 @@ void main() {
     vec3 hitVoxel = o + dir * tHit;
     child.position = vec4(hitVoxel / worldToVoxel.w + worldToVoxel.xyz, float(bounce));
     child.normal = vec4(vn, parent.normal.w);
-    child.flux = vec4(parent.flux.rgb * albedo, dot(parent.flux.rgb * albedo, vec3(0.2126, 0.7152, 0.0722)));
+    vec3 flux = parent.flux.rgb * albedo * runLength;
+    child.flux = vec4(flux, dot(flux, vec3(0.2126, 0.7152, 0.0722)));
   }
   vpls[childIndex] = child;
 }

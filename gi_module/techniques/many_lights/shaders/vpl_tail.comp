@@ -19,10 +19,9 @@ shared vec3 nextSum[256];
 void main() {
   uint t = gl_LocalInvocationID.x;
   vec3 last = vec3(0.0), next = vec3(0.0);
-  for (uint i = t; i < count; i += 256u) {
-    last += vpls[lastFirst + i].flux.rgb;         // invalid VPLs carry zero flux
-    next += vpls[lastFirst + count + i].flux.rgb;  // the probe: that flux x the albedo it landed on
-  }
+  for (uint i = t; i < count; i += 256u) last += vpls[lastFirst + i].flux.rgb;  // invalid VPLs carry zero flux
+  // A probe: its VPL's flux x the albedo it landed on (x the run it stands for, vpl_bounce.comp).
+  for (uint i = t; i < probes; i += 256u) next += vpls[lastFirst + count + i].flux.rgb;
   lastSum[t] = last;
   nextSum[t] = next;
   barrier();
@@ -34,7 +33,7 @@ void main() {
     barrier();
   }
   vec3 scale = bounceTailScale(lastSum[0], nextSum[0]);
-  for (uint i = lastFirst + count + t; i < lastFirst + 2u * count; i += 256u) {
+  for (uint i = lastFirst + count + t; i < lastFirst + count + probes; i += 256u) {
     vec3 flux = vpls[i].flux.rgb * scale;
     vpls[i].flux = vec4(flux, dot(flux, vec3(0.2126, 0.7152, 0.0722)));
   }
