@@ -48,7 +48,7 @@ ctest --output-on-failure -j"$(nproc)" -L e2e "$@"
 # layer's core checks only (the Release job keeps the synchronization checks on). Every render test runs
 # here but the accuracy measurements below (44-110 s each under ASan), whose code paths other render tests
 # in this run cover (bounce tail, emitters, per-region temporal paths, moving box, VPL gather, clamp
-# spread, quality knobs, the reduced gather, the lamp under the ceiling, VCT's emissive room (its emitter
+# spread, quality knobs and the tail stride (at their floors in AGiBudgetDrivesTheKnobsFromTheMeasuredCost), the reduced gather, the lamp under the ceiling, VCT's emissive room (its emitter
 # light: the quadrature test; its carried light: the on-and-off and budget tests), VCT's
 # radiance spread over frames and its trace spread under a budget, whose C++ is a few lines of scheduling,
 # run here under a budget by AGiBudgetDrivesTheKnobsFromTheMeasuredCost; the street's comparisons, whose
@@ -62,6 +62,7 @@ release_only=(
   VplImageErrorTailStaysWithinTwiceThePathTracersOwnNoise
   ClampSpreadLeavesABoxFaceBesideLitFloorDark
   EveryQualityKnobAtItsFloorKeepsTheMeanIndirectLight
+  TheTailStrideAtItsFloorKeepsTheTailsLight
   AReducedGatherKeepsEachSurfacesLight
   VctRadianceSpreadOverFramesReachesTheWholeUpdate
   VctRadianceSpreadUpdatesAMovedObjectAtOnce
